@@ -1,0 +1,5 @@
+"""The ``microslip`` command line: one module per subcommand, parsing and delegating only."""
+
+from .main import main
+
+__all__ = ["main"]

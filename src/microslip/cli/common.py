@@ -1,0 +1,122 @@
+"""Options shared by several subcommands: parameters, model readings, output."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any
+
+from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
+from ..io import to_jsonable
+from ..options import CENTRE_READINGS, POISSON_MODES, ModelOptions
+from ..params import PRESETS, ClampParams, preset
+
+__all__ = [
+    "add_model_options",
+    "add_params",
+    "add_strain_energy",
+    "model_options",
+    "params_from_args",
+    "print_json",
+]
+
+#: Command-line name, ClampParams field, unit.
+PARAM_FLAGS = (
+    ("length", "length", "mm"),
+    ("width", "width", "mm"),
+    ("thickness", "thickness", "mm"),
+    ("modulus", "modulus", "MPa"),
+    ("poisson-ratio", "poisson_ratio", ""),
+    ("friction", "friction", ""),
+    ("normal-force", "normal_force", "N"),
+)
+
+
+def number(text: str) -> float:
+    """argparse type: any float syntax (validation of the range happens in the model)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+
+
+def add_params(parser: argparse.ArgumentParser, default_preset: str | None = None) -> None:
+    g = parser.add_argument_group("clamped zone (override the preset's values)")
+    g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
+                   help=f"paper parameter set (default {default_preset})")
+    for flag, field, unit in PARAM_FLAGS:
+        g.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
+                       help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+    g.add_argument("--amplitude", type=number, metavar="N",
+                   help="load amplitude F0, N (default: the preset's)")
+
+
+def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None = None
+                     ) -> tuple[ClampParams, float]:
+    """ClampParams (preset overridden by explicit flags) and the amplitude, validated."""
+    from ..errors import ParameterError
+
+    if args.preset is not None:
+        base = preset(args.preset)
+        values = base.as_dict()
+        amplitude = PRESETS[args.preset][1]
+    else:
+        values = {}
+        amplitude = None
+    for _, field, _ in PARAM_FLAGS:
+        v = getattr(args, field, None)
+        if v is not None:
+            values[field] = v
+    missing = [f"--{flag}" for flag, field, _ in PARAM_FLAGS if field not in values]
+    if missing:
+        raise ParameterError(f"give --preset or all of {', '.join(missing)}")
+    params = ClampParams(**values)
+    if args.amplitude is not None:
+        amplitude = args.amplitude
+    if amplitude is None:
+        amplitude = fallback_amplitude
+    if amplitude is None:
+        raise ParameterError("give --amplitude N (the load amplitude, > 0)")
+    if not (math.isfinite(amplitude) and amplitude > 0):
+        raise ParameterError(f"amplitude must be finite and > 0 N, got {amplitude!r}")
+    return params, float(amplitude)
+
+
+def add_model_options(parser: argparse.ArgumentParser) -> None:
+    g = parser.add_argument_group("reading of the paper (docs/interpretation.md)")
+    g.add_argument("--no-corrections", action="store_true",
+                   help="switch off the Poisson and length updates (rigid-foundation limit)")
+    g.add_argument("--poisson", choices=POISSON_MODES, default="consistent",
+                   help="Poisson update of the cross-section (default consistent)")
+    g.add_argument("--no-length-update", action="store_true",
+                   help="keep the clamped length constant (no L + delta)")
+    g.add_argument("--centre-reading", choices=CENTRE_READINGS, default="physical",
+                   help="centre model: physical (F/2 per half, a = F/2q) or paper (Eq. 11 "
+                        "as printed); default physical")
+    g.add_argument("--paper-literal", action="store_true",
+                   help="every equation as printed (Eqs 6-7 total force, Eq. 15 sign, Eq. 11)")
+
+
+def model_options(args: argparse.Namespace) -> ModelOptions:
+    if args.paper_literal:
+        return ModelOptions.paper()
+    if args.no_corrections:
+        return ModelOptions(poisson="off", length_update=False, centre=args.centre_reading)
+    return ModelOptions(poisson=args.poisson, length_update=not args.no_length_update,
+                        centre=args.centre_reading)
+
+
+def add_strain_energy(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--strain-energy", choices=list(STRAIN_ENERGY), default=DEFAULT_STRAIN_ENERGY,
+        help="definition of U in eta = W_d/(2 pi U): "
+        + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
+        + f" (default {DEFAULT_STRAIN_ENERGY})",
+    )
+
+
+def print_json(obj: Any) -> None:
+    json.dump(to_jsonable(obj), sys.stdout, indent=2)
+    sys.stdout.write("\n")

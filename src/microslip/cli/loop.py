@@ -1,0 +1,91 @@
+"""``microslip loop``: one model, one amplitude: backbone, Masing loop, W_d, U, eta."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from ..energy import damping
+from ..models import MODELS, check_increments, macroslip_force
+from ..params import ClampParams
+from ..results import DampingResult
+from .common import (
+    add_model_options,
+    add_params,
+    add_strain_energy,
+    model_options,
+    params_from_args,
+    print_json,
+)
+
+__all__ = ["add_parser", "result_json"]
+
+
+def add_parser(sub: Any) -> None:
+    p = sub.add_parser("loop", help="hysteresis loop and damping of the tip or centre model",
+                       description="Run the tip (Eqs 2-10) or centre (Eqs 11-18) model to an "
+                       "amplitude, complete the loop with Masing's rule, report W_d, U and eta.")
+    p.add_argument("--model", choices=list(MODELS), required=True)
+    add_params(p, default_preset="table1")
+    p.add_argument("--increments", type=int, default=1000, metavar="N",
+                   help="number of force increments of the first loading (default 1000)")
+    add_model_options(p)
+    add_strain_energy(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write a figure of loop and backbone")
+    p.set_defaults(func=run)
+
+
+def result_json(model: str, params: ClampParams, result: DampingResult, increments: int,
+                options: Any) -> dict[str, Any]:
+    """The JSON object of a loop result; keys carry their units."""
+    bb = result.backbone
+    assert bb is not None
+    slip = {name: float(bb.slip_length[-1, i]) for i, name in enumerate(bb.domains)}
+    return {
+        "model": model,
+        "units": {"force": "N", "length": "mm", "modulus": "MPa", "energy": "N·mm"},
+        "params": params.as_dict(),
+        "options": {"poisson": options.poisson, "length_update": options.length_update,
+                    "centre_reading": options.centre},
+        "increments": increments,
+        "amplitude_N": result.amplitude,
+        "macroslip_force_N": macroslip_force(model, params, options),
+        "peak_displacement_mm": result.peak_displacement,
+        "dissipated_energy_Nmm": result.dissipated_energy,
+        "strain_energy_Nmm": result.strain_energy,
+        "strain_energy_definition": result.strain_energy_kind,
+        "loss_factor": result.loss_factor,
+        "slip_length_mm": slip[bb.domains[0]],
+        "slip_length_by_domain_mm": slip,
+        "loop": {"force_N": result.loop.force, "displacement_mm": result.loop.displacement},
+    }
+
+
+def run(args: argparse.Namespace) -> int:
+    params, amplitude = params_from_args(args)
+    n = check_increments(args.increments)
+    opt = model_options(args)
+    result = damping(args.model, params, amplitude, n, opt, args.strain_energy)
+    out = result_json(args.model, params, result, n, opt)
+    if args.plot:
+        from ..plot import plot_damping
+
+        plot_damping(result, args.plot, title=f"{args.model} model, F0 = {amplitude:g} N")
+    if args.json:
+        print_json(out)
+        return 0
+    print(f"{args.model} model ({MODELS[args.model].equations}), {n} increments, "
+          f"poisson={opt.poisson}, length_update={opt.length_update}"
+          + (f", centre reading={opt.centre}" if args.model == "centre" else ""))
+    print(f"  amplitude F0           {amplitude:12.6g} N  (macroslip at "
+          f"{out['macroslip_force_N']:.6g} N)")
+    print(f"  peak displacement d0   {result.peak_displacement:12.6g} mm")
+    for name, a in out["slip_length_by_domain_mm"].items():
+        print(f"  slip length ({name})   {a:12.6g} mm")
+    print(f"  dissipated energy W_d  {result.dissipated_energy:12.6g} N·mm")
+    print(f"  strain energy U        {result.strain_energy:12.6g} N·mm  ({args.strain_energy})")
+    print(f"  loss factor eta        {result.loss_factor:12.6g} (dimensionless)")
+    if args.plot:
+        print(f"  figure                 {args.plot}")
+    return 0

@@ -1,0 +1,81 @@
+"""Entry point: ``microslip <command> ...``.
+
+Each subcommand lives in its own module ``microslip.cli.<name>`` that defines
+``add_parser(subparsers)``; the parser it adds sets ``func`` to a callable
+``(args) -> int``. The command line parses and delegates; no physics here.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import sys
+from collections.abc import Sequence
+from typing import NoReturn
+
+from .. import __version__
+from ..errors import MicroslipError
+
+__all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
+
+#: Subcommand modules, in the order ``--help`` lists them.
+SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep")
+
+
+class UsageError(Exception):
+    """A command-line mistake (unknown option, bad value syntax)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An ArgumentParser that raises instead of printing usage and exiting."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def build_parser() -> Parser:
+    parser = Parser(
+        prog="microslip",
+        description="Microslip friction damping in clamped joints (Lord & Rongong 2016). "
+        "Units: N, mm, MPa, N·mm.",
+    )
+    parser.add_argument("--version", action="version", version=f"microslip {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
+    sub.required = True
+    for name in SUBCOMMANDS:
+        module = f"{__package__}.{name}"
+        if importlib.util.find_spec(module) is not None:
+            importlib.import_module(module).add_parser(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit code (0 success, 1 failure, 2 usage)."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(None if argv is None else list(argv))
+    except UsageError as exc:
+        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help and --version
+        return exc.code if isinstance(exc.code, int) else 0
+    try:
+        return int(args.func(args))
+    except MicroslipError as exc:
+        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
+        return 1
+    except BrokenPipeError:  # output piped into head & co.
+        return 0
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+
+
+def _one_line(text: str) -> str:
+    return " ".join(text.split())
+
+
+def entry() -> None:
+    """Console-script entry point."""
+    sys.exit(main())

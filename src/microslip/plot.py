@@ -1,0 +1,86 @@
+"""Figures (matplotlib, an optional extra): labelled axes with units, journal style.
+
+Import is lazy: ``import microslip`` never imports matplotlib.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from typing import Any
+
+from .errors import MicroslipError
+from .io import atomic_path
+from .results import Backbone, DampingResult, HysteresisLoop
+
+__all__ = ["COLOURS", "new_figure", "plot_damping", "plot_loops", "pyplot", "save_figure"]
+
+#: One colour per series, the same across the figures of a report.
+COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
+
+
+def pyplot() -> Any:
+    """matplotlib.pyplot with a non-interactive backend, or a clear error if not installed."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise MicroslipError(
+            "plotting needs matplotlib: pip install 'microslip[plot]'"
+        ) from None
+    plt.rcParams.update({
+        "font.size": 8, "axes.labelsize": 8, "legend.fontsize": 7, "xtick.labelsize": 7,
+        "ytick.labelsize": 7, "lines.linewidth": 1.2, "axes.grid": True, "grid.alpha": 0.3,
+        "savefig.dpi": 200, "figure.constrained_layout.use": True,
+    })
+    return plt
+
+
+def new_figure(ncols: int = 1, nrows: int = 1, width_mm: float = 85.0,
+               height_mm: float = 65.0) -> tuple[Any, Any]:
+    """A figure sized for a journal column (85 mm wide per panel column)."""
+    plt = pyplot()
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width_mm * ncols / 25.4,
+                                                    height_mm * nrows / 25.4), squeeze=False)
+    return fig, axes
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str]) -> None:
+    """Save atomically (never a half-written image) and close."""
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format=os.path.splitext(str(path))[1].lstrip(".") or "png")
+    pyplot().close(fig)
+
+
+def plot_loops(ax: Any, loops: Sequence[HysteresisLoop], labels: Sequence[str],
+               backbones: Sequence[Backbone | None] | None = None,
+               colours: Sequence[str] = COLOURS) -> None:
+    """Draw loops (solid) and their backbones (dashed) on ``ax``, with units on the axes."""
+    for i, (loop, label) in enumerate(zip(loops, labels)):
+        c = colours[i % len(colours)]
+        ax.plot(loop.displacement, loop.force, color=c, label=label)
+        bb = backbones[i] if backbones else None
+        if bb is not None:
+            ax.plot(bb.displacement, bb.force, color=c, ls="--", lw=0.8)
+    ax.set_xlabel("Displacement δ (mm)")
+    ax.set_ylabel("Force $F_T$ (N)")
+    ax.axhline(0.0, color="0.5", lw=0.5)
+    ax.axvline(0.0, color="0.5", lw=0.5)
+    ax.legend(loc="upper left", frameon=False)
+
+
+def plot_damping(result: DampingResult, path: str | os.PathLike[str], title: str = "") -> None:
+    """One loop with its backbone, and the energies in the legend; saved to ``path``."""
+    fig, axes = new_figure()
+    ax = axes[0, 0]
+    label = (f"loop: $W_d$ = {result.dissipated_energy:.4g} N·mm, "
+             f"η = {result.loss_factor:.4f} ({result.strain_energy_kind} U)")
+    plot_loops(ax, [result.loop], [label], [result.backbone])
+    if result.backbone is not None:
+        ax.plot([], [], color="0.3", ls="--", lw=0.8, label="first loading (backbone)")
+        ax.legend(loc="upper left", frameon=False)
+    if title:
+        ax.set_title(title)
+    save_figure(fig, path)
