@@ -1,4 +1,4 @@
-"""Shared test set-up: tests marked ``ccx`` are skipped, with the reason, when CalculiX is absent."""
+"""Shared test set-up: tests marked ``ccx`` are skipped, with a reason, when ccx is absent."""
 
 from __future__ import annotations
 

@@ -50,10 +50,10 @@ class ModelOptions:
     --------
     >>> ModelOptions.uncorrected()
     ModelOptions(poisson='off', length_update=False, centre='physical')
-    >>> ModelOptions(poisson="sideways")
+    >>> ModelOptions(poisson="sideways")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    microslip.errors.ParameterError: poisson must be one of consistent, paper-literal, off; got 'sideways'
+    microslip.errors.ParameterError: poisson must be one of consistent, ...; got 'sideways'
     """
 
     poisson: str = "consistent"

@@ -58,7 +58,7 @@ def plot_loops(ax: Any, loops: Sequence[HysteresisLoop], labels: Sequence[str],
                backbones: Sequence[Backbone | None] | None = None,
                colours: Sequence[str] = COLOURS) -> None:
     """Draw loops (solid) and their backbones (dashed) on ``ax``, with units on the axes."""
-    for i, (loop, label) in enumerate(zip(loops, labels)):
+    for i, (loop, label) in enumerate(zip(loops, labels, strict=True)):
         c = colours[i % len(colours)]
         ax.plot(loop.displacement, loop.force, color=c, label=label)
         bb = backbones[i] if backbones else None

@@ -177,7 +177,8 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
 
     disp = np.array([s.displacement for s in states], dtype=float)
     stored = np.array([spec.stored_energy(s) for s in states], dtype=float)
-    if not (np.all(np.isfinite(disp)) and np.all(col("width") > 0) and np.all(col("thickness") > 0)):
+    section_ok = np.all(col("width") > 0) and np.all(col("thickness") > 0)
+    if not (np.all(np.isfinite(disp)) and section_ok):
         hint = (" (the paper-literal Poisson update shrinks the section at every increment; "
                 "use fewer increments or poisson='consistent')" if opt.poisson == "paper-literal"
                 else "")
