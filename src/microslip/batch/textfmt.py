@@ -1,0 +1,271 @@
+"""Fast, exact text formatting of float tables: every number as C's ``%.15g``.
+
+Writing a million CSV rows one Python ``%`` at a time takes seconds; this module formats a
+whole block of values in compiled code (numba, parallel) and gives byte for byte the text of
+``"%.15g" % x`` for every double ``x`` (15 significant digits, correctly rounded with ties to
+even, trailing zeros dropped, ``nan``/``inf``). Fifteen digits are what a double always
+carries faithfully (DBL_DIG); the batch results themselves agree with the single-loop API to
+about 1e-13.
+
+How: x = M 10^(e - 14) with the integer M in [1e14, 1e15). The product y = |x| 10^(14 - e) is
+formed as a double-double (Dekker's exact product of |x| with a double-double 10^p from a
+table), so M = round(y) is exact unless y lies within 1e-9 of a half-integer; those rare
+values (exact ties included) are decided by Python's correctly rounded ``%.14e``. Without
+numba every value goes through Python's ``%.15g``.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Sequence
+from fractions import Fraction
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .kernels import HAVE_NUMBA, njit, prange
+
+__all__ = ["format_table", "format_table_python"]
+
+_P_MIN, _P_MAX = -300, 300  # exponents of the double-double table of powers of ten
+#: "00", "01", ..., "99" as bytes, for writing two digits at a time.
+_PAIRS = np.frombuffer("".join(f"{i:02d}" for i in range(100)).encode(), dtype=np.uint8).copy()
+
+
+@functools.cache
+def _pow10_table() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    hi = np.empty(_P_MAX - _P_MIN + 1)
+    lo = np.empty_like(hi)
+    for k, p in enumerate(range(_P_MIN, _P_MAX + 1)):
+        exact = Fraction(10) ** p
+        h = float(exact)
+        hi[k] = h
+        lo[k] = float(exact - Fraction(h))
+    return hi, lo
+
+
+@njit(cache=True, inline="always")
+def _split(x):
+    c = 134217729.0 * x  # 2^27 + 1 (Veltkamp)
+    h = c - (c - x)
+    return h, x - h
+
+
+@njit(cache=True, inline="always")
+def _strip(m):
+    nd = 15
+    while nd > 1:
+        q = m // 10
+        if m - 10 * q != 0:
+            break
+        m = q
+        nd -= 1
+    return m, nd
+
+
+@njit(cache=True, parallel=True)
+def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
+    """|x| = mant 10^(expo - ndig + 1) with ndig digits (trailing zeros stripped).
+
+    kind: 0 finite, 1 zero, 2 nan, 3 inf, 4 undecided (Python decides).
+    """
+    for j in prange(x.shape[0]):
+        v = x[j]
+        mant[j] = 0
+        ndig[j] = 1
+        expo[j] = 0
+        if v != v:
+            kind[j] = 2
+            continue
+        a = abs(v)
+        if a == 0.0:
+            kind[j] = 1
+            continue
+        if a == np.inf:
+            kind[j] = 3
+            continue
+        kind[j] = 4
+        if a > 1e290 or a < 1e-290:  # beyond the exact-product range: Python decides
+            continue
+        e = int(np.floor(np.log10(a)))
+        for _ in range(4):
+            p = 14 - e
+            if p < -300 or p > 300:
+                break
+            ph = p_hi[p + 300]
+            pl = p_lo[p + 300]
+            yh = a * ph
+            ah, al = _split(a)
+            bh, bl = _split(ph)
+            yl = (((ah * bh - yh) + ah * bl) + al * bh) + al * bl + a * pl
+            fl = np.floor(yh)
+            t = (yh - fl) + yl
+            if abs(t - 0.5) < 1e-9 or abs(t + 0.5) < 1e-9 or abs(t - 1.5) < 1e-9:
+                break
+            m = fl + np.floor(t + 0.5)
+            if m >= 1e15:
+                e += 1
+            elif m < 1e14:
+                e -= 1
+            else:
+                mj, nd = _strip(np.int64(m))
+                mant[j] = mj
+                ndig[j] = nd
+                expo[j] = e
+                kind[j] = 0
+                break
+
+
+@njit(cache=True, inline="always")
+def _field_len(nd, e, kind, neg):
+    s = 1 if neg else 0
+    if kind == 1:
+        return s + 1
+    if kind == 2:
+        return 3
+    if kind == 3:
+        return s + 3
+    if -4 <= e < 15:
+        if e >= 0:
+            return s + (e + 1 if nd <= e + 1 else nd + 1)
+        return s + 2 + (-e - 1) + nd
+    ae = -e if e < 0 else e
+    ne = 3 if ae >= 100 else 2
+    return s + nd + (1 if nd > 1 else 0) + 2 + ne
+
+
+@njit(cache=True, inline="always")
+def _write_digits(buf, pos, m, nd, pairs):
+    """The nd decimal digits of m (leading zeros included) at buf[pos:pos + nd]."""
+    k = pos + nd
+    while k - pos >= 2:
+        q = m // 100
+        r = m - 100 * q
+        buf[k - 1] = pairs[2 * r + 1]
+        buf[k - 2] = pairs[2 * r]
+        m = q
+        k -= 2
+    if k > pos:
+        buf[pos] = 48 + m % 10
+
+
+@njit(cache=True, inline="always")
+def _write_field(buf, pos, m, nd, e, kind, neg, pairs):
+    if kind == 2:
+        buf[pos] = 110  # n
+        buf[pos + 1] = 97  # a
+        buf[pos + 2] = 110
+        return pos + 3
+    if neg:
+        buf[pos] = 45  # -
+        pos += 1
+    if kind == 1:
+        buf[pos] = 48
+        return pos + 1
+    if kind == 3:
+        buf[pos] = 105  # i
+        buf[pos + 1] = 110  # n
+        buf[pos + 2] = 102  # f
+        return pos + 3
+    if -4 <= e < 15:
+        if e >= 0:
+            _write_digits(buf, pos, m, nd, pairs)
+            if nd <= e + 1:
+                for k in range(nd, e + 1):
+                    buf[pos + k] = 48
+                return pos + e + 1
+            # move the fraction one place right and put the point after e + 1 digits
+            for k in range(pos + nd, pos + e + 1, -1):
+                buf[k] = buf[k - 1]
+            buf[pos + e + 1] = 46  # .
+            return pos + nd + 1
+        buf[pos] = 48
+        buf[pos + 1] = 46
+        pos += 2
+        for _ in range(-e - 1):
+            buf[pos] = 48
+            pos += 1
+        _write_digits(buf, pos, m, nd, pairs)
+        return pos + nd
+    _write_digits(buf, pos + 1, m, nd, pairs)
+    buf[pos] = buf[pos + 1]
+    if nd > 1:
+        buf[pos + 1] = 46
+        pos += nd + 1
+    else:
+        pos += 1
+    buf[pos] = 101  # e
+    buf[pos + 1] = 45 if e < 0 else 43
+    pos += 2
+    ae = -e if e < 0 else e
+    ne = 3 if ae >= 100 else 2
+    _write_digits(buf, pos, ae, ne, pairs)
+    return pos + ne
+
+
+@njit(cache=True, parallel=True)
+def _layout(mant, ndig, expo, kind, neg, ncol, pairs):
+    nrow = mant.shape[0] // ncol
+    lens = np.empty(nrow + 1, dtype=np.int64)
+    lens[0] = 0
+    for r in prange(nrow):
+        total = ncol  # separators and the newline
+        for c in range(ncol):
+            j = r * ncol + c
+            total += _field_len(ndig[j], expo[j], kind[j], neg[j])
+        lens[r + 1] = total
+    for r in range(nrow):
+        lens[r + 1] += lens[r]
+    buf = np.empty(lens[nrow], dtype=np.uint8)
+    for r in prange(nrow):
+        pos = lens[r]
+        for c in range(ncol):
+            j = r * ncol + c
+            pos = _write_field(buf, pos, mant[j], ndig[j], expo[j], kind[j], neg[j], pairs)
+            buf[pos] = 44 if c < ncol - 1 else 10  # , or newline
+            pos += 1
+    return buf
+
+
+def format_table_python(columns: Sequence[ArrayLike]) -> bytes:
+    """Reference and fallback: rows of ``%.15g`` values joined by commas, one per line."""
+    cols = [np.asarray(c, dtype=np.float64).ravel().tolist() for c in columns]
+    return "".join(",".join(f"{v:.15g}" for v in row) + "\n"
+                   for row in zip(*cols, strict=True)).encode()
+
+
+def format_table(columns: Sequence[ArrayLike]) -> bytes | NDArray[np.uint8]:
+    """CSV text of equal-length float columns, every value as ``"%.15g" % x``.
+
+    Returns a bytes-like object (a uint8 array when compiled) to hand to a binary file.
+
+    >>> bytes(format_table([[1.0, 0.1, 1e-5], [20000.0, -2.5, float("nan")]]))
+    b'1,20000\\n0.1,-2.5\\n1e-05,nan\\n'
+    """
+    if not HAVE_NUMBA:
+        return format_table_python(columns)
+    cols = [np.asarray(c, dtype=np.float64).ravel() for c in columns]
+    if not cols:
+        return b""
+    nrow = cols[0].shape[0]
+    if any(c.shape[0] != nrow for c in cols):
+        raise ValueError("columns must have equal lengths")
+    x = np.empty((nrow, len(cols)))
+    for i, c in enumerate(cols):
+        x[:, i] = c
+    flat = x.reshape(-1)
+    mant = np.empty(flat.shape[0], dtype=np.int64)
+    ndig = np.empty(flat.shape[0], dtype=np.int64)
+    expo = np.empty(flat.shape[0], dtype=np.int64)
+    kind = np.empty(flat.shape[0], dtype=np.int8)
+    p_hi, p_lo = _pow10_table()
+    _decompose(flat, p_hi, p_lo, mant, ndig, expo, kind)
+    for j in np.flatnonzero(kind == 4):
+        s = f"{abs(float(flat[j])):.14e}"
+        digits = (s[0] + s[2:16]).rstrip("0") or "0"
+        mant[j] = int(digits)
+        ndig[j] = len(digits)
+        expo[j] = int(s[17:])
+        kind[j] = 0
+    neg = np.signbit(flat) & ~np.isnan(flat)
+    return _layout(mant, ndig, expo, kind, neg, len(cols), _PAIRS)
