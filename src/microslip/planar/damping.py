@@ -9,6 +9,7 @@ ratios R (the paper's Fig. 12). Units: N, mm, N·mm.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -23,7 +24,7 @@ from ..hysteresis import masing_loop
 from ..models import check_increments, first_loading
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude, preset
-from ..results import DampingResult
+from ..results import Backbone, DampingResult
 from .coupling import paper_coupling, paper_loss_factors
 from .loadpath import (
     DEFAULT_WORK_STRAIN_ENERGY,
@@ -55,6 +56,20 @@ __all__ = [
 
 #: The strain-energy definition read from the paper's Eq. 22 for its figures.
 PAPER_STRAIN_ENERGY = "branch"
+
+
+@functools.lru_cache(maxsize=32)
+def _backbone(model: str, params: ClampParams, amplitude: float, increments: int,
+              options: ModelOptions) -> Backbone:
+    """:func:`~microslip.first_loading`, remembered: sweeps over R reuse the same amplitudes.
+
+    The arrays of the shared result are made read-only so that no caller can alter it.
+    """
+    bb = first_loading(model, params, amplitude, increments, options)
+    for name in ("force", "displacement", "slip_length", "width", "thickness",
+                 "stored_energy"):
+        getattr(bb, name).setflags(write=False)
+    return bb
 
 
 @dataclass(frozen=True)
@@ -232,8 +247,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     copt = centre_options if centre_options is not None else opt
     ratio = force_ratio(at, ac, tip_symmetry)
 
-    tip_bb = first_loading("tip", tip_params, at, n, opt)
-    centre_bb = first_loading("centre", centre_params, ac, n, copt)
+    tip_bb = _backbone("tip", tip_params, at, n, opt)
+    centre_bb = _backbone("centre", centre_params, ac, n, copt)
     tip = damping_from_loop(masing_loop(tip_bb), tip_bb, kind)
     centre = damping_from_loop(masing_loop(centre_bb), centre_bb, kind)
     paper = paper_coupling(tip_bb, centre_bb, kind)
@@ -372,6 +387,12 @@ class RatioSweep:
         col.update({
             "work_tip_share_of_dissipation": self._values(
                 lambda r: r.work.tip_dissipated_energy / r.work_dissipated_energy),
+            "tip_peak_displacement_mm": self._values(lambda r: r.tip.peak_displacement),
+            "centre_peak_displacement_mm": self._values(lambda r: r.centre.peak_displacement),
+            "tip_secant_stiffness_N_per_mm": self._values(
+                lambda r: r.tip.amplitude / r.tip.peak_displacement),
+            "centre_secant_stiffness_N_per_mm": self._values(
+                lambda r: r.centre.amplitude / r.centre.peak_displacement),
             "tip_loss_factor": self._values(lambda r: r.tip.loss_factor),
             "centre_loss_factor": self._values(lambda r: r.centre.loss_factor),
             "computed": [c.result is not None for c in self.cases],

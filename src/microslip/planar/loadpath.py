@@ -371,10 +371,13 @@ class ComponentEnergy:
                 f"backbone ({self.amplitude:g} N)"
             )
         a = np.minimum(a, top)
-        ratio = self._table(np.maximum(a, float(self.backbone.force[1])))
-        u = self.copies * ratio * a**3
-        return np.asarray(np.where(np.isclose(a, top, rtol=1e-12, atol=0.0), self.peak, u),
-                          dtype=float)
+        at_peak = np.isclose(a, top, rtol=1e-12, atol=0.0)
+        u = np.full(a.shape, self.peak if np.any(at_peak) else 0.0)
+        if not np.all(at_peak):
+            inner = a[~at_peak]
+            ratio = self._table(np.maximum(inner, float(self.backbone.force[1])))
+            u[~at_peak] = self.copies * ratio * inner**3
+        return u
 
 
 def _sum_of_peaks(path: LoadPath, tip: Callable[[ArrayLike], FloatArray],
