@@ -1,0 +1,93 @@
+"""Built-in frictional finite-element solver: an elastic box on a rigid Coulomb base.
+
+A purpose-made solver for the clamped zone of the paper (Section 4's FE model): trilinear
+hexahedra numbered slice by slice along the bar (a band matrix), the bottom face held at
+u_z = 0, nodal Coulomb friction with a circular limit mu N_i and a penalty stick slope
+lambda A_i, normal forces N_i from the clamping step, radial return with its consistent
+tangent, semi-smooth Newton with a backtracking line search and LAPACK banded Cholesky.
+See ``docs/solver.md`` for the formulation, the verification and the coupled-versus-
+decoupled study. Units: N, mm, MPa, N·mm, s.
+
+>>> from microslip import preset
+>>> from microslip.solver import solve_uniaxial
+>>> r = solve_uniaxial(preset("table1"), "tip", 267.0, mesh=(8, 2, 1))
+>>> r.loop.source, r.converged
+('builtin', True)
+"""
+
+from __future__ import annotations
+
+from .contact import FrictionResponse, friction_dissipation, return_map
+from .element import ELEMENTS, assemble_stiffness, element_stiffness
+from .linalg import LINEAR_SOLVERS, available_linear_solvers
+from .loadpath import CyclicPath, as_cyclic_path, harmonic_path, paper_sine
+from .mesh import MESHES, BoxMesh, box_mesh, mesh_from_spec
+from .results import (
+    ContactHistory,
+    CouplingResult,
+    CycleWork,
+    LoadPathResult,
+    SolverStats,
+    UniaxialResult,
+)
+from .solve import (
+    CENTRE_DIRECTIONS,
+    DEFAULT_STICK_SLOPE,
+    FrictionModel,
+    History,
+    NewtonOptions,
+    Simulation,
+    build_model,
+    run_history,
+)
+from .study import (
+    DEFAULT_MESH,
+    LOAD_CASES,
+    CouplingSweep,
+    amplitudes_for_ratio,
+    coupling_study,
+    coupling_sweep,
+    solve_load_path,
+    solve_uniaxial,
+)
+
+__all__ = [
+    "CENTRE_DIRECTIONS",
+    "DEFAULT_MESH",
+    "DEFAULT_STICK_SLOPE",
+    "ELEMENTS",
+    "LINEAR_SOLVERS",
+    "LOAD_CASES",
+    "MESHES",
+    "BoxMesh",
+    "ContactHistory",
+    "CouplingResult",
+    "CouplingSweep",
+    "CycleWork",
+    "CyclicPath",
+    "FrictionModel",
+    "FrictionResponse",
+    "History",
+    "LoadPathResult",
+    "NewtonOptions",
+    "Simulation",
+    "SolverStats",
+    "UniaxialResult",
+    "amplitudes_for_ratio",
+    "as_cyclic_path",
+    "assemble_stiffness",
+    "available_linear_solvers",
+    "box_mesh",
+    "build_model",
+    "coupling_study",
+    "coupling_sweep",
+    "element_stiffness",
+    "friction_dissipation",
+    "harmonic_path",
+    "mesh_from_spec",
+    "paper_sine",
+    "return_map",
+    "run_history",
+    "solve_load_path",
+    "solve_uniaxial",
+]

@@ -1,0 +1,497 @@
+"""Runs of the built-in solver: the paper's 1-D loops, planar cyclic paths, and the
+coupled-versus-decoupled study.
+
+* :func:`solve_uniaxial` — one 1-D loading as in the paper's FE (Section 4):
+  F = F0 sin(2 pi t), t = 0 .. 1.25 s, the loop from t = 0.25 s.
+* :func:`solve_load_path` — a planar cyclic path, repeated until the energy dissipated per
+  cycle W = closed integral (F_tip d delta_tip + F_centre d delta_centre) settles.
+* :func:`coupling_study` — the coupled path against its two uni-axial parts:
+  coupling ratio W_coupled / (W_tip-only + W_centre-only).
+* :func:`coupling_sweep` — that ratio over force ratios R and phases.
+
+Units: N, mm, N·mm, degrees, seconds.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..energy import loop_work
+from ..errors import MacroslipError, ParameterError
+from ..params import ClampParams, check_amplitude, check_positive
+from ..results import HysteresisLoop
+from .loadpath import CyclicPath, as_cyclic_path, harmonic_path, paper_sine
+from .results import (
+    ContactHistory,
+    CouplingResult,
+    CycleWork,
+    LoadPathResult,
+    SolverStats,
+    UniaxialResult,
+)
+from .solve import (
+    CENTRE_DIRECTIONS,
+    DEFAULT_STICK_SLOPE,
+    FrictionModel,
+    History,
+    NewtonOptions,
+    Simulation,
+    build_model,
+)
+
+__all__ = [
+    "DEFAULT_MESH",
+    "LOAD_CASES",
+    "CouplingSweep",
+    "amplitudes_for_ratio",
+    "coupling_study",
+    "coupling_sweep",
+    "solve_load_path",
+    "solve_uniaxial",
+]
+
+FloatArray = NDArray[np.float64]
+
+#: Mesh used when none is given: mesh-converged for the Table 1 loops (docs/solver.md).
+DEFAULT_MESH = "coarse"
+
+#: The 1-D load cases: name -> where the force acts.
+LOAD_CASES: dict[str, str] = {
+    "tip": "along the bar on the end face x = L",
+    "centre": "on the mid-length section x = L/2 (along the bar unless centre_direction says)",
+}
+
+
+def _model(params: ClampParams, mesh: Any, stick_slope: float, element: str,
+           linear_solver: str, newton: NewtonOptions | None) -> FrictionModel:
+    if isinstance(mesh, FrictionModel):
+        if mesh.params != params:
+            raise ParameterError("the given FrictionModel was built for other parameters")
+        return mesh
+    return build_model(params, mesh, stick_slope=stick_slope, element=element,
+                       linear_solver=linear_solver, newton=newton)
+
+
+def _stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:
+    its = np.concatenate([h.iterations for h in hist]) if hist else np.zeros(0, dtype=int)
+    return SolverStats(
+        dof=model.dof, total_dof=model.total_dof,
+        half_bandwidth=getattr(model.backend, "half_bandwidth", None),
+        mesh=model.mesh.describe(), element=model.element,
+        linear_solver=model.backend.name, stick_slope=model.stick_slope,
+        increments=int(its.size), iterations=int(its.sum()),
+        factorisations=int(sum(h.factorisations for h in hist)),
+        max_iterations=int(its.max()) if its.size else 0,
+        setup_s=setup_s, wall_s=setup_s + float(sum(h.wall_s for h in hist)),
+    )
+
+
+def _contact(model: FrictionModel, slipping: NDArray[np.bool_]) -> ContactHistory:
+    return ContactHistory(coordinates=model.mesh.nodes[model.contact_nodes, :2].copy(),
+                          area=model.contact_area, normal_force=model.normal_force,
+                          slipping=slipping)
+
+
+def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
+                   mesh: Any = DEFAULT_MESH, stick_slope: float = DEFAULT_STICK_SLOPE,
+                   increments: int = 50, element: str = "C3D8",
+                   centre_direction: str = "axial", linear_solver: str = "banded",
+                   newton: NewtonOptions | None = None) -> UniaxialResult:
+    """The paper's 1-D FE loading of the clamped zone with the built-in solver.
+
+    F = F0 sin(2 pi t), t = 0 .. 1.25 s in ``increments`` equal steps (the paper's 50
+    substeps by default); the first quarter period leads from the clamped state to the peak,
+    the loop is t = 0.25 .. 1.25 s (Section 4).
+
+    Parameters
+    ----------
+    params : ClampParams
+    model : {"tip", "centre"}
+        Where the force acts (:data:`LOAD_CASES`).
+    amplitude : float
+        F0, N; below mu F_N.
+    mesh : str, (nx, ny, nz), BoxMesh or FrictionModel
+        Mesh name (:data:`~microslip.solver.mesh.MESHES`), element counts, a mesh, or a model
+        already built (then ``stick_slope``, ``element``, ``linear_solver`` are its own).
+    stick_slope : float
+        lambda, N/mm^3.
+    increments : int
+        Increments over t = 0 .. 1.25 s, a multiple of 5.
+    element : {"C3D8", "C3D8I"}
+    centre_direction : {"axial", "transverse"}
+        Direction of the centre force (``axial``: the paper's 1-D centre model).
+    linear_solver : {"banded", "splu", "cholmod"}
+    newton : NewtonOptions, optional
+
+    Returns
+    -------
+    UniaxialResult
+        The loop (``source="builtin"``), contact status per increment, dof, iterations,
+        wall time, converged flag.
+
+    Examples
+    --------
+    >>> from microslip import preset, closedform
+    >>> p = preset("table1")
+    >>> r = solve_uniaxial(p, "tip", 267.0, mesh=(8, 2, 1))
+    >>> d0 = closedform.tip_displacement(267.0, p.axial_stiffness, p.friction_per_length)
+    >>> r.success, bool(abs(r.peak_displacement / d0 - 1) < 0.01)
+    (True, True)
+    """
+    if model not in LOAD_CASES:
+        raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
+    if centre_direction not in CENTRE_DIRECTIONS:
+        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
+                             f"{', '.join(CENTRE_DIRECTIONS)}")
+    if not isinstance(params, ClampParams):
+        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
+    f0 = check_amplitude(amplitude)
+    if f0 >= params.macroslip_force:
+        raise MacroslipError(f"amplitude {f0:g} N reaches the macroslip force mu F_N = "
+                             f"{params.macroslip_force:g} N")
+    t, force = paper_sine(f0, increments)
+    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
+    sim = Simulation(fem, centre_direction)
+    zero = np.zeros_like(force)
+    hist = sim.advance(force, zero) if model == "tip" else sim.advance(zero, force)
+    d = hist.d_tip if model == "tip" else hist.d_centre
+    quarter = increments // 5
+    done = hist.completed
+    success = hist.converged
+    loop_sl = slice(quarter, done)
+    loop = HysteresisLoop(
+        force=force[loop_sl].copy(), displacement=d[loop_sl].copy(), source="builtin",
+        meta={"model": model, "amplitude_N": f0, "solver": "builtin",
+              "centre_direction": centre_direction, "mesh": fem.mesh.describe(),
+              "element": fem.element, "dof": fem.dof, "stick_slope_N_per_mm3": fem.stick_slope,
+              "increments": increments,
+              "displacement": "force-weighted mean of the loaded section along the load, "
+                              "relative to the clamped state"})
+    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
+    return UniaxialResult(
+        model=model, amplitude=f0, centre_direction=centre_direction, time=t[:done],
+        force=force[:done], displacement=d, loop=loop,
+        contact=_contact(fem, hist.slipping), iterations=hist.iterations,
+        friction_dissipation=float(np.sum(hist.friction_work[quarter + 1:])),
+        stats=_stats(fem, [hist], setup), converged=hist.converged, success=success,
+        message=hist.message if success else f"{hist.message}; the loop is incomplete")
+
+
+def _cycle_works(path: CyclicPath, ft: FloatArray, fc: FloatArray, dt: FloatArray,
+                 dc: FloatArray, fw: FloatArray, cycles: int
+                 ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    k0, n = path.cycle_start, path.samples_per_cycle
+    tip, cen, fri = np.zeros(cycles), np.zeros(cycles), np.zeros(cycles)
+    for c in range(cycles):  # a handful of cycles: vectorised within each
+        s = slice(k0 + c * n, k0 + (c + 1) * n + 1)
+        tip[c] = loop_work(ft[s], dt[s])
+        cen[c] = loop_work(fc[s], dc[s])
+        fri[c] = float(np.sum(fw[s][1:]))
+    return tip, cen, fri
+
+
+def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, int, float]:
+    for name, v, lo in (("cycles", cycles, 1), ("min_cycles", min_cycles, 2)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not lo <= v <= 1000:
+            raise ParameterError(f"{name} must be a whole number in [{lo}, 1000], got {v!r}")
+    tol = check_positive("cycle_tol", cycle_tol, upper=1.0)
+    return int(cycles), int(min_cycles), tol
+
+
+def _run_path(fem: FrictionModel, path: CyclicPath, *, cycles: int, min_cycles: int,
+              cycle_tol: float, centre_direction: str, setup_s: float) -> LoadPathResult:
+    if path.peak_resultant >= fem.params.macroslip_force:
+        raise MacroslipError(
+            f"the resultant load reaches {path.peak_resultant:g} N >= mu F_N = "
+            f"{fem.params.macroslip_force:g} N (macroslip)")
+    sim = Simulation(fem, centre_direction)
+    k0, n = path.cycle_start, path.samples_per_cycle
+    theta_all, ft_all, fc_all = path.repeated(cycles)
+    hists: list[History] = []
+    done_cycles = 0
+    message = ""
+    converged = True
+    works: list[float] = []
+    # Start-up and the first cycle, then one cycle at a time until W settles.
+    end = k0 + n + 1
+    pos = 0
+    while True:
+        h = sim.advance(ft_all[pos:end], fc_all[pos:end])
+        hists.append(h)
+        if not h.converged:
+            converged, message = False, h.message
+            break
+        done_cycles += 1
+        pos = end
+        ft = np.concatenate([x.f_tip for x in hists])
+        fc = np.concatenate([x.f_centre for x in hists])
+        dt = np.concatenate([x.d_tip for x in hists])
+        dc = np.concatenate([x.d_centre for x in hists])
+        s = slice(k0 + (done_cycles - 1) * n, k0 + done_cycles * n + 1)
+        works.append(loop_work(ft[s], dt[s]) + loop_work(fc[s], dc[s]))
+        if done_cycles >= cycles:
+            break
+        if done_cycles >= min_cycles:
+            w1, w0 = works[-1], works[-2]
+            if abs(w1 - w0) <= cycle_tol * max(abs(w1), 1e-300):
+                break
+        end = pos + n
+    ft = np.concatenate([x.f_tip for x in hists])
+    fc = np.concatenate([x.f_centre for x in hists])
+    dt = np.concatenate([x.d_tip for x in hists])
+    dc = np.concatenate([x.d_centre for x in hists])
+    fw = np.concatenate([x.friction_work for x in hists])
+    slipping = np.concatenate([x.slipping for x in hists])
+    theta = theta_all[:ft.size]
+    ncyc = done_cycles
+    tip, cen, fri = _cycle_works(path, ft, fc, dt, dc, fw, ncyc)
+    cw = CycleWork(work=tip + cen, tip=tip, centre=cen, friction=fri, tolerance=cycle_tol)
+    if ncyc:
+        s = slice(k0 + (ncyc - 1) * n, k0 + ncyc * n + 1)
+        loops = {
+            "tip": HysteresisLoop(ft[s].copy(), dt[s].copy(), "builtin",
+                                  {"component": "tip", "direction": "x (along the bar)"}),
+            "centre": HysteresisLoop(fc[s].copy(), dc[s].copy(), "builtin",
+                                     {"component": "centre", "direction": centre_direction}),
+        }
+    else:
+        loops = {}
+    settled = cw.settled
+    if converged:
+        message = (f"W per cycle settled to {cw.reached:.2e} (tolerance {cycle_tol:.1e}) after "
+                   f"{ncyc} cycles" if settled else
+                   f"W per cycle did not settle to {cycle_tol:.1e} in {ncyc} cycles "
+                   f"(last change {cw.reached:.2e})")
+    return LoadPathResult(
+        theta=theta, f_tip=ft, f_centre=fc, d_tip=dt, d_centre=dc, cycle_start=k0,
+        samples_per_cycle=n, centre_direction=centre_direction, cycle_work=cw, loops=loops,
+        contact=_contact(fem, slipping), stats=_stats(fem, hists, setup_s),
+        converged=converged, success=converged and settled, message=message,
+        meta=dict(path.meta))
+
+
+def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = None,
+                    f_centre: ArrayLike | None = None, *, mesh: Any = DEFAULT_MESH,
+                    cycles: int = 6, min_cycles: int = 2, cycle_tol: float = 1e-3,
+                    stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8",
+                    centre_direction: str = "transverse", linear_solver: str = "banded",
+                    newton: NewtonOptions | None = None) -> LoadPathResult:
+    """A planar cyclic load path, repeated until the energy per cycle settles.
+
+    Parameters
+    ----------
+    params : ClampParams
+    times : array_like, CyclicPath or LoadPath-like
+        The samples of one cycle (any increasing times or angles) with ``f_tip`` and
+        ``f_centre``; or a path object (see :func:`~microslip.solver.loadpath.as_cyclic_path`).
+        Arrays: the cycle is closed if needed and reached from zero load by a straight ramp.
+    f_tip, f_centre : array_like, optional
+        Tip force (along the bar, end face) and centre force (mid-length section) at the
+        samples, N.
+    mesh : see :func:`solve_uniaxial`
+    cycles : int
+        Most cycles to run.
+    min_cycles : int
+        Fewest cycles before the settling test (>= 2: the first cycle starts from the virgin
+        state).
+    cycle_tol : float
+        Stop when |W_k - W_(k-1)| <= cycle_tol |W_k|.
+    centre_direction : {"transverse", "axial"}
+        Direction of the centre force: across the bar (default, the planar study) or along it.
+
+    Returns
+    -------
+    LoadPathResult
+        Per-cycle W and its tip and centre terms, friction dissipation per cycle, the loops
+        of the last cycle, contact status per increment, and whether W settled.
+
+    Examples
+    --------
+    >>> from microslip import preset
+    >>> from microslip.solver.loadpath import harmonic_path
+    >>> r = solve_load_path(preset("table1"), harmonic_path(150.0, 150.0, 90.0, 16),
+    ...                     mesh=(8, 2, 1), cycles=4)
+    >>> r.converged, r.dissipated_energy > 0
+    (True, True)
+    """
+    if not isinstance(params, ClampParams):
+        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
+    if centre_direction not in CENTRE_DIRECTIONS:
+        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
+                             f"{', '.join(CENTRE_DIRECTIONS)}")
+    cycles, min_cycles, tol = _check_cycles(cycles, min_cycles, cycle_tol)
+    path = as_cyclic_path(times, f_tip, f_centre)
+    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
+    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
+    return _run_path(fem, path, cycles=cycles, min_cycles=min(min_cycles, cycles),
+                     cycle_tol=tol, centre_direction=centre_direction, setup_s=setup)
+
+
+def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
+                   phase_deg: float = 90.0, *, cycles: int = 6, increments_per_cycle: int = 64,
+                   mesh: Any = DEFAULT_MESH, cycle_tol: float = 1e-3,
+                   stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8",
+                   centre_direction: str = "transverse", linear_solver: str = "banded",
+                   path: Any = None, newton: NewtonOptions | None = None) -> CouplingResult:
+    """Coupled planar loading against the paper's decoupling into two 1-D loadings.
+
+    Three runs on the same clamped model, each until W per cycle settles: both forces
+    together (F_tip = A_t sin theta, F_centre = A_c sin(theta + phase)), the tip force alone,
+    and the centre force alone. The coupling ratio is W_coupled / (W_tip-only +
+    W_centre-only); the paper's decoupling (two independent 1-D models) assumes it is 1.
+
+    Parameters
+    ----------
+    params : ClampParams
+    tip_amplitude, centre_amplitude : float
+        A_t (along the bar, end face) and A_c (across the bar, mid-length section), N.
+    phase_deg : float
+        Phase of the centre force ahead of the tip force, degrees (0: straight-line path,
+        90: ellipse).
+    cycles : int
+        Most cycles per run.
+    increments_per_cycle : int
+    mesh, cycle_tol, stick_slope, element, centre_direction, linear_solver, newton
+        As :func:`solve_load_path`.
+    path : LoadPath-like, optional
+        Use this path (e.g. the planar model's ``LoadPath``) instead of the harmonic one; the
+        amplitudes and phase are then only recorded.
+
+    Returns
+    -------
+    CouplingResult
+
+    Examples
+    --------
+    >>> from microslip import preset
+    >>> r = coupling_study(preset("table1"), 150.0, 150.0, 90.0, cycles=4,
+    ...                    increments_per_cycle=16, mesh=(8, 2, 1))
+    >>> r.converged, 0.5 < r.coupling_ratio < 2.0
+    (True, True)
+    """
+    if not isinstance(params, ClampParams):
+        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
+    if centre_direction not in CENTRE_DIRECTIONS:
+        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
+                             f"{', '.join(CENTRE_DIRECTIONS)}")
+    cycles, _, tol = _check_cycles(cycles, 2, cycle_tol)
+    if path is None:
+        at = check_amplitude(tip_amplitude)
+        ac = check_amplitude(centre_amplitude)
+        cyc = harmonic_path(at, ac, phase_deg, increments_per_cycle)
+    else:
+        cyc = as_cyclic_path(path)
+        at = float(np.max(np.abs(cyc.f_tip[cyc.cycle])))
+        ac = float(np.max(np.abs(cyc.f_centre[cyc.cycle])))
+        if not (at > 0.0 and ac > 0.0):
+            raise ParameterError("a coupling study needs both a tip and a centre force")
+    phase = float(cyc.meta.get("phase_deg", phase_deg))
+    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
+    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
+    kw: dict[str, Any] = {"cycles": cycles, "min_cycles": min(2, cycles), "cycle_tol": tol,
+                          "centre_direction": centre_direction}
+    coupled = _run_path(fem, cyc, setup_s=setup, **kw)
+    tip_only = _run_path(fem, cyc.only("tip"), setup_s=0.0, **kw)
+    centre_only = _run_path(fem, cyc.only("centre"), setup_s=0.0, **kw)
+    return CouplingResult(tip_amplitude=at, centre_amplitude=ac, phase_deg=phase,
+                          coupled=coupled, tip_only=tip_only, centre_only=centre_only)
+
+
+@dataclass(frozen=True, eq=False)
+class CouplingSweep:
+    """Coupling ratio over force ratios R and phases (one :class:`CouplingResult` each).
+
+    Attributes
+    ----------
+    ratios : ndarray, shape (n_R,)
+        R = A_t / A_c.
+    phases_deg : ndarray, shape (n_phi,)
+    peak_force : float
+        Largest resultant |(F_tip, F_centre)| of every path, N (the normalisation).
+    results : tuple of tuple of CouplingResult
+        ``results[i][j]`` for ``phases_deg[i]``, ``ratios[j]``.
+    wall_s : float
+    """
+
+    ratios: FloatArray
+    phases_deg: FloatArray
+    peak_force: float
+    results: tuple[tuple[CouplingResult, ...], ...]
+    wall_s: float
+
+    @property
+    def coupling_ratio(self) -> FloatArray:
+        """Shape (n_phi, n_R), dimensionless."""
+        return np.array([[r.coupling_ratio for r in row] for row in self.results])
+
+    def summary(self) -> dict[str, Any]:
+        return {"force_ratios": self.ratios.tolist(), "phases_deg": self.phases_deg.tolist(),
+                "peak_resultant_force_N": self.peak_force,
+                "coupling_ratio": self.coupling_ratio.tolist(),
+                "dissipated_energy_Nmm": [[r.dissipated_energy for r in row]
+                                          for row in self.results],
+                "decoupled_dissipated_energy_Nmm": [[r.decoupled_dissipated_energy for r in row]
+                                                    for row in self.results],
+                "tip_share": [[r.tip_share for r in row] for row in self.results],
+                "success": all(r.success for row in self.results for r in row),
+                "wall_s": self.wall_s}
+
+
+def amplitudes_for_ratio(ratio: float, phase_deg: float, peak_force: float
+                         ) -> tuple[float, float]:
+    """A_t, A_c with A_t / A_c = R whose path F = (A_t sin theta, A_c sin(theta + phi)) has
+    the largest resultant |F| = ``peak_force`` (N).
+
+    The largest |F|^2 over theta of an ellipse with these components is
+    (A_t^2 + A_c^2)/2 + sqrt(((A_t^2 - A_c^2)/2)^2 + (A_t A_c cos phi)^2).
+
+    >>> [round(a, 6) for a in amplitudes_for_ratio(1.0, 90.0, 267.0)]
+    [267.0, 267.0]
+    >>> [round(a, 3) for a in amplitudes_for_ratio(1.0, 0.0, 267.0)]
+    [188.798, 188.798]
+    """
+    r = check_positive("force ratio R", ratio)
+    f = check_positive("peak force", peak_force, "N")
+    c = math.cos(math.radians(phase_deg))
+    # unit centre amplitude: a_t = R, a_c = 1
+    a2, b2 = r * r, 1.0
+    peak2 = 0.5 * (a2 + b2) + math.sqrt(0.25 * (a2 - b2) ** 2 + (r * c) ** 2)
+    s = f / math.sqrt(peak2)
+    return r * s, s
+
+
+def coupling_sweep(params: ClampParams, ratios: Sequence[float] = (0.25, 1 / 3, 0.5, 1.0, 2.0,
+                                                                   3.0, 4.0),
+                   phases_deg: Sequence[float] = (0.0, 90.0), *, peak_force: float | None = None,
+                   mesh: Any = DEFAULT_MESH, cycles: int = 6, increments_per_cycle: int = 64,
+                   cycle_tol: float = 1e-3, **kw: Any) -> CouplingSweep:
+    """:func:`coupling_study` over force ratios R = A_t / A_c and phases.
+
+    Every path is scaled so that its largest resultant force is ``peak_force`` (default 0.75
+    mu F_N: the Table 1 amplitude 267 N), i.e. each loads the interface to the same fraction
+    of its macroslip force. The model is assembled and clamped once.
+    """
+    f = 0.75 * params.macroslip_force if peak_force is None else peak_force
+    f = check_positive("peak force", f, "N", upper=params.macroslip_force)
+    t0 = time.perf_counter()
+    fem = _model(params, mesh, kw.pop("stick_slope", DEFAULT_STICK_SLOPE),
+                 kw.pop("element", "C3D8"), kw.pop("linear_solver", "banded"),
+                 kw.pop("newton", None))
+    rows = []
+    for phi in phases_deg:
+        row = []
+        for r in ratios:
+            at, ac = amplitudes_for_ratio(r, phi, f)
+            row.append(coupling_study(params, at, ac, phi, cycles=cycles,
+                                      increments_per_cycle=increments_per_cycle, mesh=fem,
+                                      cycle_tol=cycle_tol, **kw))
+        rows.append(tuple(row))
+    return CouplingSweep(np.asarray(ratios, dtype=float), np.asarray(phases_deg, dtype=float),
+                         f, tuple(rows), time.perf_counter() - t0)
