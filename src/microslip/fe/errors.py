@@ -42,10 +42,15 @@ class SolverError(MicroslipError):
 
     def __init__(self, message: str, job_dir: str | Path | None = None,
                  log_tail: str = "") -> None:
+        self.message = message
         self.job_dir = None if job_dir is None else Path(job_dir)
         self.log_tail = log_tail
         where = f" (job directory {self.job_dir})" if self.job_dir is not None else ""
         super().__init__(message + where)
+
+    def __reduce__(self) -> tuple[type[SolverError], tuple[str, Path | None, str]]:
+        # keep job_dir and log_tail when the error crosses a process boundary (dask workers)
+        return (type(self), (self.message, self.job_dir, self.log_tail))
 
 
 class SolverNotFoundError(SolverError):

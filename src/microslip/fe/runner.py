@@ -286,8 +286,7 @@ def run_case(case: FECase, job_dir: str | Path, *, timeout: float | None = None,
             result = read_results(case, mesh, job_dir, JOBNAME, wall_s=wall,
                                   strain_energy_kind=strain_energy_kind)
         except ResultsError as exc:
-            raise type(exc)(str(exc).split(" (job directory")[0], job_dir,
-                            run.log_tail) from None
+            raise type(exc)(exc.message, job_dir, run.log_tail) from None
         write_json(job_dir / _RUN_RECORD, {
             "deck_sha256": digest, "returncode": run.returncode, "wall_s": wall,
             "threads": threads, "ccx_version": ccx_version(exe), "case": case.label(),

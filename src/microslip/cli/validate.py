@@ -1,0 +1,66 @@
+"""``microslip validate``: FE validation of the analytical models (paper, Figs 8 and 9)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+from ..errors import ParameterError
+from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
+from ..fe.mesh import MESHES
+from .common import number, print_json
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(sub: Any) -> None:
+    p = sub.add_parser(
+        "validate", help="run the FE validation (CalculiX) and write Figs 8 and 9",
+        description="Run the tip and centre load cases of Table 1 in CalculiX, compare them "
+        "with the analytical models and the closed forms, and write fig08_contact_status.png, "
+        "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
+        "bash scripts/setup.sh or apt-get install calculix-ccx.")
+    p.add_argument("--out", metavar="DIR", required=True, help="output directory")
+    p.add_argument("--mesh", choices=list(MESHES), action="append", metavar="LEVEL",
+                   help="mesh level, repeat for several: " + ", ".join(
+                       f"{k} ({v.dof} DOF)" for k, v in MESHES.items()) + " (default coarse)")
+    p.add_argument("--model", choices=list(LOAD_CASES), action="append",
+                   help="load case, repeat for several (default: tip and centre)")
+    p.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
+                   help=f"stick slope lambda, N/mm^3 (default {DEFAULT_STICK_SLOPE:g})")
+    p.add_argument("--timeout", type=number, metavar="S",
+                   help="time-out of each solver run, s (default 120 s + 0.15 s per DOF)")
+    p.add_argument("--threads", type=int, default=1, metavar="N",
+                   help="OpenMP threads of each solver run (default 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the jobs on this dask.distributed scheduler (default: locally)")
+    p.add_argument("--reuse", action="store_true",
+                   help="read job directories that already hold a run of the identical deck")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true",
+                   help="print the table rows and the files as JSON")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..validate import run_validation
+
+    if args.timeout is not None and not (math.isfinite(args.timeout) and args.timeout > 0):
+        raise ParameterError(f"--timeout must be > 0 s, got {args.timeout!r}")
+    if not 1 <= args.threads <= 256:
+        raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
+    meshes = tuple(dict.fromkeys(args.mesh or ["coarse"]))
+    models = tuple(dict.fromkeys(args.model or list(LOAD_CASES)))
+    report = run_validation(args.out, meshes, models, progress=not args.no_progress,
+                            timeout=args.timeout, scheduler=args.scheduler,
+                            stick_slope=args.stick_slope, threads=args.threads,
+                            reuse=args.reuse)
+    if args.json:
+        print_json({"passed": report.passed, "files": [str(f) for f in report.files],
+                    "rows": list(report.rows)})
+    else:
+        print(report.summary_markdown, end="")
+        for f in report.files:
+            print(f"wrote {f}")
+    return 0 if report.passed else 1
