@@ -1,0 +1,197 @@
+"""``microslip reproduce`` and ``microslip planar``: files, CSV contents, claims agree with CSVs."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from microslip import ModelOptions, planar, preset, reproduce
+from microslip.cli.main import main
+from microslip.errors import MicroslipError
+from microslip.planar import PAPER_RATIOS
+
+FILES = ("fig01_trajectories.png", "fig10_loops_R_ge_1.png", "fig11_loops_R_le_1.png",
+         "fig12_loss_factor_vs_R.png", "fig01_trajectories.csv", "fig10_loops_R_ge_1.csv",
+         "fig11_loops_R_le_1.csv", "loss_factor_vs_R.csv", "stiffness_vs_amplitude.csv",
+         "loss_factor_vs_R_readings.csv", "report.md")
+
+
+@pytest.fixture(scope="module")
+def job(tmp_path_factory):
+    out = tmp_path_factory.mktemp("reproduce")
+    code = main(["reproduce", "--out", str(out), "--no-fe", "--quiet"])
+    return code, out
+
+
+def test_writes_every_file(job):
+    code, out = job
+    assert code == 0
+    for name in FILES:
+        assert (out / name).stat().st_size > 0, name
+    assert not (out / "fig09_fe_vs_model.png").exists()
+    assert not list(out.glob(".*"))  # no temporary files left behind
+
+
+def test_loss_factor_table_has_the_seven_ratios(job):
+    _, out = job
+    t = reproduce.read_csv(out / "loss_factor_vs_R.csv")
+    assert sorted(t["R"]) == pytest.approx(sorted(PAPER_RATIOS), rel=1e-15)
+    for r, e in zip(t["R"], t["eccentricity"], strict=True):
+        assert e == pytest.approx(planar.eccentricity(r), rel=1e-15)
+    for col in ("paper_loss_factor", "paper_normalised_loss_factor", "work_loss_factor",
+                "work_normalised_loss_factor"):
+        assert all(math.isfinite(x) and x > 0 for x in t[col]), col
+    i1 = t["R"].index(1.0)
+    assert t["paper_normalised_loss_factor"][i1] == 1.0
+    # the work per cycle does not depend on the phase for the decoupled models
+    for w0, w90 in zip(t["work_dissipated_energy_Nmm"], t["work_dissipated_energy_phase90_Nmm"],
+                       strict=True):
+        assert w90 == pytest.approx(w0, rel=1e-9)
+
+
+def test_report_verdicts_agree_with_the_csv_files(job):
+    _, out = job
+    comp = reproduce.read_csv(out / "stiffness_vs_amplitude.csv")
+    table = reproduce.read_csv(out / "loss_factor_vs_R.csv")
+    claims = reproduce.check_claims(comp, table)
+    text = (out / "report.md").read_text(encoding="utf-8")
+    summary = next(line for line in text.splitlines() if line.startswith("Summary: "))
+    for c in claims:
+        assert c.verdict in reproduce.VERDICTS
+        assert f"{reproduce._claim_short(c.key)}: {c.verdict}" in summary
+        assert c.evidence in text
+    # and independently of check_claims: where is eta lowest, where highest?
+    for coupling in ("paper", "work"):
+        eta = table[f"{coupling}_loss_factor"]
+        order = sorted(range(len(eta)), key=eta.__getitem__)
+        holds = (table["R"][order[0]] == 1.0
+                 and {round(table["R"][i], 9) for i in order[-2:]} == {0.25, 4.0})
+        claim = next(c for c in claims if c.key == f"eta-extremes-{coupling}")
+        assert claim.verdict == ("confirmed" if holds else "not confirmed")
+    soft = next(c for c in claims if c.key == "softening")
+    falls = all(
+        a > b for m in ("tip", "centre")
+        for a, b in zip(*(lambda k: (k[:-1], k[1:]))(
+            [k for mm, k in zip(comp["model"], comp["secant_stiffness_N_per_mm"], strict=True)
+             if mm == m]), strict=True))
+    assert soft.verdict == ("confirmed" if falls else "not confirmed")
+    assert "skipped" in text and "--no-fe" in text
+
+
+def test_loops_csv_holds_the_plotted_loops(job):
+    _, out = job
+    loops = reproduce.read_csv(out / "fig10_loops_R_ge_1.csv")
+    assert set(loops["curve"]) == {"tip", "centre", "resultant"}
+    assert sorted(set(loops["R"])) == [1.0, 2.0, 3.0, 4.0]
+    tip4 = [f for r, c, f in zip(loops["R"], loops["curve"], loops["force_N"], strict=True)
+            if r == 4.0 and c == "tip"]
+    assert max(tip4) == pytest.approx(8000.0) and len(tip4) == 2001
+
+
+def _table(etas):
+    """A loss-factor table with the given eta at the paper's R (both couplings)."""
+    n = len(PAPER_RATIOS)
+    return {"R": list(PAPER_RATIOS), "paper_loss_factor": etas, "work_loss_factor": etas,
+            "tip_secant_stiffness_N_per_mm": [1.0] * n,
+            "centre_secant_stiffness_N_per_mm": [2.0] * n}
+
+
+COMP = {"model": ["tip", "tip", "centre", "centre"], "level": [1, 2, 1, 2],
+        "amplitude_N": [1.0, 2.0, 1.0, 2.0], "secant_stiffness_N_per_mm": [4.0, 2.0, 8.0, 3.0],
+        "loss_factor": [0.2, 0.21, 0.2, 0.2]}
+
+
+def test_claims_follow_the_numbers_not_the_paper():
+    # R order: 1, 2, 3, 4, 1/2, 1/3, 1/4
+    paper_shape = [0.1, 0.2, 0.3, 0.5, 0.2, 0.3, 0.4]
+    verdicts = {c.key: c.verdict for c in reproduce.check_claims(COMP, _table(paper_shape))}
+    assert verdicts["eta-extremes-paper"] == "confirmed"
+    assert verdicts["softening"] == "confirmed" and verdicts["centre-stiffer"] == "confirmed"
+    flat = reproduce.check_claims(COMP, _table([0.25] * 7))
+    assert {c.key: c.verdict for c in flat}["eta-extremes-work"] == "not confirmed"
+    missing = [0.1, 0.2, 0.3, 0.5, 0.2, 0.3, math.nan]
+    assert reproduce.check_claims(COMP, _table(missing))[2].verdict == "cannot be checked"
+    stiff = dict(COMP, secant_stiffness_N_per_mm=[2.0, 4.0, 8.0, 3.0])
+    assert reproduce.check_claims(stiff, _table(paper_shape))[0].verdict == "not confirmed"
+    weak = dict(_table(paper_shape), centre_secant_stiffness_N_per_mm=[0.5] * 7)
+    assert reproduce.check_claims(COMP, weak)[1].verdict == "not confirmed"
+
+
+def _fake_validation(fail: bool = False):
+    def run_validation(out_dir, meshes=("coarse",), models=("tip", "centre"), *,
+                       progress=True, timeout=None, scheduler=None):
+        if fail:
+            raise MicroslipError("ccx failed: no convergence")
+        p = Path(out_dir) / "fig09_fe_vs_model.png"
+        p.write_bytes(b"png")
+        return SimpleNamespace(files=(p,), rows=(), summary_markdown="| FE | ok |\n|---|---|")
+    return run_validation
+
+
+def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(), ""))
+    code = main(["reproduce", "--out", str(tmp_path / "a"), "--fe", "--quiet",
+                 "--increments", "20"])
+    assert code == 0
+    text = (tmp_path / "a" / "report.md").read_text(encoding="utf-8")
+    assert "| FE | ok |" in text and "fig09_fe_vs_model.png" in text
+    monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(fail=True), ""))
+    code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20"])
+    _, err = capsys.readouterr()
+    assert code == 1 and "ccx failed" in err
+    assert "Not run (failed): ccx failed" in (tmp_path / "b" / "report.md").read_text("utf-8")
+
+
+def test_fe_missing_is_reported_not_fatal(monkeypatch):
+    monkeypatch.setattr(reproduce.importlib.util, "find_spec", lambda name: None)
+    run, why = reproduce._fe_module()
+    assert run is None and "microslip.validate" in why
+
+
+# -- microslip planar ----------------------------------------------------------------------
+def test_planar_json(capsys, tmp_path):
+    png = tmp_path / "p.png"
+    code = main(["planar", "--ratio", "2", "--phase", "90", "--centre-reading", "paper",
+                 "--increments", "200", "--samples-per-cycle", "256", "--json",
+                 "--plot", str(png)])
+    out, err = capsys.readouterr()
+    assert code == 0 and err == "" and png.stat().st_size > 0
+    d = json.loads(out)
+    assert (d["tip_amplitude_N"], d["centre_amplitude_N"], d["ratio"]) == (4000.0, 4000.0, 2.0)
+    assert d["eccentricity"] == pytest.approx(math.sqrt(3) / 2)
+    for key in ("dissipated_energy_Nmm", "paper_dissipated_energy_Nmm", "paper_loss_factor",
+                "work_dissipated_energy_Nmm", "work_loss_factor", "tip_share_of_dissipation",
+                "centre_share_of_dissipation"):
+        assert isinstance(d[key], float) and d[key] > 0, key
+    ref = planar.planar_damping(preset("table2-tip"), preset("table2-centre"), 4000.0, 4000.0,
+                                increments=200, options=ModelOptions(centre="paper"),
+                                phase_deg=90.0, samples_per_cycle=256)
+    assert d["work_loss_factor"] == ref.work_loss_factor
+    assert d["paper_loss_factor"] == ref.paper.loss_factor
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--ratio", "2", "--tip-amplitude", "100"], "either --ratio"),
+    (["--tip-amplitude", "100"], "give --tip-amplitude N and --centre-amplitude N"),
+    (["--ratio", "0.25"], "macroslip limit of the centre model"),
+    (["--ratio", "-1"], "R must be finite and > 0"),
+    (["--ratio", "1.7", "--levels", "top"], "not a ratio of two whole levels"),
+])
+def test_planar_mistakes_are_one_line(capsys, argv, message):
+    code = main(["planar", "--increments", "50", *argv])
+    out, err = capsys.readouterr()
+    assert code == 1 and out == ""
+    assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_planar_text_states_units(capsys):
+    code = main(["planar", "--tip-amplitude", "3000", "--centre-amplitude", "5000",
+                 "--increments", "100", "--samples-per-cycle", "128"])
+    out, _ = capsys.readouterr()
+    assert code == 0
+    assert re.search(r"W_d \(N·mm\)", out) and "R = 1.2" in out
