@@ -250,7 +250,10 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
     size = int(np.prod(shape))
 
     def flat(a: FloatArray) -> FloatArray:
-        return np.ascontiguousarray(np.broadcast_to(a, shape).reshape(size))
+        # always a writeable C-contiguous float64 array: numba compiles one kernel per
+        # array type, and a read-only view (e.g. of a broadcast) would be another type
+        return np.require(np.broadcast_to(a, shape).reshape(size), np.float64,
+                          ["C_CONTIGUOUS", "WRITEABLE", "ALIGNED"])
 
     amp_f = flat(amp)
     flat_params = {k: flat(a) for k, a in arrays.items()}

@@ -88,6 +88,7 @@ def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
         if a > 1e290 or a < 1e-290:  # beyond the exact-product range: Python decides
             continue
         e = int(np.floor(np.log10(a)))
+        down = False  # the previous try had e one too large
         for _ in range(4):
             p = 14 - e
             if p < -300 or p > 300:
@@ -98,22 +99,30 @@ def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
             ah, al = _split(a)
             bh, bl = _split(ph)
             yl = (((ah * bh - yh) + ah * bl) + al * bh) + al * bl + a * pl
+            # y = yh + yl = |x| 10^p, exact when 10^p is a double (0 <= p <= 22)
             fl = np.floor(yh)
             t = (yh - fl) + yl
             if abs(t - 0.5) < 1e-9 or abs(t + 0.5) < 1e-9 or abs(t - 1.5) < 1e-9:
                 break
+            if yh == 1e14 and pl != 0.0 and abs(yl) < 1e-9:
+                break
             m = fl + np.floor(t + 0.5)
             if m >= 1e15:
-                e += 1
-            elif m < 1e14:
+                if down:  # y in [1e15 - 0.5, 1e15) one exponent down: 1.00000000000000e(e+1)
+                    m, e = 1e14, e + 1
+                else:
+                    e += 1
+                    continue
+            elif yh < 1e14 or (yh == 1e14 and yl < 0.0):
                 e -= 1
-            else:
-                mj, nd = _strip(np.int64(m))
-                mant[j] = mj
-                ndig[j] = nd
-                expo[j] = e
-                kind[j] = 0
-                break
+                down = True
+                continue
+            mj, nd = _strip(np.int64(m))
+            mant[j] = mj
+            ndig[j] = nd
+            expo[j] = e
+            kind[j] = 0
+            break
 
 
 @njit(cache=True, inline="always")

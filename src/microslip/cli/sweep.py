@@ -1,0 +1,278 @@
+"""``microslip sweep``: parameter studies of the tip and centre models, and R for planar."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..models import MODELS, check_increments
+from ..params import preset
+from .common import (
+    PARAM_FLAGS,
+    add_model_options,
+    add_params,
+    add_strain_energy,
+    model_options,
+    number,
+    params_from_args,
+)
+
+__all__ = ["add_parser", "run"]
+
+EPILOG = """\
+examples:
+  microslip sweep --model tip --preset table2-tip --amplitude-range 100 8000 \\
+      --cases 1000000 --increments 1000 --out eta.csv
+  microslip sweep --model centre --preset table2-centre --amplitude-range 1000 15000 \\
+      --grid mu=0.4:0.8:5 --out eta.nc --plot eta.png
+  microslip sweep --model tip --preset table2-tip --amplitude-range 1000 8000 --cases 50 \\
+      --sample friction=normal:0.8:0.05 --samples 2000 --seed 1 --plot bands.png
+  microslip sweep --model planar --ratio-range 0.25 4 --cases 50 --out r.csv
+grid values: NAME=START:STOP:COUNT (evenly spaced, both ends included),
+  NAME=START:STOP:COUNT:log (geometric) or NAME=V1,V2,...; NAME is one of amplitude,
+  friction, normal_force, length, width, thickness, modulus, poisson_ratio
+  (or F0, mu, F_N, L, w, t, E, nu). Rows of the CSV are in C order over the axes
+  (--amplitude-range first, then the --grid axes as given, then the samples).
+distributions: normal:MEAN:SD, lognormal:MEAN:SD (of the quantity, always > 0),
+  uniform:LOW:HIGH; every grid point uses the same draws (common random numbers).
+"""
+
+
+def _positive_int(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {n}")
+    return n
+
+
+def _seed(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if not 0 <= n < 2**63:
+        raise argparse.ArgumentTypeError(f"must be in [0, 2^63), got {n}")
+    return n
+
+
+def add_parser(sub: Any) -> None:
+    p = sub.add_parser(
+        "sweep", help="parameter study: damping over grids and random samples",
+        description="Damping of many cases at once (compiled batch engine): grids over the "
+        "amplitude, friction, normal force, geometry and modulus, random samples of uncertain "
+        "parameters, or the force ratio R of the planar model. Writes CSV or NetCDF (by the "
+        "extension) and a summary plot; runs locally or on a Dask cluster (--scheduler).",
+        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--model", choices=[*MODELS, "planar"], required=True)
+    add_params(p, default_preset=None)
+    g = p.add_argument_group("what to sweep")
+    g.add_argument("--amplitude-range", nargs=2, type=number, metavar=("A", "B"),
+                   help="--cases amplitudes evenly spaced from A to B N, both included "
+                        "(the first axis)")
+    g.add_argument("--ratio-range", nargs=2, type=number, metavar=("A", "B"),
+                   help="planar: --cases force ratios R from A to B, geometrically spaced")
+    g.add_argument("--cases", type=_positive_int, metavar="N",
+                   help="number of points of --amplitude-range or --ratio-range (default 100)")
+    g.add_argument("--grid", action="append", default=[], metavar="NAME=SPEC",
+                   help="a grid axis, e.g. friction=0.4:0.8:5 or E=70000,210000 (repeatable)")
+    g.add_argument("--sample", action="append", default=[], metavar="NAME=DIST:A:B",
+                   help="a randomly drawn parameter, e.g. friction=normal:0.8:0.05 "
+                        "(repeatable)")
+    g.add_argument("--samples", type=_positive_int, default=1000, metavar="M",
+                   help="draws per grid point with --sample (default 1000)")
+    g.add_argument("--seed", type=_seed, metavar="S",
+                   help="seed of the random draws; the same seed writes the same file "
+                        "(default: a fresh seed, printed)")
+    g.add_argument("--levels", default="base", metavar="SCHEME",
+                   help="planar: how R maps to the amplitudes (microslip.planar."
+                        "LEVEL_SCHEMES; default base)")
+    p.add_argument("--increments", type=int, default=1000, metavar="N",
+                   help="force increments of each first loading (default 1000)")
+    add_model_options(p)
+    add_strain_energy(p)
+    o = p.add_argument_group("output and execution")
+    o.add_argument("--out", metavar="FILE", help="write FILE.csv or FILE.nc (NetCDF)")
+    o.add_argument("--plot", metavar="FILE.png", help="summary plot of eta against the "
+                   "swept parameter")
+    o.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on this dask.distributed scheduler (e.g. tcp://host:8786)")
+    o.add_argument("--chunk-size", type=_positive_int, default=65536, metavar="N",
+                   help="cases per chunk / Dask task (default 65536)")
+    o.add_argument("--threads", type=_positive_int, metavar="N",
+                   help="threads of a local run (default: all cores)")
+    o.add_argument("--retries", type=int, default=3, metavar="N",
+                   help="retries of a failed Dask task (default 3)")
+    o.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=run)
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    from ..sweep import check_output
+
+    if args.out:
+        check_output(args.out)
+    if args.plot:
+        ext = os.path.splitext(args.plot)[1].lower()
+        if ext not in (".png", ".pdf", ".svg"):
+            raise ParameterError(f"plot file must end in .png, .pdf or .svg, got {args.plot!r}")
+        from ..plot import pyplot
+
+        pyplot()
+
+
+def _cases(args: argparse.Namespace) -> int:
+    return 100 if args.cases is None else int(args.cases)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.model == "planar":
+        return _run_planar(args)
+    from ..sweep import (
+        make_sweep,
+        parse_grid,
+        parse_sample,
+        plot_sweep,
+        run_sweep,
+        write_sweep,
+    )
+
+    if args.ratio_range is not None:
+        raise ParameterError("--ratio-range applies to --model planar only")
+    if args.cases is not None and args.amplitude_range is None:
+        raise ParameterError("--cases sets the number of points of --amplitude-range "
+                             "(use --samples for random draws, --grid for other axes)")
+    if args.retries < 0:
+        raise ParameterError(f"--retries must be >= 0, got {args.retries}")
+    n = check_increments(args.increments)
+    _check_outputs(args)
+    grid = []
+    if args.amplitude_range is not None:
+        a, b = args.amplitude_range
+        for v in (a, b):
+            if not (math.isfinite(v) and v > 0):
+                raise ParameterError(f"--amplitude-range ends must be finite and > 0 N, got {v!r}")
+        grid.append(("amplitude", np.linspace(a, b, _cases(args))))
+    grid.extend(parse_grid(t) for t in args.grid)
+    samples = [parse_sample(t) for t in args.sample]
+    if args.preset is None and any(getattr(args, f) is None for _, f, _ in PARAM_FLAGS):
+        args.preset = "table1"
+    swept = {name for name, _ in grid} | {name for name, _ in samples}
+    fallback = None
+    if "amplitude" in swept:
+        if args.amplitude is not None:
+            raise ParameterError("--amplitude conflicts with sweeping or sampling the amplitude")
+        fallback = 1.0  # only to satisfy params_from_args: the amplitude varies
+    params, amplitude = params_from_args(args, fallback_amplitude=fallback)
+    opt = model_options(args)
+    spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
+                      grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
+                      increments=n, options=opt, strain_energy=args.strain_energy)
+    result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
+                       threads=args.threads, retries=args.retries,
+                       progress=not args.no_progress)
+    if args.out:
+        write_sweep(result, args.out, chunk_size=args.chunk_size)
+    if args.plot:
+        plot_sweep(result, args.plot)
+    _print_summary(args, spec, result)
+    return 0
+
+
+def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
+    opt = spec.options
+    print(f"{spec.model} model ({MODELS[spec.model].equations}), {spec.size} cases x "
+          f"{spec.increments} increments, poisson={opt.poisson}, "
+          f"length_update={opt.length_update}"
+          + (f", centre reading={opt.centre}" if spec.model == "centre" else "")
+          + f"; U: {spec.strain_energy}")
+    if args.preset:
+        print(f"  base parameters        preset {args.preset} (with the flags given)")
+    for line in spec.describe():
+        print(f"  {line}")
+    eta = result.loss_factor
+    q = np.percentile(eta, [0, 5, 50, 95, 100])
+    print(f"  loss factor eta        min {q[0]:.6g}, 5% {q[1]:.6g}, median {q[2]:.6g}, "
+          f"95% {q[3]:.6g}, max {q[4]:.6g} (dimensionless)")
+    rate = spec.size * spec.increments / result.elapsed if result.elapsed > 0 else math.inf
+    where = f"Dask scheduler {result.scheduler}" if result.scheduler else "this machine"
+    print(f"  computed in            {result.elapsed:.3g} s on {where} ({result.backend}), "
+          f"{rate:.3g} case-increments/s")
+    if args.out:
+        print(f"  wrote                  {args.out} ({spec.size} rows)")
+    if args.plot:
+        print(f"  figure                 {args.plot}")
+
+
+def _run_planar(args: argparse.Namespace) -> int:
+    from ..planar import LEVEL_SCHEMES
+    from ..sweep import plot_ratio_sweep, ratio_sweep, write_ratio_sweep
+
+    unsupported = [flag for flag, present in (
+        ("--amplitude-range", args.amplitude_range is not None),
+        ("--grid", bool(args.grid)), ("--sample", bool(args.sample)),
+        ("--scheduler", args.scheduler is not None), ("--amplitude", args.amplitude is not None),
+    ) if present]
+    if unsupported:
+        raise ParameterError(f"{unsupported[0]} does not apply to --model planar "
+                             "(sweep the force ratio with --ratio-range A B --cases N)")
+    if args.ratio_range is None:
+        raise ParameterError("--model planar needs --ratio-range A B (force ratios R > 0)")
+    if args.levels not in LEVEL_SCHEMES:
+        raise ParameterError(f"unknown level scheme {args.levels!r}; choose one of "
+                             f"{', '.join(LEVEL_SCHEMES)}")
+    a, b = args.ratio_range
+    for v in (a, b):
+        if not (math.isfinite(v) and v > 0):
+            raise ParameterError(f"--ratio-range ends must be finite and > 0, got {v!r}")
+    n = check_increments(args.increments)
+    _check_outputs(args)
+    if args.preset is not None:
+        raise ParameterError("--model planar uses the presets table2-tip and table2-centre; "
+                             "override --friction, --normal-force, --modulus or "
+                             "--poisson-ratio instead of --preset")
+    overrides = {f: getattr(args, f) for f in ("friction", "normal_force", "modulus",
+                                               "poisson_ratio") if getattr(args, f) is not None}
+    geometry = [f"--{flag}" for flag, f, _ in PARAM_FLAGS
+                if f in ("length", "width", "thickness") and getattr(args, f) is not None]
+    if geometry:
+        raise ParameterError(f"{geometry[0]} does not apply to --model planar (the tip and "
+                             "centre models have their own geometry: table2-tip, table2-centre)")
+    tip_p = preset("table2-tip").replace(**overrides)
+    centre_p = preset("table2-centre").replace(**overrides)
+    ratios = np.geomspace(a, b, _cases(args)) if a != b else np.array([a])
+    opt = model_options(args)
+    sweep = ratio_sweep(ratios, tip_params=tip_p, centre_params=centre_p, levels=args.levels,
+                        increments=n, options=opt, strain_energy=args.strain_energy,
+                        progress=not args.no_progress)
+    if args.out:
+        write_ratio_sweep(sweep, args.out)
+    if args.plot:
+        plot_ratio_sweep(sweep, args.plot)
+    failed = [c for c in sweep.cases if c.result is None]
+    print(f"planar model, {len(sweep.cases)} force ratios R from {a:g} to {b:g} "
+          f"(levels {args.levels}, {n} increments, U: {sweep.strain_energy_kind}; "
+          "tip table2-tip, centre table2-centre)")
+    eta_p = sweep.loss_factor("paper")
+    eta_w = sweep.loss_factor("work")
+    ok = np.isfinite(eta_p)
+    if ok.any():
+        print(f"  paper coupling eta     {np.nanmin(eta_p):.6g} .. {np.nanmax(eta_p):.6g} "
+              "(dimensionless)")
+        print(f"  work-based eta         {np.nanmin(eta_w):.6g} .. {np.nanmax(eta_w):.6g} "
+              "(dimensionless)")
+    if failed:
+        print(f"  not computed           {len(failed)} ratio(s), e.g. R = {failed[0].ratio:g}: "
+              f"{failed[0].error}")
+    if args.out:
+        print(f"  wrote                  {args.out} ({len(sweep.cases)} rows)")
+    if args.plot:
+        print(f"  figure                 {args.plot}")
+    return 0
