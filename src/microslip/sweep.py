@@ -777,7 +777,8 @@ def map_on_cluster(func: Callable[..., Any], payloads: Sequence[tuple[Any, ...]]
             "--scheduler needs dask.distributed: pip install 'microslip[dask]'"
         ) from None
     try:
-        client = Client(scheduler, timeout="20s", set_as_default=False)
+        # connection timeout: dask's distributed.comm.timeouts.connect (30 s by default)
+        client = Client(scheduler, set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
         raise MicroslipError(
             f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}"
