@@ -129,7 +129,11 @@ def _fake_validation(fail: bool = False):
             raise MicroslipError("ccx failed: no convergence")
         p = Path(out_dir) / "fig09_fe_vs_model.png"
         p.write_bytes(b"png")
-        return SimpleNamespace(files=(p,), rows=(), summary_markdown="| FE | ok |\n|---|---|")
+        csv = Path(out_dir) / "validation.csv"
+        csv.write_text("case,mesh,converged,err_peak_model_fe,err_wd_model_fe,tolerance_peak,"
+                       "tolerance_wd\ntip,coarse,True,0.001,0.03,0.01,0.02\n", encoding="utf-8")
+        return SimpleNamespace(files=(p, csv), rows=(),
+                               summary_markdown="| FE | ok |\n|---|---|")
     return run_validation
 
 
@@ -140,6 +144,8 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert code == 0
     text = (tmp_path / "a" / "report.md").read_text(encoding="utf-8")
     assert "| FE | ok |" in text and "fig09_fe_vs_model.png" in text
+    # W_d differs by 3 % against a 2 % tolerance: the FE claim is judged from validation.csv
+    assert "models agree with FE: not confirmed" in text
     monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(fail=True), ""))
     code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20"])
     _, err = capsys.readouterr()
@@ -195,3 +201,11 @@ def test_planar_text_states_units(capsys):
     out, _ = capsys.readouterr()
     assert code == 0
     assert re.search(r"W_d \(N·mm\)", out) and "R = 1.2" in out
+
+
+def test_out_must_be_a_directory(tmp_path, capsys):
+    f = tmp_path / "file"
+    f.write_text("x", encoding="utf-8")
+    code = main(["reproduce", "--out", str(f), "--no-fe", "--quiet"])
+    _, err = capsys.readouterr()
+    assert code == 1 and "--out must be a directory" in err

@@ -8,8 +8,9 @@
   ``fig09_fe_vs_model.png`` and ``validation.csv``;
 * the data behind each figure as CSV (``fig01_trajectories.csv``, ``fig10_loops_R_ge_1.csv``,
   ``fig11_loops_R_le_1.csv``, ``loss_factor_vs_R.csv`` for Fig. 12), the stiffness and damping
-  of each model at the paper's levels (``stiffness_vs_amplitude.csv``) and the loss factor
-  against R under other readings of the paper (``loss_factor_vs_R_readings.csv``);
+  of each model at the paper's levels (``stiffness_vs_amplitude.csv``), the loss factor
+  against R under other readings of the paper (``loss_factor_vs_R_readings.csv``) and of the
+  circle R = 1 at each equal pair of levels (``loss_factor_R1_levels.csv``);
 * ``report.md``: what was computed, the readings in force, the results and a point-by-point
   check of the paper's claims, each verdict computed from the CSV columns by
   :func:`check_claims` (never written by hand).
@@ -50,6 +51,7 @@ from .planar import (
     RatioSweep,
     eccentricity,
     loss_factor_vs_ratio,
+    planar_damping,
     ratio_label,
     trajectory,
     work_damping,
@@ -69,6 +71,7 @@ __all__ = [
     "ReproduceResult",
     "check_claims",
     "component_table",
+    "equal_level_table",
     "figure_loops",
     "figure_loss_factor",
     "figure_planar",
@@ -293,7 +296,35 @@ def _claim_eta(table: Mapping[str, Any], comp: Mapping[str, Any], coupling: str)
                  "(Section 5, Fig. 12).", verdict, evidence, reason, "loss_factor_vs_R.csv")
 
 
-def check_claims(components: Mapping[str, Any], table: Mapping[str, Any]) -> tuple[Claim, ...]:
+def _claim_fe(validation: Mapping[str, Any]) -> Claim:
+    claim = ("Both 1-D models agree well with the finite-element results (Section 5, Fig. 9; "
+             "Section 6).")
+    need = ("case", "mesh", "err_peak_model_fe", "err_wd_model_fe", "tolerance_peak",
+            "tolerance_wd")
+    if any(k not in validation for k in need) or not validation["case"]:
+        return Claim("fe-agreement", claim, "cannot be checked",
+                     "validation.csv lacks the model-vs-FE columns", "", "validation.csv")
+    parts, ok = [], True
+    for i, case in enumerate(validation["case"]):
+        ep = float(validation["err_peak_model_fe"][i])
+        ew = float(validation["err_wd_model_fe"][i])
+        tp_, tw = float(validation["tolerance_peak"][i]), float(validation["tolerance_wd"][i])
+        conv = str(validation.get("converged", ["True"] * (i + 1))[i]) in ("True", "1", "1.0")
+        within = conv and abs(ep) <= tp_ and abs(ew) <= tw
+        ok = ok and within
+        parts.append(f"{case} ({validation['mesh'][i]} mesh): model − FE {100 * ep:+.2f} % in "
+                     f"peak displacement (tolerance {100 * tp_:g} %), {100 * ew:+.2f} % in W_d "
+                     f"(tolerance {100 * tw:g} %)" + ("" if conv else ", FE not converged"))
+    return Claim("fe-agreement", claim, "confirmed" if ok else "not confirmed",
+                 "; ".join(parts),
+                 "the FE model (Table 1 bar, rigid base, Coulomb friction, CalculiX) is what the "
+                 "1-D models idealise; agreement is judged against the validation's own "
+                 "tolerances, with the models in the reading of the validation",
+                 "validation.csv")
+
+
+def check_claims(components: Mapping[str, Any], table: Mapping[str, Any],
+                 validation: Mapping[str, Any] | None = None) -> tuple[Claim, ...]:
     """The paper's qualitative claims, judged from the columns of the two CSV files.
 
     Parameters
@@ -303,18 +334,25 @@ def check_claims(components: Mapping[str, Any], table: Mapping[str, Any]) -> tup
     table : mapping
         Columns of ``loss_factor_vs_R.csv`` (:meth:`RatioSweep.columns`).
 
+    validation : mapping, optional
+        Columns of ``validation.csv`` when the finite-element validation ran.
+
     Returns
     -------
     tuple of Claim
-        Softening, centre stiffer than tip, and the loss-factor extremes for the paper's
-        coupling and for the work-based result.
+        Softening, centre stiffer than tip, the loss-factor extremes for the paper's
+        coupling and for the work-based result, and (with ``validation``) the agreement of
+        the models with finite elements.
     """
-    return (
+    claims: tuple[Claim, ...] = (
         _claim_softening(components),
         _claim_centre_stiffer(components, table),
         _claim_eta(table, components, "paper"),
         _claim_eta(table, components, "work"),
     )
+    if validation is not None:
+        claims = (*claims, _claim_fe(validation))
+    return claims
 
 
 def component_table(tip_params: Any, centre_params: Any, increments: int,
@@ -357,6 +395,37 @@ def component_table(tip_params: Any, centre_params: Any, increments: int,
             col["loss_factor"].append(r.loss_factor)
             col["loss_factor_secant"].append(rs.loss_factor)
             col["note"].append("")
+    return col
+
+
+def equal_level_table(tip_params: Any, centre_params: Any, increments: int,
+                      options: ModelOptions, strain_energy: str, work_energy: str,
+                      levels: Sequence[int] = PAPER_LEVELS) -> dict[str, Any]:
+    """R = 1 at each equal pair of levels (1/1 ... 4/4): how eta moves at a fixed R.
+
+    Columns of ``loss_factor_R1_levels.csv``; a pair the reading cannot compute has NaN and
+    its reason in ``note``.
+    """
+    col: dict[str, list[Any]] = {k: [] for k in (
+        "level", "tip_amplitude_N", "centre_amplitude_N", "paper_loss_factor",
+        "work_loss_factor", "note")}
+    for lv in levels:
+        at, ac = TIP_LEVEL_FORCE * lv, CENTRE_LEVEL_FORCE * lv
+        col["level"].append(lv)
+        col["tip_amplitude_N"].append(at)
+        col["centre_amplitude_N"].append(ac)
+        try:
+            r = planar_damping(tip_params, centre_params, at, ac, increments=increments,
+                               options=options, strain_energy=strain_energy,
+                               work_energy=work_energy, samples_per_cycle=_READING_SAMPLES)
+        except MicroslipError as exc:
+            col["paper_loss_factor"].append(math.nan)
+            col["work_loss_factor"].append(math.nan)
+            col["note"].append(" ".join(str(exc).split()))
+            continue
+        col["paper_loss_factor"].append(r.paper.loss_factor)
+        col["work_loss_factor"].append(r.work_loss_factor)
+        col["note"].append("")
     return col
 
 
@@ -596,6 +665,8 @@ class ReproduceResult:
         Columns of ``stiffness_vs_amplitude.csv``.
     table : dict
         Columns of ``loss_factor_vs_R.csv``.
+    equal_levels : dict
+        Columns of ``loss_factor_R1_levels.csv`` (R = 1 at each equal pair of levels).
     claims : tuple of Claim
     fe_status : str
         ``done``, ``skipped`` or ``failed``.
@@ -614,6 +685,7 @@ class ReproduceResult:
     readings: tuple[Reading, ...]
     components: dict[str, Any]
     table: dict[str, Any]
+    equal_levels: dict[str, Any]
     claims: tuple[Claim, ...]
     fe_status: str
     fe_message: str
@@ -748,7 +820,13 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
         raise ParameterError(f"unknown FE mesh {fe_mesh!r}; choose one of {', '.join(FE_MESHES)}")
     say = echo or (lambda msg: None)
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        raise ParameterError(f"--out must be a directory, got the file {str(out)!r}")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise MicroslipError(f"cannot create the output directory {str(out)!r}: "
+                             f"{exc.strerror}") from None
     tp, cp = preset("table2-tip"), preset("table2-centre")
     files: list[Path] = []
     state: dict[str, Any] = {}
@@ -775,6 +853,7 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
                                      samples_per_cycle=_READING_SAMPLES)
             readings.append(Reading(name, desc, s))
         state["readings"] = tuple(readings)
+        state["r1"] = equal_level_table(tp, cp, n, opt, strain_energy, work_energy)
 
     def write_tables() -> None:
         sweep: RatioSweep = state["sweep"]
@@ -804,7 +883,8 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
             rcol["note"].extend(c2.error for c2 in rd.sweep.cases)
         state["readings_table"] = rcol
         write_csv(out / "loss_factor_vs_R_readings.csv", rcol)
-        files.append(out / "loss_factor_vs_R_readings.csv")
+        write_csv(out / "loss_factor_R1_levels.csv", state["r1"])
+        files.extend([out / "loss_factor_vs_R_readings.csv", out / "loss_factor_R1_levels.csv"])
 
     def fig01() -> None:
         col = figure_trajectories(out / "fig01_trajectories.png", PAPER_RATIOS, levels)
@@ -859,13 +939,17 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
     ]
     for _, step in bar(steps, "reproduce", total=len(steps)):
         step()
-    claims = check_claims(state["components"], state["table"])
+    validation = None
+    if state["fe"][0] == "done" and (out / "validation.csv").is_file():
+        validation = read_csv(out / "validation.csv")
+    claims = check_claims(state["components"], state["table"], validation)
     fe_status, fe_message, fe_report = state["fe"]
     elapsed = time.perf_counter() - t0
     result = ReproduceResult(
         out_dir=out, files=(*files, out / "report.md"), sweep=state["sweep"],
         phase90=state["phase90"], readings=state["readings"],
-        components=state["components"], table=state["table"], claims=claims,
+        components=state["components"], table=state["table"], equal_levels=state["r1"],
+        claims=claims,
         fe_status=fe_status, fe_message=fe_message, fe_report=fe_report, elapsed_s=elapsed)
     with atomic_write(out / "report.md") as fh:
         fh.write(_report(result, opt, levels, strain_energy, work_energy, n,
@@ -998,6 +1082,16 @@ def _report(res: ReproduceResult, opt: ModelOptions, levels: str, kind: str,
     add("")
     add("\n".join(f"- `{rd.name}`: {rd.description}" for rd in res.readings) + "\n")
 
+    e1 = res.equal_levels
+    add("### R = 1 at each equal pair of levels\n")
+    add("R = 1 can be any equal pair; η of the circle at each (`loss_factor_R1_levels.csv`):\n")
+    add(_md_table(["levels", "tip F0 (N)", "centre F0 (N)", "paper η", "work η", "note"],
+                  [[f"{e1['level'][i]:g}/{e1['level'][i]:g}", f"{e1['tip_amplitude_N'][i]:g}",
+                    f"{e1['centre_amplitude_N'][i]:g}", _fmt(e1["paper_loss_factor"][i]),
+                    _fmt(e1["work_loss_factor"][i]), e1["note"][i]]
+                   for i in range(len(e1["level"]))]))
+    add("")
+
     add("## Finite elements (Figs 8-9)\n")
     if res.fe_status == "done":
         add(f"Validation run ({res.fe_message}).\n")
@@ -1018,11 +1112,14 @@ def _claim_scope(key: str) -> str:
         return "paper's (Eqs 19-23)"
     if key.endswith("-work"):
         return "work-based"
+    if key == "fe-agreement":
+        return "FE validation"
     return "each model"
 
 
 def _claim_short(key: str) -> str:
     return {"softening": "softening", "centre-stiffer": "centre stiffer than tip",
             "eta-extremes-paper": "η extremes (paper's coupling)",
-            "eta-extremes-work": "η extremes (work-based)"}.get(key, key)
+            "eta-extremes-work": "η extremes (work-based)",
+            "fe-agreement": "models agree with FE"}.get(key, key)
 
