@@ -6,7 +6,7 @@ import argparse
 from typing import Any
 
 from ..energy import STRAIN_ENERGY
-from ..errors import ParameterError
+from ..errors import MacroslipError, ParameterError
 from ..models import check_increments
 from ..params import PRESETS, preset
 from ..planar import (
@@ -118,11 +118,17 @@ def run(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     n = check_increments(args.increments)
     opt = model_options(args)
-    result = planar_damping(
-        preset(args.tip_preset), preset(args.centre_preset), at, ac, increments=n,
-        options=opt, strain_energy=args.strain_energy, phase_deg=args.phase,
-        work_energy=args.work_energy, tip_symmetry=args.tip_symmetry,
-        samples_per_cycle=args.samples_per_cycle)
+    try:
+        result = planar_damping(
+            preset(args.tip_preset), preset(args.centre_preset), at, ac, increments=n,
+            options=opt, strain_energy=args.strain_energy, phase_deg=args.phase,
+            work_energy=args.work_energy, tip_symmetry=args.tip_symmetry,
+            samples_per_cycle=args.samples_per_cycle)
+    except MacroslipError as exc:
+        if "centre model" in str(exc) and opt.centre == "physical":
+            raise MacroslipError(f"{exc}; the paper's reading of Eq. 11 "
+                                 "(--centre-reading paper) reaches 2 mu F_N") from None
+        raise
     if args.plot:
         from ..reproduce import figure_planar
 
