@@ -149,9 +149,26 @@ class CyclicPath:
         return th, ft, fc
 
 
+def _ramp_to(theta: FloatArray, ft: FloatArray, fc: FloatArray, k0: int, m: int
+             ) -> tuple[FloatArray, FloatArray, FloatArray, int]:
+    """Prepend a straight ramp of ``m`` increments from zero load to the first sample."""
+    if m <= 1:
+        return theta, ft, fc, k0
+    s = np.arange(1, m) / m
+    step = float(theta[1] - theta[0]) if theta.size > 1 and theta[1] > theta[0] else 1.0
+    th = np.r_[theta[0] - step * np.arange(m - 1, 0, -1), theta]
+    return th, np.r_[ft[0] * s, ft], np.r_[fc[0] * s, fc], k0 + m - 1
+
+
 def harmonic_path(tip_amplitude: float, centre_amplitude: float, phase_deg: float = 0.0,
                   increments_per_cycle: int = 64, startup: float = 0.25) -> CyclicPath:
-    """F_tip = A_t sin(theta), F_centre = A_c sin(theta + phi), theta from 0.
+    """F_tip = A_t sin(theta), F_centre = A_c sin(theta + phi); cycles from theta = pi/2.
+
+    The cycles start at theta = pi/2 (the tip force's peak, like the paper's t = 0.25 s) and
+    are reached from the unloaded state along a straight ramp of ``startup`` cycles' worth of
+    increments. For phi = 0 that ramp is the paper's first quarter period (a monotonic
+    proportional loading, so the same states); for other phases it avoids a jump from zero to
+    a finite force in one increment.
 
     Parameters
     ----------
@@ -163,14 +180,13 @@ def harmonic_path(tip_amplitude: float, centre_amplitude: float, phase_deg: floa
     increments_per_cycle : int
         Samples per cycle (>= 8).
     startup : float
-        Fraction of a cycle before the closed cycle starts (>= 0): 0.25 starts the cycles
-        at the tip peak, like the paper's t = 0.25 s.
+        Length of the ramp in cycles (> 0; default a quarter).
 
     Examples
     --------
     >>> p = harmonic_path(2.0, 1.0, 90.0, 8)
-    >>> p.cycle_start, p.f_tip[:4].round(3).tolist(), p.f_centre[:3].round(3).tolist()
-    (2, [0.0, 1.414, 2.0, 1.414], [1.0, 0.707, 0.0])
+    >>> p.cycle_start, p.f_tip[:4].round(3).tolist(), p.f_centre[:4].round(3).tolist()
+    (1, [1.0, 2.0, 1.414, 0.0], [0.0, 0.0, -0.707, -1.0])
     """
     at = _amplitude(tip_amplitude, "tip amplitude")
     ac = _amplitude(centre_amplitude, "centre amplitude")
@@ -183,16 +199,16 @@ def harmonic_path(tip_amplitude: float, centre_amplitude: float, phase_deg: floa
     if not math.isfinite(phi):
         raise ParameterError(f"phase must be a finite angle in degrees, got {phase_deg!r}")
     n = _count("increments_per_cycle", increments_per_cycle, 8)
-    if not (math.isfinite(startup) and 0.0 <= startup <= 10.0):
-        raise ParameterError(f"startup must be in [0, 10] cycles, got {startup!r}")
-    k0 = round(startup * n)
-    j = np.arange(k0 + n + 1)
-    theta = 2.0 * np.pi * j / n
-    wrapped = 2.0 * np.pi * (j % n) / n  # equal samples one period apart, exactly
+    if not (math.isfinite(startup) and 0.0 < startup <= 10.0):
+        raise ParameterError(f"startup must be in (0, 10] cycles, got {startup!r}")
+    j = np.arange(n + 1)
+    theta = 0.5 * np.pi + 2.0 * np.pi * j / n
+    wrapped = 0.5 * np.pi + 2.0 * np.pi * (j % n) / n  # equal samples one period apart
     ft = at * np.sin(wrapped)
     fc = ac * np.sin(wrapped + math.radians(phi))
-    return CyclicPath(theta, ft, fc, k0, {"tip_amplitude_N": at, "centre_amplitude_N": ac,
-                                          "phase_deg": phi, "increments_per_cycle": n})
+    th, ft, fc, k0 = _ramp_to(theta, ft, fc, 0, max(1, round(startup * n)))
+    return CyclicPath(th, ft, fc, k0, {"tip_amplitude_N": at, "centre_amplitude_N": ac,
+                                       "phase_deg": phi, "increments_per_cycle": n})
 
 
 def paper_sine(amplitude: float, increments: int = 50) -> tuple[FloatArray, FloatArray]:
@@ -226,7 +242,8 @@ def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
         ``cycle_start`` (the planar model's LoadPath); or the times (any increasing samples)
         of one cycle, with ``f_tip`` and ``f_centre`` the forces at them. A cycle given as
         arrays is closed if its last sample differs from its first, and is preceded by a
-        straight ramp from zero load to its first sample.
+        straight ramp from zero load to its first sample (so is a path object whose first
+        sample is not at zero load).
     f_tip, f_centre : array_like, optional
         Forces, N, when ``path`` is the array of times.
     startup_increments : int, optional
@@ -237,10 +254,19 @@ def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
         return path
     if all(hasattr(path, a) for a in ("theta", "tip_force", "centre_force", "cycle_start")) \
             and f_tip is None and f_centre is None:
-        return CyclicPath(np.asarray(path.theta, dtype=float),
-                          np.asarray(path.tip_force, dtype=float),
-                          np.asarray(path.centre_force, dtype=float), int(path.cycle_start),
-                          dict(getattr(path, "meta", {}) or {}))
+        th = np.asarray(path.theta, dtype=float)
+        pt = np.asarray(path.tip_force, dtype=float)
+        pc = np.asarray(path.centre_force, dtype=float)
+        k0 = int(path.cycle_start)
+        meta = dict(getattr(path, "meta", {}) or {})
+        if th.ndim == 1 and th.size >= 3 and pt.shape == th.shape and pc.shape == th.shape:
+            scale = max(float(np.max(np.abs(pt))), float(np.max(np.abs(pc))))
+            if max(abs(pt[0]), abs(pc[0])) > CLOSE_TOL * scale:
+                m = startup_increments if startup_increments is not None else max(
+                    1, (th.size - 1 - k0) // 4)
+                th, pt, pc, k0 = _ramp_to(th, pt, pc, k0, _count("startup_increments", m, 0))
+                meta["startup_ramp_increments"] = m
+        return CyclicPath(th, pt, pc, k0, meta)
     if f_tip is None or f_centre is None:
         raise ParameterError("give a load path object, or times with f_tip and f_centre arrays")
     try:
@@ -269,13 +295,5 @@ def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
         m = 0 if at_rest else max(1, n // 4)
     else:
         m = _count("startup_increments", startup_increments, 0)
-    if m:
-        s = np.arange(1, m) / m
-        dt = float(t[1] - t[0])
-        t = np.r_[t[0] - dt * np.arange(m - 1, 0, -1), t]
-        ft = np.r_[ft[0] * s, ft]
-        fc = np.r_[fc[0] * s, fc]
-        k0 = m - 1
-    else:
-        k0 = 0
+    t, ft, fc, k0 = _ramp_to(t, ft, fc, 0, m)
     return CyclicPath(t, ft, fc, k0, {"startup_increments": m})

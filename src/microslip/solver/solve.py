@@ -83,6 +83,12 @@ class NewtonOptions:
         plain semi-smooth Newton, one factorisation per iteration.
     reuse_ratio : float
         Largest residual ratio of the last step for which the factorisation is kept.
+    same_set : bool
+        Reuse a factorisation only while the set of slipping nodes is the one it was built
+        with (besides the residual ratio).
+    max_cuts : int
+        An increment whose Newton iteration fails is cut into 2, 4, ... up to ``max_cuts``
+        equal sub-increments along the straight load segment (1: no cutting).
     """
 
     rtol: float = 1e-9
@@ -91,10 +97,12 @@ class NewtonOptions:
     armijo: float = 1e-4
     reuse: bool = True
     reuse_ratio: float = 0.1
+    same_set: bool = True
+    max_cuts: int = 64
 
     def __post_init__(self) -> None:
         check_positive("rtol", self.rtol, upper=1e-2, inclusive_upper=True)
-        for name in ("max_iterations", "max_halvings"):
+        for name in ("max_iterations", "max_halvings", "max_cuts"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise ParameterError(f"{name} must be an integer >= 1, got {v!r}")
@@ -201,7 +209,7 @@ def _unit_load(mesh: BoxMesh, face: str, component: int, index: IntArray, n_free
 
 
 def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float =
-                DEFAULT_STICK_SLOPE, element: str = "C3D8", linear_solver: str = "banded",
+                DEFAULT_STICK_SLOPE, element: str = "C3D8I", linear_solver: str = "banded",
                 newton: NewtonOptions | None = None) -> FrictionModel:
     """Assemble the clamped zone and solve the clamping step.
 
@@ -356,7 +364,8 @@ class _Stepper:
             if rn <= self.tol:
                 return True, it - 1, u, resp
             reuse = (nw.reuse and self.fac is not None and ratio <= nw.reuse_ratio
-                     and (it == 1 or bool(np.array_equal(resp.slipping, self.fac_set))))
+                     and (it == 1 or not nw.same_set
+                          or bool(np.array_equal(resp.slipping, self.fac_set))))
             if not reuse:
                 self._factor(resp)
             fresh = not reuse
@@ -391,7 +400,7 @@ class History:
     d_tip, d_centre : ndarray, shape (n,)
         Work-conjugate displacements along each load, relative to the clamped state, mm.
     iterations : ndarray of int, shape (n,)
-        Newton iterations of each increment.
+        Newton iterations of each increment (of all its sub-increments if it was cut).
     slipping : ndarray of bool, shape (n, n_c)
         Contact status after each increment: True = slip, False = stick.
     friction_work : ndarray, shape (n,)
@@ -455,6 +464,36 @@ class Simulation:
         self.base_cen = float(self.p_cen @ self.u)
         self.increments = 0
         self.failed = False
+        self.last_force = (0.0, 0.0)
+
+    def _increment(self, ft: float, fc: float) -> tuple[bool, int, float, FrictionResponse]:
+        """One increment to (ft, fc); if Newton fails, the straight load segment from the last
+        state is cut into 2, 4, ... ``max_cuts`` equal sub-increments (state restored first).
+        Returns (converged, iterations, friction work, last response)."""
+        model = self.model
+        u0, s0 = self.u, self.slip
+        ft0, fc0 = self.last_force
+        cuts = 1
+        total_its = 0
+        while True:
+            u, slip, work, ok, resp = u0, s0, 0.0, True, None
+            for k in range(1, cuts + 1):
+                a = k / cuts
+                f = (model.clamp_load + (ft0 + a * (ft - ft0)) * self.p_tip
+                     + (fc0 + a * (fc - fc0)) * self.p_cen)
+                ok, it, u_new, resp = self.stepper.solve(u, slip, f)
+                total_its += it
+                if not ok:
+                    break
+                work += friction_dissipation(resp.force, slip, resp.slip)
+                u, slip = u_new, resp.slip
+            if ok and resp is not None:
+                self.u, self.slip, self.last_force = u, slip, (ft, fc)
+                return True, total_its, work, resp
+            cuts *= 2
+            if cuts > model.newton.max_cuts:
+                assert resp is not None
+                return False, total_its, 0.0, resp
 
     def advance(self, f_tip: Any, f_centre: Any) -> History:
         """Apply the next samples of the force history (one increment each).
@@ -494,17 +533,16 @@ class Simulation:
         converged, message, done = True, "converged", n
         with single_threaded_blas():
             for i in range(n):
-                f = model.clamp_load + ft[i] * self.p_tip + fc[i] * self.p_cen
-                ok, it, u_new, resp = self.stepper.solve(self.u, self.slip, f)
+                ok, it, fw, resp = self._increment(ft[i], fc[i])
                 its[i] = it
                 if not ok:
                     converged, done, self.failed = False, i, True
                     message = (f"increment {self.increments + i} (F_tip {ft[i]:g} N, F_centre "
                                f"{fc[i]:g} N) did not converge in "
-                               f"{model.newton.max_iterations} Newton iterations")
+                               f"{model.newton.max_iterations} Newton iterations, even cut "
+                               f"into {model.newton.max_cuts} sub-increments")
                     break
-                fwork[i] = friction_dissipation(resp.force, self.slip, resp.slip)
-                self.u, self.slip = u_new, resp.slip
+                fwork[i] = fw
                 d_tip[i] = float(self.p_tip @ self.u) - self.base_tip
                 d_cen[i] = float(self.p_cen @ self.u) - self.base_cen
                 slipping[i] = resp.slipping

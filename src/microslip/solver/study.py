@@ -101,7 +101,7 @@ def _contact(model: FrictionModel, slipping: NDArray[np.bool_]) -> ContactHistor
 
 def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
                    mesh: Any = DEFAULT_MESH, stick_slope: float = DEFAULT_STICK_SLOPE,
-                   increments: int = 50, element: str = "C3D8",
+                   increments: int = 50, element: str = "C3D8I",
                    centre_direction: str = "axial", linear_solver: str = "banded",
                    newton: NewtonOptions | None = None) -> UniaxialResult:
     """The paper's 1-D FE loading of the clamped zone with the built-in solver.
@@ -280,7 +280,7 @@ def _run_path(fem: FrictionModel, path: CyclicPath, *, cycles: int, min_cycles: 
 def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = None,
                     f_centre: ArrayLike | None = None, *, mesh: Any = DEFAULT_MESH,
                     cycles: int = 6, min_cycles: int = 2, cycle_tol: float = 1e-3,
-                    stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8",
+                    stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8I",
                     centre_direction: str = "transverse", linear_solver: str = "banded",
                     newton: NewtonOptions | None = None) -> LoadPathResult:
     """A planar cyclic load path, repeated until the energy per cycle settles.
@@ -337,7 +337,7 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
 def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
                    phase_deg: float = 90.0, *, cycles: int = 6, increments_per_cycle: int = 64,
                    mesh: Any = DEFAULT_MESH, cycle_tol: float = 1e-3,
-                   stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8",
+                   stick_slope: float = DEFAULT_STICK_SLOPE, element: str = "C3D8I",
                    centre_direction: str = "transverse", linear_solver: str = "banded",
                    path: Any = None, newton: NewtonOptions | None = None) -> CouplingResult:
     """Coupled planar loading against the paper's decoupling into two 1-D loadings.
@@ -482,7 +482,7 @@ def coupling_sweep(params: ClampParams, ratios: Sequence[float] = (0.25, 1 / 3, 
     f = check_positive("peak force", f, "N", upper=params.macroslip_force)
     t0 = time.perf_counter()
     fem = _model(params, mesh, kw.pop("stick_slope", DEFAULT_STICK_SLOPE),
-                 kw.pop("element", "C3D8"), kw.pop("linear_solver", "banded"),
+                 kw.pop("element", "C3D8I"), kw.pop("linear_solver", "banded"),
                  kw.pop("newton", None))
     rows = []
     for phi in phases_deg:
