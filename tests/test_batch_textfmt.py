@@ -45,3 +45,10 @@ def test_rows_and_columns() -> None:
     out = bytes(format_table([[1.0, 2.0], [0.8, 0.8], [20000.0, 1e-7]]))
     assert out == b"1,0.8,20000\n2,0.8,1e-07\n"
     assert bytes(format_table([np.empty(0)])) == b""
+
+
+def test_single_number_columns_repeat_on_every_row() -> None:
+    rng = np.random.default_rng(2)
+    cols = [rng.random(1000) * 1e4, 0.8, 20000.0, rng.standard_normal(1000), -1e-9, np.nan]
+    assert bytes(format_table(cols)) == format_table_python(cols)
+    assert bytes(format_table([[1.5, 2.5], 3.0])) == b"1.5,3\n2.5,3\n"

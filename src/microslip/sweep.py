@@ -846,11 +846,15 @@ def write_sweep(result: SweepResult, path: str | os.PathLike[str],
         return
     from .batch.textfmt import format_table
 
+    spec = result.spec
+    results = list(result.result_columns().values())
     with atomic_write(path, "wb") as fh:
         fh.write((",".join(COLUMNS) + "\n").encode())
         for lo in range(0, result.size, chunk_size):
             hi = min(lo + chunk_size, result.size)
-            fh.write(format_table(list(result.table(lo, hi).values())))
+            # parameters that do not vary stay single numbers: formatted once per chunk
+            cols: list[Any] = [spec.values(k, lo, hi) for k in PARAMETERS]
+            fh.write(format_table(cols + [r[lo:hi] for r in results]))
 
 
 # -- summary plot ---------------------------------------------------------------------------

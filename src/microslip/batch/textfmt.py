@@ -213,14 +213,26 @@ def _write_field(buf, pos, m, nd, e, kind, neg, pairs):
 
 
 @njit(cache=True, parallel=True)
-def _layout(mant, ndig, expo, kind, neg, ncol, pairs):
-    nrow = mant.shape[0] // ncol
+def _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, pairs):
+    """Rows of text: column c is varying column colmap[c] >= 0 of the decomposed values
+    (row-major, nvar per row) or, for colmap[c] = -k - 1, the constant text
+    const_buf[const_off[k]:const_off[k + 1]] on every row."""
+    ncol = colmap.shape[0]
+    nvar = 0
+    const_len = 0
+    for c in range(ncol):
+        if colmap[c] >= 0:
+            nvar += 1
+        else:
+            k = -colmap[c] - 1
+            const_len += const_off[k + 1] - const_off[k]
+    nrow = mant.shape[0] // nvar if nvar else 0
     lens = np.empty(nrow + 1, dtype=np.int64)
     lens[0] = 0
     for r in prange(nrow):
-        total = ncol  # separators and the newline
-        for c in range(ncol):
-            j = r * ncol + c
+        total = ncol + const_len  # separators, the newline and the constant fields
+        for v in range(nvar):
+            j = r * nvar + v
             total += _field_len(ndig[j], expo[j], kind[j], neg[j])
         lens[r + 1] = total
     for r in range(nrow):
@@ -229,38 +241,62 @@ def _layout(mant, ndig, expo, kind, neg, ncol, pairs):
     for r in prange(nrow):
         pos = lens[r]
         for c in range(ncol):
-            j = r * ncol + c
-            pos = _write_field(buf, pos, mant[j], ndig[j], expo[j], kind[j], neg[j], pairs)
+            if colmap[c] >= 0:
+                j = r * nvar + colmap[c]
+                pos = _write_field(buf, pos, mant[j], ndig[j], expo[j], kind[j], neg[j], pairs)
+            else:
+                k = -colmap[c] - 1
+                for b in range(const_off[k], const_off[k + 1]):
+                    buf[pos] = const_buf[b]
+                    pos += 1
             buf[pos] = 44 if c < ncol - 1 else 10  # , or newline
             pos += 1
     return buf
 
 
-def format_table_python(columns: Sequence[ArrayLike]) -> bytes:
+def format_table_python(columns: Sequence[ArrayLike | float]) -> bytes:
     """Reference and fallback: rows of ``%.15g`` values joined by commas, one per line."""
-    cols = [np.asarray(c, dtype=np.float64).ravel().tolist() for c in columns]
+    arrays = [np.asarray(c, dtype=np.float64) for c in columns]
+    nrow = max((a.size for a in arrays if a.ndim), default=1)
+    cols = [np.broadcast_to(a.ravel() if a.ndim else a, (nrow,)).tolist() for a in arrays]
     return "".join(",".join(f"{v:.15g}" for v in row) + "\n"
                    for row in zip(*cols, strict=True)).encode()
 
 
-def format_table(columns: Sequence[ArrayLike]) -> bytes | NDArray[np.uint8]:
+def format_table(columns: Sequence[ArrayLike | float]) -> bytes | NDArray[np.uint8]:
     """CSV text of equal-length float columns, every value as ``"%.15g" % x``.
 
+    A column given as a single number has that value on every row (it is formatted once).
     Returns a bytes-like object (a uint8 array when compiled) to hand to a binary file.
 
-    >>> bytes(format_table([[1.0, 0.1, 1e-5], [20000.0, -2.5, float("nan")]]))
-    b'1,20000\\n0.1,-2.5\\n1e-05,nan\\n'
+    >>> bytes(format_table([[1.0, 0.1, 1e-5], 0.8, [20000.0, -2.5, float("nan")]]))
+    b'1,0.8,20000\\n0.1,0.8,-2.5\\n1e-05,0.8,nan\\n'
     """
     if not HAVE_NUMBA:
         return format_table_python(columns)
-    cols = [np.asarray(c, dtype=np.float64).ravel() for c in columns]
-    if not cols:
+    arrays = [np.asarray(c, dtype=np.float64) for c in columns]
+    varying = [a.ravel() for a in arrays if a.ndim]
+    if not arrays:
         return b""
-    nrow = cols[0].shape[0]
-    if any(c.shape[0] != nrow for c in cols):
+    if not varying:
+        return format_table_python(columns)
+    nrow = varying[0].shape[0]
+    if any(c.shape[0] != nrow for c in varying):
         raise ValueError("columns must have equal lengths")
-    x = np.empty((nrow, len(cols)))
-    for i, c in enumerate(cols):
+    colmap = np.empty(len(arrays), dtype=np.int64)
+    const_text: list[bytes] = []
+    nv = 0
+    for i, a in enumerate(arrays):
+        if a.ndim:
+            colmap[i] = nv
+            nv += 1
+        else:
+            colmap[i] = -len(const_text) - 1
+            const_text.append(f"{float(a):.15g}".encode())
+    const_off = np.cumsum([0] + [len(t) for t in const_text], dtype=np.int64)
+    const_buf = np.frombuffer(b"".join(const_text) or b"\0", dtype=np.uint8)
+    x = np.empty((nrow, nv))
+    for i, c in enumerate(varying):
         x[:, i] = c
     flat = x.reshape(-1)
     mant = np.empty(flat.shape[0], dtype=np.int64)
@@ -277,4 +313,4 @@ def format_table(columns: Sequence[ArrayLike]) -> bytes | NDArray[np.uint8]:
         expo[j] = int(s[17:])
         kind[j] = 0
     neg = np.signbit(flat) & ~np.isnan(flat)
-    return _layout(mant, ndig, expo, kind, neg, len(cols), _PAIRS)
+    return _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, _PAIRS)
