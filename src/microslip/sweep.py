@@ -510,6 +510,10 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
     else:
         seed = None
     if "amplitude" in seen:
+        if amplitude is not None:
+            how = "a grid axis" if seen["amplitude"] == "grid" else "sampled"
+            raise ParameterError(f"amplitude {amplitude!r} N is given but the amplitude is "
+                                 f"also {how}; give one or the other")
         amp = None
     elif amplitude is None:
         raise ParameterError("give an amplitude (N), or sweep or sample it")
@@ -886,9 +890,10 @@ def plot_sweep(result: SweepResult, path: str | os.PathLike[str]) -> None:
         idx = _thin(spec.size, 20000)
         ax.plot(s.values[idx], eta[idx], ".", ms=1.5, color=COLOURS[0], alpha=0.5,
                 label=f"{spec.size} draws")
-        for q, ls in ((50, "-"), (5, ":"), (95, ":")):
+        for q, ls, label in ((50, "-", "median"), (5, ":", "5th and 95th percentiles"),
+                             (95, ":", None)):
             ax.axhline(float(np.percentile(eta, q)), color=COLOURS[1], ls=ls, lw=0.8,
-                       label=f"{q}th percentile" if q != 95 else None)
+                       label=label)
         ax.set_xlabel(PARAMETERS[s.name][2])
     else:
         x_axis = spec.grid[0]
@@ -925,6 +930,12 @@ def plot_sweep(result: SweepResult, path: str | os.PathLike[str]) -> None:
             ax.fill_between([], [], [], color="0.5", alpha=0.15, label="5–95 %")
         ax.set_xlabel(PARAMETERS[x_axis.name][2])
     title = f"{spec.model} model, U: {spec.strain_energy}, {spec.increments} increments"
+    if spec.samples:
+        import textwrap
+
+        draws = "; ".join(f"{s.name} ~ {s.distribution.kind}({s.distribution.a:g}, "
+                          f"{s.distribution.b:g})" for s in spec.samples)
+        title += "\n" + "\n".join(textwrap.wrap(f"{draws}; {spec.n_samples} draws", 50))
     ax.set_title(title, fontsize=7)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(frameon=False)
@@ -1016,6 +1027,13 @@ def plot_ratio_sweep(sweep: Any, path: str | os.PathLike[str]) -> None:
     ax.plot(r, sweep.loss_factor("work"), "s--", ms=2.5, color=COLOURS[1],
             label="work of the load")
     ax.set_xscale("log")
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+    nice = [t for t in (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0) if r.min() <= t <= r.max()]
+    if len(nice) >= 2:
+        ax.set_xticks(nice)
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("Force ratio R = $F_{tip}/F_{centre}$ (–)")
     ax.set_ylabel("Loss factor η (–)")
     ax.set_title(f"planar, U: {sweep.strain_energy_kind}, levels: {sweep.levels}", fontsize=7)
