@@ -53,10 +53,12 @@ def best(fn: Callable[[], object], repeats: int) -> float:
     return min(times)
 
 
-def rate_batch(cases: int, n: int, threads: int | None, backend: str, repeats: int) -> float:
-    p, a = preset(PRESET), amplitudes(cases)
-    batch_damping("tip", p, a[:10], n, backend=backend, threads=threads)  # compile / load
-    t = best(lambda: batch_damping("tip", p, a, n, backend=backend, threads=threads), repeats)
+def rate_batch(cases: int, n: int, threads: int | None, backend: str, repeats: int,
+               model: str = "tip") -> float:
+    p = preset(PRESET if model == "tip" else "table2-centre")
+    a = amplitudes(cases)
+    batch_damping(model, p, a[:10], n, backend=backend, threads=threads)  # compile / load
+    t = best(lambda: batch_damping(model, p, a, n, backend=backend, threads=threads), repeats)
     return cases * n / t
 
 
@@ -127,13 +129,16 @@ def main() -> int:
     e2e_cases = 10_000 if args.quick else 1_000_000
     repeats = 1 if args.quick else 3
     print(f"tip model, preset {PRESET}, {n} increments per case; CPU cores: {os.cpu_count()}; "
-          f"numba: {kernels.HAVE_NUMBA}")
+          f"numba: {kernels.HAVE_NUMBA}; load average at start: "
+          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}")
     rows: list[tuple[str, float, str]] = []
     if kernels.HAVE_NUMBA:
         rows.append(("batch engine, numba, 1 thread", rate_batch(big, n, 1, "numba", repeats),
                      f"{big} cases"))
         rows.append(("batch engine, numba, 2 threads", rate_batch(big, n, 2, "numba", repeats),
                      f"{big} cases"))
+        rows.append(("  (centre model, 2 threads)", rate_batch(big, n, 2, "numba", repeats,
+                                                           "centre"), f"{big} cases"))
     rows.append(("batch engine, numpy fallback", rate_batch(big // 4, n, None, "numpy", 1),
                  f"{big // 4} cases"))
     rows.append(("single-loop API (microslip.damping)", rate_single_loop(20, n), "20 cases"))
@@ -155,6 +160,8 @@ def main() -> int:
     print(f"{'':{width}}  case-increments/s")
     for name, rate, note in rows:
         print(f"{name:{width}}  {rate:12.3e}   {note}")
+    print(f"load average at the end: {', '.join(f'{x:.2f}' for x in os.getloadavg())} "
+          "(other processes on the machine slow every row)")
     if args.quick:
         print("targets are judged on the full run (without --quick)")
     else:

@@ -186,12 +186,20 @@ def test_fallback_without_numba() -> None:
         assert default_backend() == "numpy" and r.backend == "numpy"
         assert abs(r.loss_factor[1] / ref.loss_factor - 1) < 1e-12
         assert bytes(format_table([[0.1, 2.5e-7]])) == b"0.1\\n2.5e-07\\n"
+        from microslip.cli.main import main
+        import tempfile, os
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "s.csv")
+            assert main(["sweep", "--model", "tip", "--preset", "table1", "--amplitude-range",
+                         "10", "300", "--cases", "3", "--increments", "20", "--out", out,
+                         "--no-progress"]) == 0
+            assert open(out).read().count("\\n") == 4
         print("ok")
     """)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=120)
     assert out.returncode == 0, out.stderr
-    assert out.stdout.strip() == "ok"
+    assert out.stdout.strip().endswith("\nok")
 
 
 # -- validation once at the boundary --------------------------------------------------------
