@@ -206,7 +206,9 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
     print(f"  computed in            {result.elapsed:.3g} s on {where} ({result.backend}), "
           f"{rate:.3g} case-increments/s")
     if args.out:
-        print(f"  wrote                  {args.out} ({spec.size} rows)")
+        what = (f"{spec.size} rows" if args.out.lower().endswith(".csv") else
+                f"{spec.size} cases, dimensions {', '.join(spec.dims) or 'none'}")
+        print(f"  wrote                  {args.out} ({what})")
     if args.plot:
         print(f"  figure                 {args.plot}")
 
