@@ -59,31 +59,113 @@ class _BandFactor:
         return np.asarray(sla.cho_solve_banded((self.cb, True), rhs, check_finite=False))
 
 
+_TBTRS = sla.get_lapack_funcs("tbtrs", dtype=np.float64)
+
+
+class _PartialBandFactor:
+    """Cholesky factor whose first m columns are those of a reference factor.
+
+    A = [[A11, A12], [A21, A22]] with A11 = L11 L11^T taken from the reference; the trailing
+    factor L22 is that of S = A22 - L21 L21^T, where L21 = B is the only non-zero block of the
+    coupling (kd x kd, the band). Solving: L11 y1 = b1, S x2 = b2 - B y1, L11^T x1 = y1 - B^T x2.
+    """
+
+    def __init__(self, ref: FloatArray, m: int, b: FloatArray, l22: FloatArray) -> None:
+        self.ref, self.m, self.b, self.l22 = ref, m, b, l22
+        self.kd = ref.shape[0] - 1
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        m, kd, b = self.m, self.kd, self.b
+        lead = self.ref[:, :m]
+        y1, info = _TBTRS(lead, rhs[:m], uplo="L", trans="N")
+        r2 = np.array(rhs[m:], dtype=float)
+        rk = b.shape[0]
+        r2[:rk] -= b @ y1[m - kd:m]
+        x2 = sla.cho_solve_banded((self.l22, True), r2, check_finite=False)
+        z = np.array(y1, dtype=float)
+        z[m - kd:m] -= b.T @ x2[:rk]
+        x1, info2 = _TBTRS(lead, z, uplo="L", trans="T")
+        if info or info2:
+            raise np.linalg.LinAlgError("singular triangular factor")
+        return np.concatenate([x1, x2])
+
+
 class BandedBackend:
-    """LAPACK banded Cholesky of K + C(D)."""
+    """LAPACK banded Cholesky of K + C(D), refactorising only the trailing part that changed.
+
+    With the stick stiffnesses ``kc`` given, the factor of the all-stick tangent K + C(kc I)
+    is kept. A tangent equal to it up to dof m (every contact node before m sticks) keeps
+    the first m columns of that factor, and only the trailing band from m on is factorised
+    (cost ~ (n - m) b^2 instead of n b^2). The mesh is numbered from x = 0 towards the end
+    face x = L carrying the tip load, so under tip loading the stuck part of the interface
+    is the reused leading block.
+    """
 
     name = "banded"
 
-    def __init__(self, k: sp.csr_matrix, cx: IntArray, cy: IntArray) -> None:
-        if np.any(cy != cx + 1):
-            raise ValueError("contact x and y dofs must be neighbours in the numbering")
+    def __init__(self, k: sp.csr_matrix, cx: IntArray, cy: IntArray,
+                 kc: FloatArray | None = None) -> None:
+        if np.any(cy != cx + 1) or np.any(np.diff(cx) <= 0):
+            raise ValueError("contact x and y dofs must be neighbours, in increasing order")
         coo = sp.tril(k, format="coo")
         kd = int(np.max(coo.row - coo.col)) if coo.nnz else 0
-        ab = np.zeros((kd + 1, k.shape[0]))
+        ab = np.zeros((kd + 1, k.shape[0]), order="F")
         ab[coo.row - coo.col, coo.col] = coo.data  # LAPACK lower band storage
         self.ab, self.kd, self.cx, self.cy = ab, kd, cx, cy
+        self.ref_d: FloatArray | None = None
+        self.ref: FloatArray | None = None
+        self.partial_factorisations = 0
+        self.factorised_columns = 0
+        if kc is not None and kd > 0:
+            self.ref_d = np.stack([kc, np.zeros_like(kc), kc], axis=1)
+            self.ref = np.asfortranarray(self._full(self.ref_d))
+            ii, jj = np.tril_indices(kd)
+            self._tril = (ii - jj, jj, ii)
 
     @property
     def half_bandwidth(self) -> int:
         return self.kd
 
-    def factor(self, d: FloatArray) -> _BandFactor:
-        ab = self.ab.copy()
-        ab[0, self.cx] += d[:, 0]
-        ab[0, self.cy] += d[:, 2]
+    def _band_with(self, d: FloatArray, first: int = 0, node0: int = 0) -> FloatArray:
+        ab = np.array(self.ab[:, first:], order="F")
+        cx = self.cx[node0:] - first
+        ab[0, cx] += d[node0:, 0]
+        ab[0, cx + 1] += d[node0:, 2]
         if self.kd > 0:
-            ab[1, self.cx] += d[:, 1]
-        return _BandFactor(sla.cholesky_banded(ab, lower=True, check_finite=False))
+            ab[1, cx] += d[node0:, 1]
+        return ab
+
+    def _full(self, d: FloatArray) -> FloatArray:
+        self.factorised_columns += self.ab.shape[1]
+        return np.asarray(sla.cholesky_banded(self._band_with(d), lower=True,
+                                              check_finite=False))
+
+    def factor(self, d: FloatArray) -> _BandFactor | _PartialBandFactor:
+        if self.ref is None or self.ref_d is None:
+            return _BandFactor(self._full(d))
+        changed = np.flatnonzero(np.any(d != self.ref_d, axis=1))
+        if changed.size == 0:
+            return _BandFactor(self.ref)
+        node0 = int(changed[0])
+        m = int(self.cx[node0])
+        kd, n = self.kd, self.ab.shape[1]
+        if m < kd:
+            return _BandFactor(self._full(d))
+        ab = self._band_with(d, m, node0)
+        rk = min(kd, n - m)
+        # B = L[m:m+rk, m-kd:m] from the reference band (L[i, j] = ref[i - j, j], i - j <= kd).
+        r = np.arange(rk)[:, None]
+        c = np.arange(kd)[None, :]
+        rows = kd + r - c
+        b = np.where(rows <= kd, self.ref[np.minimum(rows, kd), m - kd + c], 0.0)
+        bbt = b @ b.T
+        di, dj, ii = self._tril
+        keep = ii < rk
+        ab[di[keep], dj[keep]] -= bbt[ii[keep], dj[keep]]
+        self.partial_factorisations += 1
+        self.factorised_columns += n - m
+        l22 = sla.cholesky_banded(ab, lower=True, check_finite=False)
+        return _PartialBandFactor(self.ref, m, b, l22)
 
 
 class _SparseContactSum:
@@ -173,12 +255,16 @@ def available_linear_solvers() -> tuple[str, ...]:
     return tuple(out)
 
 
-def make_backend(name: str, k: sp.csr_matrix, cx: IntArray, cy: IntArray) -> Backend:
-    """Build the named backend for the free-dof stiffness ``k`` and contact dofs ``cx, cy``."""
+def make_backend(name: str, k: sp.csr_matrix, cx: IntArray, cy: IntArray,
+                 kc: FloatArray | None = None) -> Backend:
+    """Build the named backend for the free-dof stiffness ``k`` and contact dofs ``cx, cy``;
+    ``kc`` (the stick stiffnesses) lets the banded backend reuse the all-stick factor."""
     try:
         cls = LINEAR_SOLVERS[name][0]
     except (KeyError, TypeError):
         raise ParameterError(
             f"unknown linear solver {name!r}; choose one of {', '.join(LINEAR_SOLVERS)}"
         ) from None
+    if name == "banded":
+        return BandedBackend(k, cx, cy, kc)
     return cls(k, cx, cy)

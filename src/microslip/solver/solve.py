@@ -259,7 +259,7 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     cdofs = np.stack([index[3 * bottom], index[3 * bottom + 1]], axis=1)
     area = box.face_weights("bottom")
     kc = lam * area
-    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1])
+    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc)
 
     # Clamping pressure on the top face: consistent nodal forces of a uniform traction.
     top = box.face_nodes("top")
@@ -328,6 +328,8 @@ class _Stepper:
         self.factorisations = 0
         self.fac: Any = None
         self.fac_set: BoolArray | None = None
+        self._u: FloatArray | None = None
+        self._ku: FloatArray | None = None
 
     def _residual(self, f: FloatArray, ku: FloatArray, u: FloatArray, slip: FloatArray
                   ) -> tuple[FloatArray, FrictionResponse]:
@@ -354,14 +356,16 @@ class _Stepper:
               ) -> tuple[bool, int, FloatArray, FrictionResponse]:
         """Solve r(u) = 0 from the start ``u`` with the slip ``slip`` of the last increment."""
         nw = self.newton
+        # K u of the start is kept from the last solve when the start is its answer.
+        ku = self._ku if u is self._u else np.asarray(self.k @ u)
         u = u.copy()
-        ku = np.asarray(self.k @ u)
         r, resp = self._residual(f, ku, u, slip)
         rn = float(np.max(np.abs(r)))
         fresh = False
         ratio = 0.0
         for it in range(1, nw.max_iterations + 1):
             if rn <= self.tol:
+                self._u, self._ku = u, ku
                 return True, it - 1, u, resp
             reuse = (nw.reuse and self.fac is not None and ratio <= nw.reuse_ratio
                      and (it == 1 or not nw.same_set
@@ -374,18 +378,17 @@ class _Stepper:
             alpha = 1.0
             for _ in range(nw.max_halvings):
                 u_try = u + alpha * du
-                r_try, resp_try = self._residual(f, ku + alpha * kdu, u_try, slip)
+                ku_try = ku + alpha * kdu
+                r_try, resp_try = self._residual(f, ku_try, u_try, slip)
                 rn_try = float(np.max(np.abs(r_try)))
-                if rn_try <= (1.0 - nw.armijo * alpha) * rn:
-                    break
-                if not fresh:
-                    break  # a stale tangent: refactorise rather than shorten the step
+                if rn_try <= (1.0 - nw.armijo * alpha) * rn or not fresh:
+                    break  # accepted; or a stale tangent: refactorise, don't shorten
                 alpha *= 0.5
             if not fresh and rn_try > (1.0 - nw.armijo) * rn:
                 ratio = np.inf  # reject the chord step, refactorise at the same point
                 continue
             ratio = rn_try / rn
-            u, ku, r, resp, rn = u_try, ku + alpha * kdu, r_try, resp_try, rn_try
+            u, ku, r, resp, rn = u_try, ku_try, r_try, resp_try, rn_try
         return rn <= self.tol, nw.max_iterations, u, resp
 
 

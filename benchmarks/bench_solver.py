@@ -1,0 +1,138 @@
+"""Built-in frictional FE solver: speed and agreement against CalculiX in the same run.
+
+Targets (issue 6):
+1. Table 1 tip loop at about 9 000-10 000 DOF: >= 100x faster than CalculiX at the same DOF
+   count, agreeing within 0.5 % in amplitude (half peak-to-peak displacement) and W_d.
+2. A mesh-converged coarse mesh: a full loop in under 0.2 s.
+
+Run:  python3 benchmarks/bench_solver.py            (everything; CalculiX takes minutes)
+      python3 benchmarks/bench_solver.py --no-ccx   (only the built-in solver)
+
+Times are wall-clock (time.perf_counter) and CPU (time.process_time; for ccx the child's
+user + system time), in seconds; the machine may be shared, so CPU time is printed beside
+wall time. Each built-in figure is the best of ``--repeat`` runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import tempfile
+import time
+from typing import Any
+
+import numpy as np
+
+from microslip import closedform, preset
+from microslip.solver import available_linear_solvers, build_model, solve_uniaxial
+from microslip.solver.solve import single_threaded_blas
+
+P = preset("table1")
+F0 = 267.0
+
+
+def _best(fn: Any, repeat: int) -> tuple[Any, float, float]:
+    best_w, best_c, out = np.inf, np.inf, None
+    for _ in range(repeat):
+        w0, c0 = time.perf_counter(), time.process_time()
+        out = fn()
+        best_w = min(best_w, time.perf_counter() - w0)
+        best_c = min(best_c, time.process_time() - c0)
+    return out, best_w, best_c
+
+
+def _children_cpu() -> float:
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def bench_coarse(repeat: int) -> None:
+    ea, q = P.axial_stiffness, P.friction_per_length
+    d0 = closedform.tip_displacement(F0, ea, q)
+    w0 = closedform.tip_dissipated_energy(F0, ea, q)
+    print("\n== Coarse meshes: Table 1 tip loop, 50 increments (setup included) ==")
+    print(f"closed form (rigid foundation): d0 = {d0:.6e} mm, W_d = {w0:.5f} N·mm")
+    print(f"{'mesh':>12} {'DOF':>6} {'wall_s':>8} {'cpu_s':>7} {'d0 err %':>9} {'W_d err %':>9}"
+          f" {'W_fric err %':>12} {'iters':>6} {'factor.':>7}")
+    for mesh in ("coarse", "medium", "fine"):
+        r, w, c = _best(lambda m=mesh: solve_uniaxial(P, "tip", F0, mesh=m), repeat)
+        print(f"{mesh:>12} {r.dof:>6} {w:>8.3f} {c:>7.3f} "
+              f"{100 * (r.peak_displacement / d0 - 1):>9.3f} "
+              f"{100 * (r.dissipated_energy / w0 - 1):>9.3f} "
+              f"{100 * (r.friction_dissipation / w0 - 1):>12.3f} "
+              f"{r.stats.iterations:>6} {r.stats.factorisations:>7}")
+
+
+def bench_linear_solvers(mesh: str, repeat: int) -> None:
+    print(f"\n== One factorisation + solve of the tangent, mesh '{mesh}' ==")
+    m = build_model(P, mesh)
+    rng = np.random.default_rng(0)
+    d = np.stack([m.contact_stiffness * rng.uniform(0.0, 1.0, m.contact_stiffness.size),
+                  np.zeros(m.contact_stiffness.size), m.contact_stiffness], axis=1)
+    b = rng.normal(size=m.dof)
+    from microslip.solver.linalg import make_backend
+
+    for name in available_linear_solvers():
+        be = make_backend(name, m.stiffness, m.contact_dofs[:, 0], m.contact_dofs[:, 1])
+
+        def run(be: Any = be) -> Any:
+            with single_threaded_blas():
+                return be.factor(d).solve(b)
+
+        _, w, c = _best(run, max(repeat, 5))
+        print(f"{name:>10}: {1e3 * w:8.2f} ms wall, {1e3 * c:8.2f} ms CPU  (dof {m.dof}, "
+              f"half-bandwidth {getattr(be, 'half_bandwidth', '-')})")
+
+
+def bench_paper(repeat: int, ccx: bool, ccx_mesh: str) -> None:
+    print("\n== Table 1 tip loop at the paper's size: built-in vs CalculiX, same run ==")
+    r, w, c = _best(lambda: solve_uniaxial(P, "tip", F0, mesh="paper"), repeat)
+    print(f"built-in  : {r.dof} DOF (C3D8I {r.stats.mesh['nx']}x{r.stats.mesh['ny']}x"
+          f"{r.stats.mesh['nz']}), wall {w:.2f} s, CPU {c:.2f} s, "
+          f"{r.stats.iterations} Newton iterations, {r.stats.factorisations} factorisations")
+    print(f"            amplitude {r.peak_displacement:.6e} mm (half peak-to-peak), "
+          f"W_d {r.dissipated_energy:.5f} N·mm, offset {100 * r.offset / r.peak_displacement:.2f} %"
+          f" of the amplitude")
+    if not ccx:
+        print("CalculiX  : skipped (--no-ccx)")
+        return
+    try:
+        from microslip.fe import FECase, ccx_available, run_case
+    except ImportError:
+        print("CalculiX  : microslip.fe is not available; skipped")
+        return
+    if not ccx_available():
+        print("CalculiX  : ccx not on PATH; skipped")
+        return
+    case = FECase("tip", params=P, amplitude=F0, mesh=ccx_mesh)
+    with tempfile.TemporaryDirectory() as tmp:
+        c0, w0 = _children_cpu(), time.perf_counter()
+        x = run_case(case, tmp)
+        cw, cc = time.perf_counter() - w0, _children_cpu() - c0
+    da = 100 * (r.peak_displacement / x.damping.peak_displacement - 1)
+    dw = 100 * (r.dissipated_energy / x.damping.dissipated_energy - 1)
+    print(f"CalculiX  : {x.dof} DOF (C3D20R {case.spec.label()}), wall {cw:.1f} s "
+          f"(solver {x.wall_s:.1f} s), CPU {cc:.1f} s, {x.total_iterations} iterations")
+    print(f"            amplitude {x.damping.peak_displacement:.6e} mm, "
+          f"W_d {x.damping.dissipated_energy:.5f} N·mm")
+    print(f"agreement : amplitude {da:+.3f} %, W_d {dw:+.3f} % (target within 0.5 %)")
+    print(f"speed     : {cw / w:.0f}x wall, {cc / c:.0f}x CPU (target >= 100x)")
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--no-ccx", action="store_true", help="do not run CalculiX")
+    ap.add_argument("--ccx-mesh", default="paper", help="CalculiX mesh level (default paper)")
+    ap.add_argument("--repeat", type=int, default=3, help="runs per built-in figure")
+    args = ap.parse_args(argv)
+    print(f"python {sys.version.split()[0]}, numpy {np.__version__}; "
+          f"linear solvers available: {', '.join(available_linear_solvers())}")
+    bench_coarse(args.repeat)
+    bench_linear_solvers("paper", args.repeat)
+    bench_paper(args.repeat, not args.no_ccx, args.ccx_mesh)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
