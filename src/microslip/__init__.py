@@ -10,7 +10,7 @@ Units throughout: force N, length mm, modulus MPa, energy N·mm.
 
 from __future__ import annotations
 
-from . import closedform
+from . import closedform, planar
 from .energy import (
     DEFAULT_STRAIN_ENERGY,
     STRAIN_ENERGY,
@@ -46,6 +46,7 @@ __all__ = [
     "ParameterError",
     "VirginCurve",
     "closedform",
+    "planar",
     "damping",
     "damping_from_loop",
     "dissipated_energy",

@@ -84,7 +84,9 @@ def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None 
     return params, float(amplitude)
 
 
-def add_model_options(parser: argparse.ArgumentParser) -> None:
+def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "physical",
+                      centre_why: str = "") -> None:
+    """Flags of :class:`ModelOptions`; ``centre_why`` explains a non-default centre reading."""
     g = parser.add_argument_group("reading of the paper (docs/interpretation.md)")
     g.add_argument("--no-corrections", action="store_true",
                    help="switch off the Poisson and length updates (rigid-foundation limit)")
@@ -92,9 +94,10 @@ def add_model_options(parser: argparse.ArgumentParser) -> None:
                    help="Poisson update of the cross-section (default consistent)")
     g.add_argument("--no-length-update", action="store_true",
                    help="keep the clamped length constant (no L + delta)")
-    g.add_argument("--centre-reading", choices=CENTRE_READINGS, default="physical",
-                   help="centre model: physical (F/2 per half, a = F/2q) or paper (Eq. 11 "
-                        "as printed); default physical")
+    g.add_argument("--centre-reading", choices=CENTRE_READINGS, default=centre_default,
+                   help="centre model: physical (F/2 per half, a = F/2q, macroslip at mu F_N) "
+                        "or paper (Eq. 11 as printed, macroslip at 2 mu F_N); default "
+                        f"{centre_default}{centre_why}")
     g.add_argument("--paper-literal", action="store_true",
                    help="every equation as printed (Eqs 6-7 total force, Eq. 15 sign, Eq. 11)")
 
@@ -108,12 +111,13 @@ def model_options(args: argparse.Namespace) -> ModelOptions:
                         centre=args.centre_reading)
 
 
-def add_strain_energy(parser: argparse.ArgumentParser) -> None:
+def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_STRAIN_ENERGY,
+                      why: str = "") -> None:
     parser.add_argument(
-        "--strain-energy", choices=list(STRAIN_ENERGY), default=DEFAULT_STRAIN_ENERGY,
+        "--strain-energy", choices=list(STRAIN_ENERGY), default=default,
         help="definition of U in eta = W_d/(2 pi U): "
         + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
-        + f" (default {DEFAULT_STRAIN_ENERGY})",
+        + f" (default {default}{why})",
     )
 
 

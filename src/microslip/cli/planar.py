@@ -19,7 +19,7 @@ from ..planar import (
     planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, model_options, number, print_json
+from .common import add_model_options, add_strain_energy, model_options, number, print_json
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 
@@ -59,10 +59,7 @@ def add_parser(sub: Any) -> None:
                    help="tip models in parallel in the whole clamp (default 2: the paper's "
                         "tip model is one symmetric half)")
     add_model_options(p)
-    p.add_argument("--strain-energy", choices=list(STRAIN_ENERGY), default=PAPER_STRAIN_ENERGY,
-                   help="definition of U in eta = W/(2 pi U): "
-                        + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
-                        + f" (default {PAPER_STRAIN_ENERGY}, the paper's Eq. 22)")
+    add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22")
     p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
                    default=DEFAULT_WORK_STRAIN_ENERGY,
                    help="U of the combined motion in the work-based eta: "

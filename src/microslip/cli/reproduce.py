@@ -6,11 +6,10 @@ import argparse
 import sys
 from typing import Any
 
-from ..energy import STRAIN_ENERGY
 from ..models import check_increments
 from ..planar import LEVEL_SCHEMES, PAPER_STRAIN_ENERGY, WORK_STRAIN_ENERGY
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, model_options
+from .common import add_model_options, add_strain_energy, model_options
 
 __all__ = ["add_parser", "run"]
 
@@ -35,27 +34,15 @@ def add_parser(sub: Any) -> None:
                    help="how R maps onto the paper's amplitude levels: "
                         + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
                         + " (default base)")
-    p.add_argument("--strain-energy", choices=list(STRAIN_ENERGY), default=PAPER_STRAIN_ENERGY,
-                   help=f"definition of U (default {PAPER_STRAIN_ENERGY}, the paper's Eq. 22; "
-                        "secant is reported beside it)")
+    add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22; secant is reported beside it")
     p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
                    default=DEFAULT_WORK_STRAIN_ENERGY,
                    help="U of the combined motion in the work-based eta "
                         f"(default {DEFAULT_WORK_STRAIN_ENERGY})")
-    add_model_options(p)
-    _centre_default(p, "paper")
+    add_model_options(p, "paper", " here, because the paper's top centre level 16000 N equals "
+                                  "mu F_N")
     p.add_argument("--quiet", action="store_true", help="no progress display")
     p.set_defaults(func=run)
-
-
-def _centre_default(p: argparse.ArgumentParser, value: str) -> None:
-    """Make the paper's reading the centre default here: its top level 16000 N is mu F_N."""
-    p.set_defaults(centre_reading=value)
-    for action in p._actions:  # the shared helper's help names its own default
-        if action.dest == "centre_reading":
-            action.help = (f"centre model: physical (F/2 per half, macroslip at mu F_N) or "
-                           f"paper (Eq. 11 as printed, macroslip at 2 mu F_N); default {value} "
-                           f"here, because the paper's top centre level 16000 N equals mu F_N")
 
 
 def run(args: argparse.Namespace) -> int:
