@@ -10,6 +10,10 @@ stiffens the centre-loaded bar by about 2 % on the coarse mesh (docs/solver.md, 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from pathlib import Path
+from typing import ClassVar
+
 import numpy as np
 import pytest
 
@@ -135,7 +139,7 @@ def test_loadpath_duck_typing_and_arrays() -> None:
         tip_force = 120.0 * np.sin(theta)
         centre_force = 120.0 * np.cos(theta)
         cycle_start = 0
-        meta = {"from": "test"}
+        meta: ClassVar[dict[str, str]] = {"from": "test"}
 
     a = solve_load_path(P, PathLike(), mesh=(8, 2, 1), cycles=3)
     b = solve_load_path(P, PathLike.theta[:-1], PathLike.tip_force[:-1],
@@ -181,14 +185,15 @@ def test_coupling_study_mirror_symmetry_and_bookkeeping() -> None:
     (lambda: solve_load_path(P, harmonic_path(10.0, 0.0), cycles=0), ParameterError, "cycles"),
     (lambda: coupling_study(P, 0.0, 10.0), ParameterError, "amplitude must be > 0"),
 ])
-def test_bad_inputs_give_one_line_errors(call, exc, match) -> None:  # type: ignore[no-untyped-def]
+def test_bad_inputs_give_one_line_errors(call: Callable[[], object], exc: type[Exception],
+                                         match: str) -> None:
     with pytest.raises(exc, match=match) as info:
         call()
     assert "\n" not in str(info.value)
 
 
 @pytest.mark.ccx
-def test_agrees_with_calculix_on_a_coarse_mesh(tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_agrees_with_calculix_on_a_coarse_mesh(tmp_path: Path) -> None:
     """CalculiX (C3D20R, face-to-face contact, 1 076 DOF) against the built-in solver on a
     finer trilinear mesh: amplitude and W_d within 0.5 % (tip; measured 0.02 % and 0.03 %)."""
     from microslip.fe import FECase, run_case

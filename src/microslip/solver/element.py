@@ -27,8 +27,8 @@ from .mesh import BoxMesh
 __all__ = [
     "ELEMENTS",
     "assemble_stiffness",
-    "element_stiffness",
     "elasticity_matrix",
+    "element_stiffness",
     "hex8_b_matrices",
 ]
 

@@ -194,8 +194,8 @@ def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz
     z = np.linspace(0.0, thickness, nz + 1)
     gx, gy, gz = np.meshgrid(x, y, z, indexing="ij")
     nodes = np.stack([gx.ravel(), gy.ravel(), gz.ravel()], axis=1)
-    i, j, k = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
-    i, j, k = i.ravel(), j.ravel(), k.ravel()
+    gi, gj, gk = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
+    i, j, k = gi.ravel(), gj.ravel(), gk.ravel()
     sj, si = nz + 1, (ny + 1) * (nz + 1)
     n0 = (i * (ny + 1) + j) * (nz + 1) + k
     base = np.stack([n0, n0 + si, n0 + si + sj, n0 + sj], axis=1)

@@ -357,7 +357,7 @@ class _Stepper:
         """Solve r(u) = 0 from the start ``u`` with the slip ``slip`` of the last increment."""
         nw = self.newton
         # K u of the start is kept from the last solve when the start is its answer.
-        ku = self._ku if u is self._u else np.asarray(self.k @ u)
+        ku = self._ku if (u is self._u and self._ku is not None) else np.asarray(self.k @ u)
         u = u.copy()
         r, resp = self._residual(f, ku, u, slip)
         rn = float(np.max(np.abs(r)))
@@ -368,8 +368,9 @@ class _Stepper:
                 self._u, self._ku = u, ku
                 return True, it - 1, u, resp
             reuse = (nw.reuse and self.fac is not None and ratio <= nw.reuse_ratio
-                     and (it == 1 or not nw.same_set
-                          or bool(np.array_equal(resp.slipping, self.fac_set))))
+                     and (it == 1 or not nw.same_set or (
+                         self.fac_set is not None
+                         and bool(np.array_equal(resp.slipping, self.fac_set)))))
             if not reuse:
                 self._factor(resp)
             fresh = not reuse
