@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from microslip import (
     MacroslipError,
@@ -46,3 +48,38 @@ def test_first_branch_rejoins_virgin_curve_at_mirror_point():
 def test_beyond_backbone_is_macroslip():
     with pytest.raises(MacroslipError):
         masing_response(G, [0.0, 301.0])
+
+
+def _reference_walk(g, f):
+    """The extended Masing rules sample by sample: the specification the fast walk must meet."""
+    out = np.empty(len(f))
+    stack = [(0.0, 0.0, 0)]
+    direction, prev = 0, 0.0
+    for k, fk in enumerate(f):
+        step = int(np.sign(fk - prev))
+        if step != 0 and direction != 0 and step != direction:
+            stack.append((prev, out[k - 1] if k else 0.0, step))
+        if step != 0:
+            direction = step
+        while len(stack) > 1:
+            fo, _, dr = stack[-1]
+            target = -fo if len(stack) == 2 else stack[-2][0]
+            if (dr > 0 and fk >= target) or (dr < 0 and fk <= target):
+                stack.pop()
+                if len(stack) > 1:
+                    stack.pop()
+            else:
+                break
+        fo, do, dr = stack[-1]
+        out[k] = g(fk) if dr == 0 else do + 2.0 * g((fk - fo) / 2.0)
+        prev = fk
+    return out
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.integers(-6, 6).map(lambda i: 50.0 * i)
+                | st.floats(-300.0, 300.0, allow_nan=False), max_size=30))
+def test_fast_walk_equals_sample_by_sample_rules(forces):
+    """Repeated values, exact hits of closure points and random values alike."""
+    f = np.array(forces, dtype=float)
+    np.testing.assert_array_equal(masing_response(G, f), _reference_walk(G, f))

@@ -132,26 +132,45 @@ def masing_response(virgin: VirginCurve | Backbone, force: ArrayLike) -> NDArray
         raise ParameterError("force history must be one-dimensional")
     g(f)  # range check once, before the walk
     out = np.empty_like(f)
-    # Each branch: (origin force, origin displacement, direction +1/-1); virgin has direction 0.
+    if f.size == 0:
+        return out
+    # The walk visits reversals and closures only; the samples between two such events lie on
+    # one branch and are evaluated together. fh[0] = 0 is the virgin state before f[0].
+    fh = np.concatenate([[0.0], f])
+    step = np.sign(np.diff(fh))
+    idx = np.where(step != 0, np.arange(step.size), 0)
+    np.maximum.accumulate(idx, out=idx)
+    direction = np.where(step[idx] != 0, step[idx], 0.0)  # zero steps keep the last direction
+    run_starts = np.flatnonzero(np.r_[True, direction[1:] != direction[:-1]])
+    run_ends = np.r_[run_starts[1:], direction.size]
+    # Each branch: (origin force, origin displacement, direction +1/-1); the virgin has 0.
     stack: list[tuple[float, float, int]] = [(0.0, 0.0, 0)]
-    direction = 0
-    prev = 0.0
-    for k, fk in enumerate(f):
-        step = np.sign(fk - prev)
-        if step != 0 and direction != 0 and step != direction:
-            stack.append((prev, float(out[k - 1]) if k else 0.0, int(step)))
-        if step != 0:
-            direction = int(step)
-        while len(stack) > 1:
-            fo, _, dr = stack[-1]
-            target = -fo if len(stack) == 2 else stack[-2][0]
-            if (dr > 0 and fk >= target) or (dr < 0 and fk <= target):
+    last_dir = 0
+    d_prev = 0.0
+    for a, b in zip(run_starts, run_ends, strict=True):
+        dr = int(direction[a])
+        if dr != 0 and last_dir != 0 and dr != last_dir:
+            stack.append((float(fh[a]), d_prev, dr))
+        if dr != 0:
+            last_dir = dr
+        seg = fh[a + 1 : b + 1]  # samples a+1..b of fh are out[a..b-1]; monotone in dr
+        key = seg * dr if dr != 0 else seg
+        pos = 0
+        while pos < seg.size:
+            end = seg.size
+            if len(stack) > 1 and dr != 0:
+                fo, _, bdr = stack[-1]
+                target = -fo if len(stack) == 2 else stack[-2][0]
+                j = pos + int(np.searchsorted(key[pos:], target * bdr, side="left"))
+                if j < seg.size and bdr == dr:
+                    end = j
+            fo, do, bdr = stack[-1]
+            part = seg[pos:end]
+            out[a + pos : a + end] = g(part) if bdr == 0 else do + 2.0 * g((part - fo) / 2.0)
+            if end < seg.size:  # the branch closed: return to the one it started from
                 stack.pop()
                 if len(stack) > 1:
                     stack.pop()
-            else:
-                break
-        fo, do, dr = stack[-1]
-        out[k] = g(fk) if dr == 0 else do + 2.0 * g((fk - fo) / 2.0)
-        prev = fk
+            pos = end
+        d_prev = float(out[b - 1])
     return out
