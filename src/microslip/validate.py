@@ -332,7 +332,7 @@ def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
         return [run_case(t.case, t.job_dir, **kwargs)
                 for t in progress_bar(tasks, "CalculiX runs", total=len(tasks), enabled=show)]
     try:
-        from distributed import Client, as_completed
+        from distributed import Client
     except ImportError:
         raise MicroslipError(
             "a scheduler address needs dask.distributed: pip install 'microslip[dask]'"
@@ -344,10 +344,8 @@ def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
     try:
         futures = [client.submit(run_case, t.case, t.job_dir, pure=False, **kwargs)
                    for t in tasks]
-        for _ in progress_bar(as_completed(futures), "CalculiX runs", total=len(futures),
-                              enabled=show):
-            pass
-        return list(client.gather(futures))
+        return [f.result() for f in progress_bar(futures, "CalculiX runs", total=len(futures),
+                                                 enabled=show)]
     finally:
         client.close()
 
@@ -406,8 +404,10 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
         :func:`microslip.fe.runner.default_timeout`).
     scheduler : str, optional
         None: run locally, one case after the other. An address (``tcp://host:8786``): run one
-        ccx job per task on that dask.distributed cluster (workers must see ``out_dir``); the
-        results are identical.
+        ccx job per task on that dask.distributed cluster (workers must see ``out_dir`` and
+        have ccx); the results are identical to the local ones up to the solver's own
+        run-to-run round-off (ccx 2.20 can change the 7th printed digit between two runs of
+        the same deck).
     stick_slope : float
         lambda of the friction law, N/mm^3.
     threads : int

@@ -239,6 +239,17 @@ def _floats(text: str, width: int = 12) -> list[float]:
 
 
 def read_frd(path: str | os.PathLike[str], names: tuple[str, ...] | None = None) -> FrdResult:
+    """Read an ASCII ``.frd`` file; see :func:`_read_frd`. Any unreadable record (e.g. a
+    line cut by a truncated write) raises :class:`ResultsError`."""
+    try:
+        return _read_frd(path, names)
+    except (ValueError, IndexError) as exc:
+        p = Path(path)
+        raise ResultsError(f"{p.name} has an unreadable record ({exc}); the file is "
+                           "truncated or corrupt", p.parent) from None
+
+
+def _read_frd(path: str | os.PathLike[str], names: tuple[str, ...] | None = None) -> FrdResult:
     """Read an ASCII ``.frd`` file (CalculiX's result format).
 
     Records used: ``2C`` (node coordinates, rows `` -1`` id x y z), ``100C`` (result block

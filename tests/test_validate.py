@@ -1,0 +1,183 @@
+"""The comparison code of ``microslip validate`` on synthetic FE results built from the exact
+closed forms (no CalculiX needed): rows, errors, verdicts, figures, contract, CLI errors."""
+
+from __future__ import annotations
+
+import inspect
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from microslip import closedform as cf
+from microslip import preset
+from microslip.cli.main import main
+from microslip.energy import damping_from_loop, loop_work
+from microslip.errors import ParameterError
+from microslip.fe import FECase, SolverNotFoundError, bar_mesh
+from microslip.fe.results import ContactHistory, FEResult, _column_widths
+from microslip.results import HysteresisLoop
+from microslip.validate import (
+    TOLERANCES,
+    ValidationReport,
+    _slipping_force,
+    closed_form,
+    plot_contact_status,
+    plot_fe_vs_model,
+    run_validation,
+    validation_row,
+)
+
+P = preset("table1")
+EA, Q, F0 = P.axial_stiffness, P.friction_per_length, 267.0
+
+
+def exact_result(model: str, scale: float = 1.0) -> FEResult:
+    """An FEResult whose loop is the exact Masing loop (times ``scale``) at the 50 substeps
+    and whose contact status is the closed-form slip zone."""
+    case = FECase(model)
+    c = 2 * EA * Q if model == "tip" else 8 * EA * Q
+    t = case.times
+    f = case.force(t)
+    g = lambda x: x * x / c  # noqa: E731
+    d0 = g(F0)
+    d = np.where(t <= 0.25 + 1e-12, g(f),
+                 np.where(t <= 0.75 + 1e-12, d0 - 2 * g((F0 - f) / 2), -d0 + 2 * g((F0 + f) / 2)))
+    d = scale * d
+    mesh = bar_mesh(P, case.spec)
+    ids, _, _ = mesh.contact_lattice()
+    xyz = mesh.nodes[ids - 1]
+    status = np.ones((t.size, ids.size), dtype=np.int8)
+    for k, tk in enumerate(t):
+        span = _slipping_force(tk, f[k], F0)
+        if model == "tip":
+            slipping = xyz[:, 0] > P.length - span / Q + 1e-9
+        else:
+            slipping = np.abs(xyz[:, 0] - P.length / 2) < span / (2 * Q) - 1e-9
+        status[k, slipping] = 2
+    contact = ContactHistory(ids, xyz, t, np.full(status.shape, 0.07),
+                             np.zeros((*status.shape, 2)), np.zeros((*status.shape, 2)),
+                             status, _column_widths(xyz[:, 0]))
+    loop = HysteresisLoop(f[10:], d[10:], "calculix", {"time_s": t[10:]})
+    return FEResult(case, t, f, d, loop, damping_from_loop(loop), contact, case.spec.dof,
+                    np.full(50, 4), 1.0, True, 0.0, None)
+
+
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_exact_loop_gives_zero_peak_error_and_the_sampling_bias(model):
+    row = validation_row(exact_result(model), "coarse")
+    assert row["err_peak_fe_closed"] == pytest.approx(0.0, abs=1e-12)
+    # 40 trapezoids per cycle underestimate the area of the quadratic loop by 0.41 %
+    assert row["wd_fe_Nmm"] == pytest.approx(row["wd_closed_sampled_Nmm"], rel=1e-12)
+    assert row["err_wd_fe_closed"] == pytest.approx(-0.0041, abs=2e-4)
+    assert row["eta_closed"] == pytest.approx(4 / (3 * math.pi))
+    assert row["peak_uncorrected_mm"] == pytest.approx(row["peak_closed_mm"], rel=1e-9)
+    assert row["verdict"] == "pass" and row["loop_closure"] == 0.0
+    exact_slip = F0 / Q if model == "tip" else F0 / (2 * Q)
+    assert row["slip_length_closed_mm"] == pytest.approx(exact_slip)
+    assert row["slip_length_fe_mm"] == pytest.approx(exact_slip, abs=12.7)
+
+
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_verdict_fails_just_outside_the_tolerance(model):
+    tol = TOLERANCES[model]["peak"]
+    assert validation_row(exact_result(model, 1 + 0.9 * tol), "coarse")["verdict"] == "pass"
+    assert validation_row(exact_result(model, 1 + 1.1 * tol), "coarse")["verdict"] == "FAIL"
+
+
+def test_closed_form_matches_the_references():
+    tip, centre = closed_form("tip", P, F0), closed_form("centre", P, F0)
+    assert tip["peak_mm"] == pytest.approx(F0**2 / (2 * EA * Q), rel=1e-14)
+    assert tip["wd_Nmm"] == cf.tip_dissipated_energy(F0, EA, Q)
+    assert centre["peak_mm"] == pytest.approx(F0**2 / (8 * EA * Q), rel=1e-14)
+    assert centre["wd_Nmm"] == cf.centre_dissipated_energy(F0, EA, Q)
+    with pytest.raises(ParameterError):
+        closed_form("side", P, F0)
+
+
+def test_slipping_force_follows_masing():
+    assert _slipping_force(0.25, F0, F0) == F0  # first loading
+    assert _slipping_force(0.5, 0.0, F0) == F0 / 2  # back to zero from +F0
+    assert _slipping_force(0.75, -F0, F0) == F0  # full reversal
+    assert _slipping_force(1.0, 0.0, F0) == F0 / 2  # back to zero from -F0
+
+
+def test_sampled_closed_form_area_is_the_trapezoid_of_the_exact_loop():
+    r = exact_result("tip")
+    assert r.damping.dissipated_energy == pytest.approx(
+        loop_work(r.loop.force, r.loop.displacement))
+
+
+def test_figures_are_written(tmp_path: Path):
+    pytest.importorskip("matplotlib")
+    results = [exact_result("tip"), exact_result("centre")]
+    plot_contact_status(results, tmp_path / "fig08.png")
+    plot_fe_vs_model(results, ["coarse", "coarse"], tmp_path / "fig09.png")
+    assert (tmp_path / "fig08.png").stat().st_size > 10_000
+    assert (tmp_path / "fig09.png").stat().st_size > 10_000
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fig08.png", "fig09.png"]
+
+
+def test_run_validation_contract():
+    sig = inspect.signature(run_validation)
+    names = list(sig.parameters)
+    assert names[:3] == ["out_dir", "meshes", "models"]
+    assert sig.parameters["meshes"].default == ("coarse",)
+    assert sig.parameters["models"].default == ("tip", "centre")
+    for kw, default in (("progress", True), ("timeout", None), ("scheduler", None)):
+        assert sig.parameters[kw].kind is inspect.Parameter.KEYWORD_ONLY
+        assert sig.parameters[kw].default == default
+    fields = ValidationReport.__dataclass_fields__
+    assert {"files", "rows", "summary_markdown"} <= set(fields)
+    assert ValidationReport.__dataclass_params__.frozen  # type: ignore[attr-defined]
+
+
+def test_run_validation_rejects_bad_arguments(tmp_path):
+    with pytest.raises(ParameterError):
+        run_validation(tmp_path, models=("side",))
+    with pytest.raises(ParameterError):
+        run_validation(tmp_path, meshes=())
+    with pytest.raises(ParameterError):
+        run_validation(tmp_path, meshes=("fine",))
+    with pytest.raises(ParameterError):
+        run_validation(tmp_path, timeout=-1.0)
+
+
+def test_without_ccx_nothing_is_written(monkeypatch, tmp_path):
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    with pytest.raises(SolverNotFoundError, match="apt-get install calculix-ccx"):
+        run_validation(tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ["fe", "--model", "tip"],
+    ["fe", "--model", "centre", "--mesh", "paper", "--out", "DIR", "--json"],
+    ["validate", "--out", "DIR"],
+])
+def test_cli_without_ccx_fails_with_one_line(argv, monkeypatch, tmp_path, capsys):
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    argv = [str(tmp_path / "o") if a == "DIR" else a for a in argv]
+    code = main(argv)
+    out, err = capsys.readouterr()
+    assert code == 1 and out == ""
+    assert err.count("\n") == 1 and err.startswith("error: ")
+    assert "bash scripts/setup.sh" in err and "apt-get install calculix-ccx" in err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("argv, code, text", [
+    (["fe", "--model", "tip", "--amplitude", "400"], 1, "macroslip"),
+    (["fe", "--model", "tip", "--stick-slope", "-5"], 1, "stick_slope"),
+    (["fe", "--model", "tip", "--substeps", "52"], 1, "multiple of 5"),
+    (["fe", "--model", "tip", "--timeout", "0"], 1, "timeout"),
+    (["fe", "--model", "tip", "--mesh", "fine"], 2, "invalid choice"),
+    (["fe", "--model", "tip", "--solver", "ansys"], 2, "invalid choice"),
+    (["validate"], 2, "--out"),
+    (["validate", "--out", "x", "--timeout", "-3"], 1, "timeout"),
+])
+def test_cli_user_errors_are_one_line(argv, code, text, capsys):
+    assert main(argv) == code
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and text in err
