@@ -127,7 +127,7 @@ def test_missing_solver_says_how_to_install(monkeypatch, tmp_path):
     assert isinstance(err.value, MicroslipError)
     with pytest.raises(SolverNotFoundError):
         run_case(FECase("tip"), tmp_path / "never")
-    assert not (tmp_path / "never" / "job.inp").exists()
+    assert not (tmp_path / "never").exists()
 
 
 def test_invalid_run_options(tmp_path, job):

@@ -103,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
     case = case_from_args(args)
     _check_run_options(args)
     solve = SOLVERS[args.solver]
-    if args.solver == "calculix":
+    if args.solver == "calculix" and not args.reuse:
         from ..fe.runner import find_ccx
 
         find_ccx()  # one line saying how to install it, before anything is written

@@ -270,10 +270,10 @@ def run_case(case: FECase, job_dir: str | Path, *, timeout: float | None = None,
     deck = build_deck(case, mesh)
     digest = _sha256(deck)
     job_dir = Path(job_dir)
-    job_dir.mkdir(parents=True, exist_ok=True)
     wall = _reusable(job_dir, JOBNAME, digest) if reuse else None
     if wall is None:
         exe = find_ccx(executable)  # fail before touching the directory
+        job_dir.mkdir(parents=True, exist_ok=True)
         for suffix in _RESULT_SUFFIXES:
             (job_dir / f"{JOBNAME}{suffix}").unlink(missing_ok=True)
         (job_dir / _RUN_RECORD).unlink(missing_ok=True)
