@@ -216,6 +216,14 @@ class SpluBackend:
         return _LUFactor(spla.splu(self.sum.matrix(d)))
 
 
+class _CholmodFactor:
+    def __init__(self, factor: Any) -> None:
+        self.factor = factor
+
+    def solve(self, rhs: FloatArray) -> FloatArray:
+        return np.asarray(self.factor(rhs))
+
+
 class CholmodBackend:
     """CHOLMOD (scikit-sparse) of K + C(D); symbolic analysis once."""
 
@@ -231,8 +239,8 @@ class CholmodBackend:
         self.sum = _SparseContactSum(k, cx, cy)
         self.symbolic = analyze(self.sum.k)
 
-    def factor(self, d: FloatArray) -> _LUFactor:
-        return _LUFactor(self.symbolic.cholesky(self.sum.matrix(d)))
+    def factor(self, d: FloatArray) -> _CholmodFactor:
+        return _CholmodFactor(self.symbolic.cholesky(self.sum.matrix(d)))
 
 
 #: Linear-solver backends: name -> (class, description).
