@@ -148,8 +148,20 @@ def test_loadpath_duck_typing_and_arrays() -> None:
     # both start from zero load along a ramp and repeat the same closed cycle
     assert a.dissipated_energy == pytest.approx(b.dissipated_energy, rel=1e-9)
     assert a.meta["from"] == "test"
-    dt, dc = a.path_response()
-    assert dt.shape == dc.shape == (a.cycle_start + a.samples_per_cycle + 1,)
+    dt, dc = a.path_response()  # aligned with the path as given (the ramp left out)
+    assert dt.shape == dc.shape == PathLike.theta.shape
+    assert a.meta["prepended_samples"] == 3
+
+
+def test_planar_loadpath_round_trip() -> None:
+    """The planar model's LoadPath in, its PathResponse out: same cycle work."""
+    planar = pytest.importorskip("microslip.planar.loadpath")
+    path = planar.LoadPath.harmonic(200.0, 100.0, phase_deg=90.0, samples_per_cycle=32)
+    r = solve_load_path(P, path, mesh=(8, 2, 1), cycles=4)
+    dt, dc = r.path_response()
+    w_tip, w_centre = planar.cycle_work(planar.PathResponse(path, dt, dc, source="builtin"))
+    assert w_tip == pytest.approx(r.tip_work, rel=1e-12)
+    assert w_centre == pytest.approx(r.centre_work, rel=1e-12)
 
 
 def test_coupling_study_mirror_symmetry_and_bookkeeping() -> None:

@@ -266,6 +266,7 @@ def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
                     1, (th.size - 1 - k0) // 4)
                 th, pt, pc, k0 = _ramp_to(th, pt, pc, k0, _count("startup_increments", m, 0))
                 meta["startup_ramp_increments"] = m
+                meta["prepended_samples"] = max(m - 1, 0)
         return CyclicPath(th, pt, pc, k0, meta)
     if f_tip is None or f_centre is None:
         raise ParameterError("give a load path object, or times with f_tip and f_centre arrays")
@@ -296,4 +297,5 @@ def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
     else:
         m = _count("startup_increments", startup_increments, 0)
     t, ft, fc, k0 = _ramp_to(t, ft, fc, 0, m)
-    return CyclicPath(t, ft, fc, k0, {"startup_increments": m})
+    return CyclicPath(t, ft, fc, k0, {"startup_increments": m,
+                                      "prepended_samples": max(m - 1, 0)})

@@ -357,12 +357,15 @@ class LoadPathResult:
         return slice(end - n - 1, end)
 
     def path_response(self) -> tuple[FloatArray, FloatArray]:
-        """Displacements (tip, centre) at the samples of the input path: start-up from the
-        first pass, the cycle from the last one (mm). Shape (cycle_start + n + 1,), matching
-        a planar ``LoadPath`` with the same samples, for its ``PathResponse``."""
+        """Displacements (tip, centre), mm, at the samples of the path as given: its start-up
+        from the first pass, its closed cycle from the last (settled) cycle. Samples the solver
+        prepended (a ramp from zero load, ``meta["prepended_samples"]``) are left out, so the
+        arrays match a planar ``LoadPath`` sample for sample, for its ``PathResponse``."""
         k0 = self.cycle_start
+        skip = int(self.meta.get("prepended_samples", 0))
         c = self.last_cycle()
-        return (np.r_[self.d_tip[:k0], self.d_tip[c]], np.r_[self.d_centre[:k0], self.d_centre[c]])
+        return (np.r_[self.d_tip[skip:k0], self.d_tip[c]],
+                np.r_[self.d_centre[skip:k0], self.d_centre[c]])
 
     def summary(self) -> dict[str, Any]:
         return {"solver": "builtin", "centre_direction": self.centre_direction,
