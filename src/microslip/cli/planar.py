@@ -23,8 +23,9 @@ from .common import add_model_options, add_strain_energy, model_options, number,
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 
-#: Solvers of the planar case: the decoupled analytical models (a coupled FE solver may follow).
-SOLVERS = ("analytical",)
+#: Solvers of the planar case: the paper's decoupled analytical models, or the built-in
+#: frictional FE solver with one shared Coulomb circle per contact node (coupled 2-D friction).
+SOLVERS = ("analytical", "fe")
 
 
 def add_parser(sub: Any) -> None:
@@ -48,7 +49,7 @@ def add_parser(sub: Any) -> None:
                         + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
                         + " (default base)")
     g.add_argument("--phase", type=number, default=0.0, metavar="DEG",
-                   help="phase of the centre force in the work-based cycle, degrees "
+                   help="phase of the centre force ahead of the tip force, degrees "
                         "(0: the paper's loading; 90: the ellipse of Fig. 1; default 0)")
     m = p.add_argument_group("clamped zones")
     m.add_argument("--tip-preset", choices=sorted(PRESETS), default="table2-tip",
@@ -70,8 +71,21 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--samples-per-cycle", type=int, default=2048, metavar="N",
                    help="samples of the work-based cycle (default 2048)")
     p.add_argument("--solver", choices=list(SOLVERS), default="analytical",
-                   help="how the two directions are solved (default analytical: the paper's "
-                        "decoupled 1-D models)")
+                   help="how the two directions are solved: analytical (the paper's decoupled "
+                        "1-D models, Table 2 zones) or fe (built-in frictional FE solver, one "
+                        "body with coupled 2-D friction, against its two uni-axial runs); "
+                        "default analytical")
+    f = p.add_argument_group("--solver fe (docs/solver.md)")
+    f.add_argument("--preset", choices=sorted(PRESETS), default="table1",
+                   help="the clamped body (default table1: the paper's FE bar)")
+    f.add_argument("--mesh", default=None, metavar="NAME",
+                   help="solver mesh: tiny, coarse, medium, fine or paper (default coarse)")
+    f.add_argument("--cycles", type=int, default=6, metavar="N",
+                   help="most load cycles per run, until W per cycle settles (default 6)")
+    f.add_argument("--increments-per-cycle", type=int, default=256, metavar="N",
+                   help="load increments per cycle (default 256)")
+    f.add_argument("--cycle-tolerance", type=number, default=1e-3, metavar="X",
+                   help="relative change of W per cycle taken as settled (default 1e-3)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png",
                    help="write a figure of the loops and the load path")
@@ -110,8 +124,56 @@ def result_json(result: PlanarResult, args: argparse.Namespace) -> dict[str, Any
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.solver not in SOLVERS:  # argparse checks choices; a registry guard for the future
+    runners = {"analytical": run_analytical, "fe": run_fe}
+    if args.solver not in runners:  # argparse checks choices; a registry guard
         raise ParameterError(f"unknown solver {args.solver!r}; choose one of {', '.join(SOLVERS)}")
+    return runners[args.solver](args)
+
+
+def run_fe(args: argparse.Namespace) -> int:
+    """Coupled 2-D friction (built-in FE solver) against the sum of its uni-axial runs."""
+    from ..solver import DEFAULT_MESH, coupling_study
+
+    if args.ratio is not None:
+        raise ParameterError("--ratio maps onto the paper's Table 2 levels; with --solver fe "
+                             "give --tip-amplitude N and --centre-amplitude N")
+    at, ac = amplitudes(args)
+    for name, value in (("--cycles", args.cycles),
+                        ("--increments-per-cycle", args.increments_per_cycle)):
+        if not 1 <= value <= 100_000:
+            raise ParameterError(f"{name} must be a whole number in [1, 100000], got {value}")
+    params = preset(args.preset)
+    result = coupling_study(params, at, ac, args.phase, cycles=args.cycles,
+                            increments_per_cycle=args.increments_per_cycle,
+                            mesh=args.mesh or DEFAULT_MESH, cycle_tol=args.cycle_tolerance)
+    out = {"preset": args.preset, "mesh": args.mesh or DEFAULT_MESH,
+           "units": {"force": "N", "energy": "N·mm", "angle": "degrees", "time": "s"},
+           **result.summary()}
+    if args.json:
+        print_json(out)
+        return 0 if result.converged else 1
+    print(f"coupled planar friction, built-in FE solver: {args.preset} bar, mesh "
+          f"{out['mesh']} ({out['dof']} DOF), tip {at:g} N along the bar, centre {ac:g} N across "
+          f"it, phase {args.phase:g} deg")
+    print(f"  W per cycle, coupled                {out['dissipated_energy_Nmm']:12.6g} N·mm")
+    print(f"  W per cycle, tip alone              {out['tip_only_dissipated_energy_Nmm']:12.6g} "
+          "N·mm")
+    print(f"  W per cycle, centre alone           "
+          f"{out['centre_only_dissipated_energy_Nmm']:12.6g} N·mm")
+    print(f"  decoupled sum (the paper's model)   {out['decoupled_dissipated_energy_Nmm']:12.6g} "
+          "N·mm")
+    print(f"  coupling ratio W_coupled/W_decoupled {out['coupling_ratio']:11.6g} (dimensionless)")
+    print(f"  share of coupled W: tip {out['tip_share']:.4f}, centre {out['centre_share']:.4f}")
+    print(f"  {result_message(result)}; wall time {out['wall_s']:.3g} s")
+    return 0 if result.converged else 1
+
+
+def result_message(result: Any) -> str:
+    return str(result.summary().get("message", "converged" if result.converged else
+                                     "not converged"))
+
+
+def run_analytical(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     n = check_increments(args.increments)
     opt = model_options(args)
