@@ -24,8 +24,9 @@ def add_parser(sub: Any) -> None:
         "and a point-by-point check of the paper's claims. Units: N, mm, N·mm.")
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created)")
     p.add_argument("--fe", action=argparse.BooleanOptionalAction, default=None,
-                   help="run the finite-element validation for Figs 8-9 (default: when "
-                        "CalculiX ccx is available)")
+                   help="run the finite elements: the CalculiX validation for Figs 8-9 (by "
+                        "default when ccx is available) and the coupled 2-D friction study "
+                        "with the built-in solver (by default always; --no-fe skips both)")
     p.add_argument("--fe-mesh", choices=list(FE_MESHES), default="coarse",
                    help="mesh of the finite-element validation (default coarse)")
     p.add_argument("--increments", type=int, default=1000, metavar="N",
