@@ -46,7 +46,6 @@ __all__ = [
     "ParameterError",
     "VirginCurve",
     "closedform",
-    "planar",
     "damping",
     "damping_from_loop",
     "dissipated_energy",
@@ -55,6 +54,7 @@ __all__ = [
     "macroslip_force",
     "masing_loop",
     "masing_response",
+    "planar",
     "preset",
     "strain_energy",
 ]
