@@ -137,7 +137,17 @@ def _fake_validation(fail: bool = False):
     return run_validation
 
 
+def _small_coupling_sweep(monkeypatch):
+    """The coupled-friction step on a tiny mesh (its own test: test_reproduce_coupling.py)."""
+    import microslip.solver as solver
+
+    real = solver.coupling_sweep
+    monkeypatch.setattr(solver, "coupling_sweep", lambda params, ratios, phases: real(
+        params, ratios[:2], phases, mesh="tiny", cycles=2, increments_per_cycle=16))
+
+
 def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys):
+    _small_coupling_sweep(monkeypatch)
     monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(), ""))
     code = main(["reproduce", "--out", str(tmp_path / "a"), "--fe", "--quiet",
                  "--increments", "20"])
@@ -146,6 +156,8 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "| FE | ok |" in text and "fig09_fe_vs_model.png" in text
     # W_d differs by 3 % against a 2 % tolerance: the FE claim is judged from validation.csv
     assert "models agree with FE: not confirmed" in text
+    assert "coupling_ratio_vs_R.csv" in text and (tmp_path / "a" / "coupling_ratio_vs_R.csv"
+                                                   ).is_file()
     monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(fail=True), ""))
     code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20"])
     _, err = capsys.readouterr()
