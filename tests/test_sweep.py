@@ -267,3 +267,17 @@ def test_write_rejects_unknown_extension(tmp_path: Path) -> None:
     r = run_sweep(spec, progress=False)
     with pytest.raises(ParameterError, match=r"must end in \.csv or \.nc"):
         write_sweep(r, tmp_path / "r.json")
+
+
+def test_make_sweep_rejects_contradictions() -> None:
+    base = preset("table1")
+    with pytest.raises(ParameterError, match=r"amplitude 100\.0 N is given but the amplitude is "
+                       "also a grid axis"):
+        make_sweep("tip", base, amplitude=100.0, grid=[("F0", [10.0, 20.0])])
+    with pytest.raises(ParameterError, match="give an amplitude"):
+        make_sweep("tip", base, grid=[("mu", [0.5])])
+    with pytest.raises(ParameterError, match="grid width has no values"):
+        make_sweep("tip", base, amplitude=10.0, grid=[("width", [])])
+    with pytest.raises(ParameterError, match=r"at most 100000000 are allowed"):
+        make_sweep("tip", base, amplitude=10.0, grid=[("width", np.linspace(1, 2, 20000)),
+                                                      ("length", np.linspace(1, 2, 20000))])
