@@ -73,6 +73,10 @@ def add_parser(sub: Any) -> None:
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--model", choices=[*MODELS, "planar"], required=True)
     add_params(p, default_preset=None)
+    for action in p._actions:
+        if action.dest == "preset":
+            action.help = ("paper parameter set (default table1; --model planar uses "
+                           "table2-tip and table2-centre)")
     g = p.add_argument_group("what to sweep")
     g.add_argument("--amplitude-range", nargs=2, type=number, metavar=("A", "B"),
                    help="--cases amplitudes evenly spaced from A to B N, both included "
