@@ -133,7 +133,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"  peak displacement d0   {out['peak_displacement_mm']:12.6g} mm  "
           "(half peak-to-peak of the loop t = 0.25..1.25 s)")
     for name, a in out["slip_length_by_domain_mm"].items():
-        print(f"  slip length ({name})   {a:12.6g} mm  (contact status at t = 0.25 s)")
+        label = f"slip length, {name}"
+        print(f"  {label:<22s} {a:12.6g} mm  (contact status at t = 0.25 s)")
     print(f"  dissipated energy W_d  {out['dissipated_energy_Nmm']:12.6g} N·mm")
     print(f"  strain energy U        {out['strain_energy_Nmm']:12.6g} N·mm  "
           f"({out['strain_energy_definition']})")
