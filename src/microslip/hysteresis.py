@@ -10,10 +10,10 @@ continues (the "wiping-out" memory of the extended Masing rules).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PchipInterpolator
 
 from .errors import MacroslipError, ParameterError
 from .results import Backbone, HysteresisLoop
@@ -70,7 +70,7 @@ class VirginCurve:
     """
 
     force_max: float
-    _interp: PchipInterpolator
+    _interp: Any  # scipy.interpolate.PchipInterpolator, imported when first needed
 
     @classmethod
     def from_backbone(cls, backbone: Backbone) -> VirginCurve:
@@ -78,6 +78,8 @@ class VirginCurve:
         d = np.asarray(backbone.displacement, dtype=float)
         if f.ndim != 1 or f.size < 2 or f[0] != 0.0 or np.any(np.diff(f) <= 0):
             raise ParameterError("a virgin curve needs forces rising from 0 in at least 1 step")
+        from scipy.interpolate import PchipInterpolator
+
         return cls(float(f[-1]), PchipInterpolator(f, d, extrapolate=False))
 
     def __call__(self, force: ArrayLike) -> NDArray[np.float64]:

@@ -28,7 +28,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PchipInterpolator
 
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, loop_work, loss_factor, strain_energy
 from ..errors import ParameterError
@@ -349,7 +348,7 @@ class ComponentEnergy:
         return self.copies * strain_energy(masing_loop(bb), bb, self.kind)
 
     @functools.cached_property
-    def _table(self) -> PchipInterpolator:
+    def _table(self) -> Any:  # scipy.interpolate.PchipInterpolator
         bb = self.backbone
         n = bb.increments
         js = np.unique(np.round(np.linspace(1, n, min(self.points, n))).astype(int))
@@ -359,6 +358,8 @@ class ComponentEnergy:
         if f.size == 1:
             f = np.r_[0.5 * f[0], f]
             u = np.r_[u[0] / 8.0, u]
+        from scipy.interpolate import PchipInterpolator
+
         return PchipInterpolator(f, u / f**3, extrapolate=True)
 
     def __call__(self, force: ArrayLike) -> FloatArray:
