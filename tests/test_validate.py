@@ -26,6 +26,7 @@ from microslip.validate import (
     plot_contact_status,
     plot_fe_vs_model,
     run_validation,
+    shear_layer_reference,
     validation_row,
 )
 
@@ -74,6 +75,8 @@ def test_exact_loop_gives_zero_peak_error_and_the_sampling_bias(model):
     assert row["eta_closed"] == pytest.approx(4 / (3 * math.pi))
     assert row["peak_uncorrected_mm"] == pytest.approx(row["peak_closed_mm"], rel=1e-9)
     assert row["verdict"] == "pass" and row["loop_closure"] == 0.0
+    assert row["peak_shear_layer_mm"] > row["peak_closed_mm"]
+    assert row["wd_shear_layer_Nmm"] < row["wd_closed_Nmm"]
     exact_slip = F0 / Q if model == "tip" else F0 / (2 * Q)
     assert row["slip_length_closed_mm"] == pytest.approx(exact_slip)
     assert row["slip_length_fe_mm"] == pytest.approx(exact_slip, abs=12.7)
@@ -94,6 +97,30 @@ def test_closed_form_matches_the_references():
     assert centre["wd_Nmm"] == cf.centre_dissipated_energy(F0, EA, Q)
     with pytest.raises(ParameterError):
         closed_form("side", P, F0)
+
+
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_shear_layer_reference_tends_to_the_closed_form(model):
+    exact = closed_form(model, P, F0)
+    errors = []
+    for lam in (1e3, 1e4, 1e5, 1e6):
+        r = shear_layer_reference(model, P, F0, lam)
+        errors.append((r["peak_mm"] / exact["peak_mm"] - 1, r["wd_Nmm"] / exact["wd_Nmm"] - 1))
+    e = np.array(errors)
+    assert np.all(e[:, 0] > 0) and np.all(e[:, 1] < 0)  # softer and less dissipative
+    # the stick-slope error falls as 1/lambda (the shear-lag length is 1/sqrt(lambda w/EA),
+    # the extra displacement ~ q/(lambda w) relative to d0)
+    np.testing.assert_allclose(e[1:, 0] / e[:-1, 0], 0.1, rtol=0.06)
+    # pinned values quoted in docs/validation.md, Section 4
+    r4 = shear_layer_reference(model, P, F0, 1e4)
+    expected = {"tip": (0.060, -0.178), "centre": (0.242, -0.701)}[model]
+    assert 100 * (r4["peak_mm"] / exact["peak_mm"] - 1) == pytest.approx(expected[0], abs=5e-4)
+    assert 100 * (r4["wd_Nmm"] / exact["wd_Nmm"] - 1) == pytest.approx(expected[1], abs=5e-4)
+
+
+def test_shear_layer_reference_below_first_slip_is_linear():
+    r = shear_layer_reference("tip", P, 0.5, 1e2)  # far below (q/beta) tanh(beta L)
+    assert r["wd_Nmm"] == pytest.approx(0.0, abs=1e-15) and r["peak_mm"] > 0
 
 
 def test_slipping_force_follows_masing():

@@ -46,6 +46,7 @@ __all__ = [
     "plot_contact_status",
     "plot_fe_vs_model",
     "run_validation",
+    "shear_layer_reference",
     "validation_row",
 ]
 
@@ -116,6 +117,50 @@ def closed_form(model: str, params: ClampParams, amplitude: float) -> dict[str, 
     raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
 
 
+def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
+                          stick_slope: float, samples: int = 4001) -> dict[str, float]:
+    """Peak displacement and W_d of the bar on an elastic shear layer (Menq, Bielak & Griffin
+    1986) of stiffness k = lambda w per unit length: what a penalty-friction FE model with
+    stick slope lambda tends to as the mesh is refined (docs/validation.md, Section 4).
+
+    Tip: one bar of length L loaded by F0; centre: each half, of length L/2, loaded by F0/2
+    (the loaded section moves as the tip of either half; the two halves' W_d add). W_d by
+    Masing's rule from the virgin curve: linear up to first slip, then
+    :func:`microslip.closedform.shear_layer_tip`.
+
+    >>> p = preset("table1")
+    >>> r = shear_layer_reference("tip", p, 267.0, 1e12)
+    >>> round(r["peak_mm"] / closed_form("tip", p, 267.0)["peak_mm"], 6)
+    1.0
+    """
+    from scipy.optimize import brentq
+
+    ea, q = params.axial_stiffness, params.friction_per_length
+    k = stick_slope * params.width
+    if model == "tip":
+        length, force, halves = params.length, amplitude, 1.0
+    elif model == "centre":
+        length, force, halves = params.length / 2.0, amplitude / 2.0, 2.0
+    else:
+        raise ParameterError(f"unknown load case {model!r}; choose one of "
+                             f"{', '.join(LOAD_CASES)}")
+
+    def residual(a: float) -> float:
+        return float(cf.shear_layer_tip(a, ea, k, q, length)[0]) - force
+
+    first_slip = float(cf.shear_layer_tip(0.0, ea, k, q, length)[0])
+    a = 0.0 if force <= first_slip else brentq(residual, 0.0, length, xtol=1e-12)
+    aa = np.linspace(0.0, a, samples)
+    f, d = cf.shear_layer_tip(aa, ea, k, q, length)
+    f = np.concatenate([[0.0], np.atleast_1d(f)])
+    d = np.concatenate([[0.0], np.atleast_1d(d)])
+    if force <= first_slip:  # still fully stuck: linear
+        f, d = np.array([0.0, force]), np.array([0.0, force * d[1] / f[1]])
+    d0 = float(d[-1])
+    wd = halves * (4.0 * force * d0 - 8.0 * float(np.trapezoid(d, f)))
+    return {"peak_mm": d0, "wd_Nmm": wd}
+
+
 def _closed_form_sampled_wd(result: FEResult, c: float) -> float:
     """W_d of the exact Masing loop sampled at the FE's force samples (trapezoidal rule):
     separates the bias of 40 samples per cycle from the FE error."""
@@ -140,6 +185,9 @@ def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = N
     Errors are relative: ``err_X_fe_closed`` = (FE - closed form) / closed form,
     ``err_X_model_fe`` = (model - FE) / FE. Loss factors use the secant strain energy
     (``microslip.energy``), for which the closed form is 4/(3 pi) for both load cases.
+    ``wd_closed_sampled_Nmm`` is the exact loop's area by the FE's own 41 samples;
+    ``*_shear_layer_*`` the bar on an elastic shear layer with the run's stick slope
+    (:func:`shear_layer_reference`), what the penalty FE tends to under mesh refinement.
     """
     case = result.case
     p, f0 = case.params, case.amplitude
@@ -147,6 +195,7 @@ def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = N
     model = damping(case.model, p, f0, MODEL_INCREMENTS, options or ModelOptions(), kind)
     unc = damping(case.model, p, f0, MODEL_INCREMENTS, ModelOptions.uncorrected(), kind)
     exact = closed_form(case.model, p, f0)
+    layer = shear_layer_reference(case.model, p, f0, case.stick_slope)
     fe = result.damping
     tol = TOLERANCES[case.model]
     err_peak = _rel(fe.peak_displacement, exact["peak_mm"])
@@ -174,6 +223,8 @@ def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = N
         "wd_uncorrected_Nmm": unc.dissipated_energy,
         "wd_closed_Nmm": exact["wd_Nmm"],
         "wd_closed_sampled_Nmm": _closed_form_sampled_wd(result, exact["c"]),
+        "peak_shear_layer_mm": layer["peak_mm"],
+        "wd_shear_layer_Nmm": layer["wd_Nmm"],
         "eta_fe": fe.loss_factor,
         "eta_model": model.loss_factor,
         "eta_uncorrected": unc.loss_factor,
