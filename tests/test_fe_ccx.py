@@ -168,7 +168,8 @@ def test_reuse_reads_a_finished_run_without_the_solver(results, tmp_path, monkey
 
 def test_cli_fe_json_has_the_loop_keys(tmp_path, capsys):
     out = tmp_path / "centre"
-    code = main(["fe", "--model", "centre", "--out", str(out), "--json"])
+    code = main(["fe", "--model", "centre", "--solver", "calculix", "--out", str(out),
+                 "--json"])
     text, err = capsys.readouterr()
     assert code == 0, err
     data = json.loads(text)

@@ -179,8 +179,9 @@ def test_without_ccx_nothing_is_written(monkeypatch, tmp_path):
 
 
 @pytest.mark.parametrize("argv", [
-    ["fe", "--model", "tip"],
-    ["fe", "--model", "centre", "--mesh", "paper", "--out", "DIR", "--json"],
+    ["fe", "--model", "tip", "--solver", "calculix"],
+    ["fe", "--model", "centre", "--solver", "calculix", "--mesh", "paper", "--out", "DIR",
+     "--json"],
     ["validate", "--out", "DIR"],
 ])
 def test_cli_without_ccx_fails_with_one_line(argv, monkeypatch, tmp_path, capsys):
@@ -199,7 +200,10 @@ def test_cli_without_ccx_fails_with_one_line(argv, monkeypatch, tmp_path, capsys
     (["fe", "--model", "tip", "--stick-slope", "-5"], 1, "stick_slope"),
     (["fe", "--model", "tip", "--substeps", "52"], 1, "multiple of 5"),
     (["fe", "--model", "tip", "--timeout", "0"], 1, "timeout"),
-    (["fe", "--model", "tip", "--mesh", "fine"], 2, "invalid choice"),
+    (["fe", "--model", "tip", "--mesh", "huge"], 2, "invalid choice"),
+    (["fe", "--model", "tip", "--solver", "calculix", "--mesh", "fine"], 1,
+     "not a mesh of the calculix solver"),
+    (["fe", "--model", "tip", "--element", "C3D20R"], 1, "not an element of the builtin"),
     (["fe", "--model", "tip", "--solver", "ansys"], 2, "invalid choice"),
     (["validate"], 2, "--out"),
     (["validate", "--out", "x", "--timeout", "-3"], 1, "timeout"),

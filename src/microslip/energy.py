@@ -49,14 +49,10 @@ def dissipated_energy(loop: HysteresisLoop) -> float:
     return loop_work(loop.force, loop.displacement)
 
 
-def _peak(loop: HysteresisLoop) -> tuple[float, float]:
-    i = int(np.argmax(loop.force))
-    return float(loop.force[i]), float(loop.displacement[i])
-
-
 def _secant(loop: HysteresisLoop, backbone: Backbone | None) -> float:
-    f0, d0 = _peak(loop)
-    return 0.5 * f0 * d0
+    """F0 d0 / 2 with F0, d0 half the peak-to-peak force and displacement: the same as at the
+    peak for a Masing loop, and blind to a rigid offset of an FE loop (clamping step)."""
+    return 0.5 * loop.amplitude * loop.peak_displacement
 
 
 def _backbone(loop: HysteresisLoop, backbone: Backbone | None) -> float:

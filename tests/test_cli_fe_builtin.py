@@ -1,0 +1,60 @@
+"""``microslip fe --solver builtin`` (the default): same JSON as ``loop`` and the CalculiX path."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from microslip import closedform as cf
+from microslip import preset
+from microslip.cli.main import main
+
+P = preset("table1")
+EA, Q = P.axial_stiffness, P.friction_per_length
+EXACT = {
+    "tip": (cf.tip_displacement(267.0, EA, Q), cf.tip_dissipated_energy(267.0, EA, Q)),
+    "centre": (cf.centre_displacement(267.0, EA, Q), cf.centre_dissipated_energy(267.0, EA, Q)),
+}
+
+
+def run_json(capsys, *argv: str) -> dict:
+    assert main(list(argv)) == 0
+    out, err = capsys.readouterr()
+    assert err == ""
+    return json.loads(out)
+
+
+@pytest.mark.parametrize(("model", "tol"), [("tip", 0.01), ("centre", 0.03)])
+def test_builtin_default_matches_closed_form(capsys, model, tol):
+    data = run_json(capsys, "fe", "--model", model, "--preset", "table1", "--json")
+    d0, wd = EXACT[model]
+    assert data["solver"] == "builtin" and data["converged"] is True
+    assert abs(data["peak_displacement_mm"] / d0 - 1) < tol
+    assert abs(data["dissipated_energy_Nmm"] / wd - 1) < tol
+    assert data["loss_factor"] == pytest.approx(
+        data["dissipated_energy_Nmm"] / (2 * 3.141592653589793 * data["strain_energy_Nmm"]))
+
+
+def test_keys_are_those_of_loop_and_of_calculix(capsys):
+    data = run_json(capsys, "fe", "--model", "centre", "--mesh", "tiny", "--json")
+    loop = run_json(capsys, "loop", "--model", "centre", "--json", "--increments", "20")
+    assert set(loop) <= set(data)
+    for key in ("dof", "wall_s", "converged", "iterations", "loop_closure"):
+        assert key in data
+    assert set(data["slip_length_by_domain_mm"]) == {"tension", "compression"}
+    # 50 substeps over 1.25 s: the loop t = 0.25..1.25 s has 41 points, as with CalculiX
+    assert len(data["loop"]["force_N"]) == 41 and data["increments"] == 50
+
+
+def test_out_keeps_the_result(capsys, tmp_path):
+    data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out",
+                    str(tmp_path / "job"), "--json")
+    saved = json.loads((tmp_path / "job" / "result.json").read_text(encoding="utf-8"))
+    assert saved["dissipated_energy_Nmm"] == data["dissipated_energy_Nmm"]
+
+
+def test_needs_no_calculix(capsys, monkeypatch, tmp_path):
+    monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--json")
+    assert data["converged"] is True
