@@ -9,10 +9,10 @@ the last bit on the same machine.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numpy.typing import NDArray
+
+from .sums import finish
 
 __all__ = ["BLOCK", "centre_numpy", "tip_numpy"]
 
@@ -20,26 +20,6 @@ __all__ = ["BLOCK", "centre_numpy", "tip_numpy"]
 BLOCK = 8192
 
 Arr = NDArray[np.float64]
-
-
-def _finish(f0: Arr, d0: Arr, q: Arr, q_k0: Arr, d_km1: Arr, d_k0: Arr, fr_km1: float,
-            fr_k0: float, stored: Arr, kind: int) -> tuple[Arr, Arr, Arr]:
-    w = 4.0 * (q - f0 * d0)
-    if kind == 0:
-        u = 0.5 * f0 * d0
-    elif kind == 1:
-        u = 0.5 * q
-    elif kind == 2:
-        fa1 = -f0 + 2.0 * (f0 * fr_k0)
-        fa0 = -f0 + 2.0 * (f0 * fr_km1)
-        da1 = -d0 + 2.0 * d_k0
-        da0 = -d0 + 2.0 * d_km1
-        s = -fa0 / (fa1 - fa0)
-        d_zero = da0 + s * (da1 - da0)
-        u = 0.5 * fa1 * (da1 - d_zero) + 2.0 * (q - q_k0) - 2.0 * f0 * (d0 - d_k0)
-    else:
-        u = stored
-    return w, u, w / (2.0 * math.pi * u)
 
 
 def tip_numpy(amplitude: Arr, length: Arr, width: Arr, thickness: Arr, modulus: Arr,
@@ -84,7 +64,7 @@ def tip_numpy(amplitude: Arr, length: Arr, width: Arr, thickness: Arr, modulus: 
                 q_k0 = q.copy()
             fr_prev = fr
         stored = f0 * d / 3.0
-        w, u_e, eta = _finish(f0, d, q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n, stored, kind)
+        w, u_e, eta = finish(f0, d, q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n, stored, kind)
         out_d0[sl], out_w[sl], out_u[sl], out_eta[sl], out_section[sl] = d, w, u_e, eta, gmin
 
 
@@ -144,5 +124,5 @@ def centre_numpy(amplitude: Arr, length: Arr, width: Arr, thickness: Arr, modulu
                 q_k0 = q
             fr_prev = fr
         stored = 0.5 * f0 * (dt + dc) / 3.0
-        w, u_e, eta = _finish(f0, d, q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n, stored, kind)
+        w, u_e, eta = finish(f0, d, q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n, stored, kind)
         out_d0[sl], out_w[sl], out_u[sl], out_eta[sl], out_section[sl] = d, w, u_e, eta, gmin

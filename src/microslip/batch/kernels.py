@@ -29,9 +29,9 @@ Energies (paper Eqs 21-23, Masing loop at the backbone samples, see
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
+
+from .sums import finish
 
 try:
     from numba import njit, prange
@@ -56,25 +56,8 @@ POISSON_CODES = {"consistent": 0, "paper-literal": 1, "off": 2}
 #: Integer codes of the strain-energy definitions passed to the kernels.
 KIND_CODES = {"secant": 0, "backbone": 1, "branch": 2, "stored": 3}
 
-@njit(cache=True, fastmath=False, inline="always")
-def _finish(f0, d0, q, q_k0, d_km1, d_k0, fr_km1, fr_k0, stored, kind):
-    """W_d, U and eta of one case from the accumulated sums (see the module notes)."""
-    w = 4.0 * (q - f0 * d0)
-    if kind == 0:
-        u = 0.5 * f0 * d0
-    elif kind == 1:
-        u = 0.5 * q
-    elif kind == 2:
-        fa1 = -f0 + 2.0 * (f0 * fr_k0)
-        fa0 = -f0 + 2.0 * (f0 * fr_km1)
-        da1 = -d0 + 2.0 * d_k0
-        da0 = -d0 + 2.0 * d_km1
-        s = -fa0 / (fa1 - fa0)
-        d_zero = da0 + s * (da1 - da0)
-        u = 0.5 * fa1 * (da1 - d_zero) + 2.0 * (q - q_k0) - 2.0 * f0 * (d0 - d_k0)
-    else:
-        u = stored
-    return w, u, w / (2.0 * math.pi * u)
+#: W_d, U and eta from the accumulated sums: the fallback's function, compiled.
+_finish = njit(cache=True, fastmath=False, inline="always")(finish)
 
 
 @njit(parallel=True, cache=True, fastmath=False, nogil=True)

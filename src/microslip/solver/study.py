@@ -99,6 +99,15 @@ def _contact(model: FrictionModel, slipping: NDArray[np.bool_]) -> ContactHistor
                           slipping=slipping)
 
 
+def _check_body(params: Any, centre_direction: str) -> None:
+    """One clear error for a wrong parameter object or centre direction."""
+    if not isinstance(params, ClampParams):
+        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
+    if centre_direction not in CENTRE_DIRECTIONS:
+        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
+                             f"{', '.join(CENTRE_DIRECTIONS)}")
+
+
 def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
                    mesh: Any = DEFAULT_MESH, stick_slope: float = DEFAULT_STICK_SLOPE,
                    increments: int = 50, element: str = "C3D8I",
@@ -147,11 +156,7 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     """
     if model not in LOAD_CASES:
         raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
-    if centre_direction not in CENTRE_DIRECTIONS:
-        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
-                             f"{', '.join(CENTRE_DIRECTIONS)}")
-    if not isinstance(params, ClampParams):
-        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
+    _check_body(params, centre_direction)
     f0 = check_amplitude(amplitude)
     if f0 >= params.macroslip_force:
         raise MacroslipError(f"amplitude {f0:g} N reaches the macroslip force mu F_N = "
@@ -321,11 +326,7 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     >>> r.converged, r.dissipated_energy > 0
     (True, True)
     """
-    if not isinstance(params, ClampParams):
-        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
-    if centre_direction not in CENTRE_DIRECTIONS:
-        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
-                             f"{', '.join(CENTRE_DIRECTIONS)}")
+    _check_body(params, centre_direction)
     cycles, min_cycles, tol = _check_cycles(cycles, min_cycles, cycle_tol)
     path = as_cyclic_path(times, f_tip, f_centre)
     fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
@@ -378,11 +379,7 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
     >>> r.converged, 0.5 < r.coupling_ratio < 2.0
     (True, True)
     """
-    if not isinstance(params, ClampParams):
-        raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
-    if centre_direction not in CENTRE_DIRECTIONS:
-        raise ParameterError(f"unknown centre direction {centre_direction!r}; choose one of "
-                             f"{', '.join(CENTRE_DIRECTIONS)}")
+    _check_body(params, centre_direction)
     cycles, _, tol = _check_cycles(cycles, 2, cycle_tol)
     if path is None:
         at = check_amplitude(tip_amplitude)
