@@ -134,6 +134,21 @@ class DampingResult:
     loop: HysteresisLoop
     backbone: Backbone | None = None
 
+    def loop_json(self, slip_lengths: dict[str, float]) -> dict[str, Any]:
+        """The energy, slip and loop keys shared by ``microslip loop --json`` and
+        ``microslip fe --json`` (whatever solver made the loop); ``slip_lengths`` in mm by
+        domain, the first one also reported as ``slip_length_mm``."""
+        return {
+            "peak_displacement_mm": self.peak_displacement,
+            "dissipated_energy_Nmm": self.dissipated_energy,
+            "strain_energy_Nmm": self.strain_energy,
+            "strain_energy_definition": self.strain_energy_kind,
+            "loss_factor": self.loss_factor,
+            "slip_length_mm": next(iter(slip_lengths.values())),
+            "slip_length_by_domain_mm": slip_lengths,
+            "loop": {"force_N": self.loop.force, "displacement_mm": self.loop.displacement},
+        }
+
     def summary(self) -> dict[str, float | str]:
         """Scalar results with their units in the keys."""
         return {

@@ -42,7 +42,7 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
     bb = result.backbone
     assert bb is not None
     slip = {name: float(bb.slip_length[-1, i]) for i, name in enumerate(bb.domains)}
-    return {
+    out = {
         "model": model,
         "units": {"force": "N", "length": "mm", "modulus": "MPa", "energy": "N·mm"},
         "params": params.as_dict(),
@@ -51,15 +51,8 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
         "increments": increments,
         "amplitude_N": result.amplitude,
         "macroslip_force_N": macroslip_force(model, params, options),
-        "peak_displacement_mm": result.peak_displacement,
-        "dissipated_energy_Nmm": result.dissipated_energy,
-        "strain_energy_Nmm": result.strain_energy,
-        "strain_energy_definition": result.strain_energy_kind,
-        "loss_factor": result.loss_factor,
-        "slip_length_mm": slip[bb.domains[0]],
-        "slip_length_by_domain_mm": slip,
-        "loop": {"force_N": result.loop.force, "displacement_mm": result.loop.displacement},
     }
+    return out | result.loop_json(slip)
 
 
 def run(args: argparse.Namespace) -> int:

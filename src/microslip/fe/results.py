@@ -250,8 +250,6 @@ class FEResult:
         """The JSON object of ``microslip fe``: the keys of ``microslip loop --json`` plus
         ``dof``, ``wall_s``, ``converged`` and the FE set-up."""
         c = self.case
-        d = self.damping
-        slip = self.slip_lengths()
         return {
             "model": c.model,
             "solver": "calculix",
@@ -264,14 +262,7 @@ class FEResult:
             "increments": c.substeps,
             "amplitude_N": c.amplitude,
             "macroslip_force_N": c.params.macroslip_force,
-            "peak_displacement_mm": d.peak_displacement,
-            "dissipated_energy_Nmm": d.dissipated_energy,
-            "strain_energy_Nmm": d.strain_energy,
-            "strain_energy_definition": d.strain_energy_kind,
-            "loss_factor": d.loss_factor,
-            "slip_length_mm": next(iter(slip.values())),
-            "slip_length_by_domain_mm": slip,
-            "loop": {"force_N": self.loop.force, "displacement_mm": self.loop.displacement},
+            **self.damping.loop_json(self.slip_lengths()),
             "dof": self.dof,
             "wall_s": self.wall_s,
             "converged": self.converged,

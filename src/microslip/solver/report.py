@@ -38,7 +38,6 @@ def uniaxial_summary(result: UniaxialResult, params: ClampParams,
                      strain_energy_kind: str) -> dict[str, Any]:
     """The JSON object of ``microslip fe --solver builtin`` (units in the keys)."""
     d = result.damping(strain_energy_kind)
-    slip = slip_lengths(result, params)
     stats = result.stats.summary()
     return {
         "model": result.model,
@@ -53,14 +52,7 @@ def uniaxial_summary(result: UniaxialResult, params: ClampParams,
         "increments": int(result.time.size - 1),
         "amplitude_N": result.amplitude,
         "macroslip_force_N": params.macroslip_force,
-        "peak_displacement_mm": d.peak_displacement,
-        "dissipated_energy_Nmm": d.dissipated_energy,
-        "strain_energy_Nmm": d.strain_energy,
-        "strain_energy_definition": d.strain_energy_kind,
-        "loss_factor": d.loss_factor,
-        "slip_length_mm": next(iter(slip.values())),
-        "slip_length_by_domain_mm": slip,
-        "loop": {"force_N": result.loop.force, "displacement_mm": result.loop.displacement},
+        **d.loop_json(slip_lengths(result, params)),
         "dof": stats["dof"],
         "wall_s": stats["wall_s"],
         "converged": result.converged,
