@@ -60,6 +60,36 @@ KIND_CODES = {"secant": 0, "backbone": 1, "branch": 2, "stored": 3}
 _finish = njit(cache=True, fastmath=False, inline="always")(finish)
 
 
+
+@njit(cache=True, fastmath=False, inline="always")
+def _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0):
+    """Keep the state at increments k0 - 1 and k0 (the zero crossing of Eq. 22's branch)."""
+    if i == k0 - 1:
+        for k in range(m):
+            d_km1[k] = d[k]
+    elif i == k0:
+        for k in range(m):
+            d_k0[k] = d[k]
+            q_k0[k] = q[k]
+
+
+@njit(cache=True, fastmath=False, inline="always")
+def _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
+               out_d0, out_w, out_u, out_eta, out_section):
+    """W_d, U and eta of the chunk's cases into the output arrays from position ``lo``."""
+    fr_km1 = (k0 - 1) / n
+    fr_k0 = k0 / n
+    for k in range(m):
+        j = lo + k
+        w, u, eta = _finish(f0[k], d[k], q[k], q_k0[k], d_km1[k], d_k0[k], fr_km1, fr_k0,
+                            stored[k], kind)
+        out_d0[j] = d[k]
+        out_w[j] = w
+        out_u[j] = u
+        out_eta[j] = eta
+        out_section[j] = gmin[k]
+
+
 @njit(parallel=True, cache=True, fastmath=False, nogil=True)
 def tip_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, friction,
                normal_force, n, poisson_code, length_update, kind,
@@ -96,6 +126,7 @@ def tip_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, fric
         gmin = np.ones(m)
         q_k0 = np.zeros(m)
         d_km1 = np.zeros(m)
+        stored = np.empty(m)
         d_k0 = np.zeros(m)
         for k in range(m):
             j = lo + k
@@ -119,26 +150,12 @@ def tip_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, fric
                 q[k] += (fp + f) * (dn - d[k])
                 d[k] = dn
                 ra[k] = ra_new
-            if i == k0 - 1:
-                for k in range(m):
-                    d_km1[k] = d[k]
-            elif i == k0:
-                for k in range(m):
-                    d_k0[k] = d[k]
-                    q_k0[k] = q[k]
+            _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
             fr_prev = fr
-        fr_km1 = (k0 - 1) / n
-        fr_k0 = k0 / n
         for k in range(m):
-            j = lo + k
-            stored = f0[k] * d[k] / 3.0
-            w, u, eta = _finish(f0[k], d[k], q[k], q_k0[k], d_km1[k], d_k0[k], fr_km1, fr_k0,
-                                stored, kind)
-            out_d0[j] = d[k]
-            out_w[j] = w
-            out_u[j] = u
-            out_eta[j] = eta
-            out_section[j] = gmin[k]
+            stored[k] = f0[k] * d[k] / 3.0
+        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
+                   out_d0, out_w, out_u, out_eta, out_section)
 
 
 @njit(parallel=True, cache=True, fastmath=False, nogil=True)
@@ -188,6 +205,7 @@ def centre_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, f
         gmin = np.ones(m)
         q_k0 = np.zeros(m)
         d_km1 = np.zeros(m)
+        stored = np.empty(m)
         d_k0 = np.zeros(m)
         for k in range(m):
             j = lo + k
@@ -222,23 +240,9 @@ def centre_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, f
                 dn = 2.0 * x * ut * uc * at * ac * r
                 q[k] += (fp + f) * (dn - d[k])
                 d[k] = dn
-            if i == k0 - 1:
-                for k in range(m):
-                    d_km1[k] = d[k]
-            elif i == k0:
-                for k in range(m):
-                    d_k0[k] = d[k]
-                    q_k0[k] = q[k]
+            _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
             fr_prev = fr
-        fr_km1 = (k0 - 1) / n
-        fr_k0 = k0 / n
         for k in range(m):
-            j = lo + k
-            stored = 0.5 * f0[k] * (dt[k] + dc[k]) / 3.0
-            w, u, eta = _finish(f0[k], d[k], q[k], q_k0[k], d_km1[k], d_k0[k], fr_km1, fr_k0,
-                                stored, kind)
-            out_d0[j] = d[k]
-            out_w[j] = w
-            out_u[j] = u
-            out_eta[j] = eta
-            out_section[j] = gmin[k]
+            stored[k] = 0.5 * f0[k] * (dt[k] + dc[k]) / 3.0
+        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
+                   out_d0, out_w, out_u, out_eta, out_section)
