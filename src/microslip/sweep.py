@@ -25,7 +25,6 @@ import math
 import os
 import secrets
 import time
-import uuid
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,6 +36,7 @@ from numpy.typing import NDArray
 from . import __version__
 from .batch import PARAM_FIELDS, batch_damping, check_range, default_backend, prepare_batch
 from .batch.driver import run_batch
+from .cluster import map_on_cluster
 from .energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from .errors import MicroslipError, ParameterError
 from .io import atomic_path, atomic_write
@@ -755,55 +755,6 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
     elapsed = time.perf_counter() - t0
     return SweepResult(spec, out[0], out[1], out[2], out[3], backend=be, scheduler=scheduler,
                        elapsed=elapsed, meta={"chunks": len(chunks), "chunk_size": chunk_size})
-
-
-def map_on_cluster(func: Callable[..., Any], payloads: Sequence[tuple[Any, ...]],
-                   scheduler: str, *, retries: int = 3,
-                   on_result: Callable[[int, Any], None] | None = None,
-                   key_prefix: str = "microslip") -> list[Any]:
-    """Run ``func(*payload)`` for every payload on a ``dask.distributed`` cluster.
-
-    One task per payload, each independent. Results are fetched as they complete (and
-    handed to ``on_result(index, result)``), so a worker lost later cannot take them with it;
-    the tasks of a lost worker are rescheduled by the Dask scheduler, and a task that raises
-    is retried ``retries`` times. Returns the results in payload order. Usable for any
-    embarrassingly parallel job list, e.g. one finite-element run per task.
-
-    Raises
-    ------
-    MicroslipError
-        dask.distributed is not installed, or the scheduler cannot be reached.
-    """
-    try:
-        from dask.distributed import Client, as_completed
-    except ImportError:
-        raise MicroslipError(
-            "--scheduler needs dask.distributed: pip install 'microslip[dask]'"
-        ) from None
-    try:
-        # connection timeout: dask's distributed.comm.timeouts.connect (30 s by default)
-        client = Client(scheduler, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise MicroslipError(
-            f"cannot connect to the Dask scheduler at {scheduler!r}: {exc}"
-        ) from None
-    results: list[Any] = [None] * len(payloads)
-    token = uuid.uuid4().hex[:12]
-    with client:
-        futures = [
-            client.submit(func, *p, key=f"{key_prefix}-{token}-{i:06d}", retries=retries,
-                          pure=False)
-            for i, p in enumerate(payloads)
-        ]
-        index = {f.key: i for i, f in enumerate(futures)}
-        for fut in as_completed(futures, loop=client.loop):
-            i = index[fut.key]
-            res = fut.result()
-            results[i] = res
-            if on_result is not None:
-                on_result(i, res)
-            fut.release()
-    return results
 
 
 # -- output ---------------------------------------------------------------------------------

@@ -28,7 +28,7 @@ import numpy as np
 
 from . import closedform as cf
 from .energy import DEFAULT_STRAIN_ENERGY, damping, loop_work
-from .errors import MicroslipError, ParameterError
+from .errors import ParameterError
 from .fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES, FECase
 from .fe.mesh import MeshSpec, mesh_spec
 from .fe.results import FEResult
@@ -382,23 +382,13 @@ def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
     if scheduler is None:
         return [run_case(t.case, t.job_dir, **kwargs)
                 for t in progress_bar(tasks, "CalculiX runs", total=len(tasks), enabled=show)]
-    try:
-        from distributed import Client
-    except ImportError:
-        raise MicroslipError(
-            "a scheduler address needs dask.distributed: pip install 'microslip[dask]'"
-        ) from None
-    try:
-        client = Client(scheduler, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise MicroslipError(f"cannot reach the dask scheduler {scheduler!r}: {exc}") from None
-    try:
-        futures = [client.submit(run_case, t.case, t.job_dir, pure=False, **kwargs)
-                   for t in tasks]
-        return [f.result() for f in progress_bar(futures, "CalculiX runs", total=len(futures),
-                                                 enabled=show)]
-    finally:
-        client.close()
+    from functools import partial
+
+    from .cluster import map_on_cluster
+
+    return map_on_cluster(partial(run_case, **kwargs), [(t.case, t.job_dir) for t in tasks],
+                          scheduler, retries=0, key_prefix="microslip-ccx",
+                          progress="CalculiX runs" if show else None)
 
 
 def _summary(rows: Sequence[dict[str, Any]], files: Sequence[Path]) -> str:
