@@ -1,20 +1,45 @@
 #!/usr/bin/env bash
-# Install microslip with every optional extra, and the CalculiX solver (Debian package
-# calculix-ccx, binary ccx) when it is missing. Safe to run again: it only installs what is absent.
+# Install microslip with every optional extra into its own virtual environment, .venv/ in the
+# checkout (a Debian system python3 refuses `pip install`, PEP 668), then the CalculiX solver
+# (Debian package calculix-ccx, binary ccx) when it is missing, then compile the numba kernels
+# once so that the first command does not pay for it. Safe to run again: it only installs
+# what is absent. Afterwards run everything with .venv/bin/python.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if ! command -v ccx >/dev/null 2>&1; then
-  if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
-    echo "setup: ccx (CalculiX) is missing and this user cannot run apt-get; the finite-element" \
-         "commands will say how to install it" >&2
-    SUDO="skip"
+if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else SUDO="skip"; fi
+
+apt_install() {  # apt_install PACKAGE...: install Debian packages, or say why not
+  if [ "$SUDO" = "skip" ] || ! command -v apt-get >/dev/null 2>&1; then
+    echo "setup: cannot install $* (needs apt-get as root); install it and run this again" >&2
+    return 1
   fi
-  if [ "$SUDO" != "skip" ]; then
-    echo "setup: installing CalculiX (apt-get install calculix-ccx)" >&2
-    $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq calculix-ccx >/dev/null
-  fi
+  echo "setup: installing $* (apt-get)" >&2
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "$@" >/dev/null
+}
+
+PY="${PYTHON:-python3}"
+if ! command -v "$PY" >/dev/null 2>&1; then
+  apt_install python3 python3-venv
 fi
 
-python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -e ".[all]"
+# The virtual environment. Debian splits venv/ensurepip into python3-venv.
+if [ ! -x .venv/bin/python ]; then
+  if ! "$PY" -m venv .venv 2>/dev/null; then
+    rm -rf .venv
+    apt_install python3-venv
+    "$PY" -m venv .venv
+  fi
+fi
+VPY=.venv/bin/python
+"$VPY" -m pip install --quiet --disable-pip-version-check --upgrade pip >/dev/null
+"$VPY" -m pip install --quiet --disable-pip-version-check -e ".[all]"
+
+if ! command -v ccx >/dev/null 2>&1; then
+  apt_install calculix-ccx || echo "setup: the finite-element commands that need CalculiX will" \
+    "say how to install it" >&2
+fi
+
+# Compile and cache the numba kernels now (a few seconds), not in the user's first command.
+"$VPY" -m microslip.warmup
