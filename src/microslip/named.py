@@ -72,5 +72,5 @@ def result(cls: type[T]) -> type[T]:
             own_post_init(self)
 
     cls.__post_init__ = __post_init__  # type: ignore[attr-defined]
-    cls.__repr__ = short_repr  # type: ignore[assignment]
+    cls.__repr__ = short_repr  # type: ignore[method-assign]
     return dataclasses.dataclass(frozen=True, eq=False, repr=False)(cls)
