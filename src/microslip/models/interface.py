@@ -1,0 +1,339 @@
+"""Real clamps in 1-D: an elastic shear layer under the bar and a clamping pressure law q(x).
+
+The paper's bar lies on a rigid Coulomb foundation under a uniform pressure. Here the bar
+(axial stiffness E A) rests on an elastic-perfectly-plastic shear layer of stiffness ``k`` per
+unit length (N/mm per mm) whose traction saturates at the local friction limit q(x) per unit
+length. Loaded from the virgin state by a force F at one end (distance s from the loaded
+section, 0 <= s <= L), a slip zone 0 <= s <= a forms next to the load and the rest sticks:
+
+- slip zone: N(s) = F - Q(s), with Q(s) = integral_0^s q;
+- stuck zone (layer elastic, free far end): u(s) = C cosh(lambda (L - s)), lambda = sqrt(k/EA);
+- slip front: k u(a) = q(a), so the stuck zone carries N(a) = (q(a)/lambda) tanh(lambda (L - a)).
+
+Hence, exactly, for a slip front a in [0, L]::
+
+    F(a) = Q(a) + (q(a) / lambda) tanh(lambda (L - a))
+    d(a) = q(a) / k + (F a - R(a)) / (E A),        R(s) = integral_0^s Q
+
+Uniform q gives Menq, Bielak & Griffin's microslip bar (shared/REFERENCES.md); k -> infinity
+gives the rigid-foundation bar with non-uniform pressure (Q(a) = F, d = integral (F - Q)/EA);
+both together give Goodman & Klumpp's d = F^2 / (2 E A q). Before slip (F < F(0)) the bar
+sticks with stiffness K0 = E A lambda tanh(lambda L).
+
+The layer stiffness combines the contact's stick slope (N/mm^3, the FE penalty friction law)
+over the width with the body's own through-thickness shear compliance (shear lag, as in the
+Tsai-Oplinger-Morton correction of bonded laps): with the shear traction falling linearly from
+the interface to the free (frictionless) clamped face, the interface moves t / (3 G) per unit
+shear stress more than the section's mean, so 1/k = 1/(k_c w) + t/(3 G w), G = E / (2 (1 + nu)).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import ParameterError
+from ..params import ClampParams
+
+__all__ = [
+    "PRESSURE_LAWS",
+    "PressureLaw",
+    "backbone_force",
+    "layer_stiffness",
+    "pressure_law",
+    "slip_front",
+    "tip_backbone",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class PressureLaw:
+    """A clamping-pressure shape along the clamped length, normalised to a mean of 1.
+
+    ``shape(xi)`` is p(xi) for xi = x / L in [0, 1] (x from one end of the clamped zone),
+    ``cumulative(xi)`` its integral from 0 and ``second(xi)`` the integral of that; the line
+    friction limit is q(x) = (mu F_N / L) p(x / L), so the total is always mu F_N.
+    """
+
+    name: str
+    shape: Callable[[FloatArray], FloatArray]
+    cumulative: Callable[[FloatArray], FloatArray]
+    second: Callable[[FloatArray], FloatArray]
+    description: str
+    #: p(xi) = p(1 - xi): the two halves of a centre-loaded bar are mirror images.
+    symmetric: bool = True
+
+
+def _uniform() -> PressureLaw:
+    return PressureLaw("uniform", lambda x: np.ones_like(x), lambda x: x + 0.0,
+                       lambda x: 0.5 * x * x, "uniform pressure F_N / (L w) (the paper's)")
+
+
+def power_law(exponent: float = 2.0, edge_ratio: float = 2.0) -> PressureLaw:
+    """Pressure rising from the middle to both edges: p = c (1 + b |2 xi - 1|^n).
+
+    ``edge_ratio`` = p(edge) / p(middle) = 1 + b >= 1, ``exponent`` n > 0 (2: parabolic); c
+    makes the mean 1. With z = 2 xi - 1, the integrals are exact polynomials in |z|.
+    """
+    n = float(exponent)
+    if not (math.isfinite(n) and n > 0.0):
+        raise ParameterError(f"pressure-law exponent must be > 0, got {exponent!r}")
+    r = float(edge_ratio)
+    if not (math.isfinite(r) and r >= 1.0):
+        raise ParameterError(f"pressure-law edge ratio must be >= 1, got {edge_ratio!r}")
+    b = r - 1.0
+    c = 1.0 / (1.0 + b / (n + 1.0))
+
+    def shape(x: FloatArray) -> FloatArray:
+        return c * (1.0 + b * np.abs(2.0 * x - 1.0) ** n)
+
+    def cumulative(x: FloatArray) -> FloatArray:
+        # with z = 2 xi - 1: integral_-1^z |z|^n dz = (1 + sgn z |z|^(n+1)) / (n+1)
+        z = 2.0 * x - 1.0
+        return c * (x + 0.5 * b * (1.0 + np.sign(z) * np.abs(z) ** (n + 1.0)) / (n + 1.0))
+
+    def second(x: FloatArray) -> FloatArray:
+        z = 2.0 * x - 1.0
+        inner = (x + 0.5 * (np.abs(z) ** (n + 2.0) - 1.0) / (n + 2.0)) / (n + 1.0)
+        return c * (0.5 * x * x + 0.5 * b * inner)
+
+    return PressureLaw(f"power(n={n:g}, edge_ratio={r:g})", shape, cumulative, second,
+                       f"p = c (1 + {b:g} |2x/L - 1|^{n:g}), edges {r:g} x the middle")
+
+
+#: Named pressure laws (``table`` and ``fe`` laws are built from data).
+PRESSURE_LAWS: dict[str, Callable[[], PressureLaw]] = {
+    "uniform": _uniform,
+    "parabolic": lambda: power_law(2.0, 2.0),
+}
+
+
+def pressure_law(name: str) -> PressureLaw:
+    """The registered law called ``name``."""
+    try:
+        return PRESSURE_LAWS[name]()
+    except KeyError:
+        raise ParameterError(
+            f"unknown pressure law {name!r}; choose one of {', '.join(PRESSURE_LAWS)}"
+        ) from None
+
+
+def layer_stiffness(params: ClampParams, stick_slope: float, *, shear_lag: bool = True) -> float:
+    """Shear-layer stiffness per unit length k, N/mm^2 (contact in series with shear lag).
+
+    ``stick_slope`` is the contact's tangential stiffness per unit area, N/mm^3 (math.inf: a
+    rigid contact). ``shear_lag`` adds the body's through-thickness shear compliance
+    t / (3 G w); without it and with a rigid contact, k is infinite (the paper's foundation).
+    """
+    if not stick_slope > 0.0:
+        raise ParameterError(f"stick slope must be > 0 N/mm^3, got {stick_slope!r}")
+    compliance = 1.0 / (stick_slope * params.width)
+    if shear_lag:
+        shear_modulus = params.modulus / (2.0 * (1.0 + params.poisson_ratio))
+        compliance += params.thickness / (3.0 * shear_modulus * params.width)
+    return math.inf if compliance == 0.0 else 1.0 / compliance
+
+
+@dataclass(frozen=True)
+class Domain:
+    """One loaded domain of the clamped zone: from the loaded section at xi0 = x0 / L it runs a
+    length ``length`` (mm) in the direction ``direction`` (+1 towards x = L, -1 towards x = 0).
+
+    ``axial`` E A (N), ``k`` the layer stiffness per unit length (N/mm^2, inf: rigid),
+    ``limit`` mu F_N of the whole clamped zone (N), ``span`` its length L (mm); the line
+    friction limit is q = (limit / span) p(xi) with s the distance from the loaded section.
+    """
+
+    length: float
+    axial: float
+    k: float
+    limit: float
+    span: float
+    law: PressureLaw
+    xi0: float
+    direction: float
+
+    @property
+    def lam(self) -> float:
+        return math.sqrt(self.k / self.axial) if math.isfinite(self.k) else math.inf
+
+    def _xi(self, s: FloatArray) -> FloatArray:
+        return self.xi0 + self.direction * s / self.span
+
+    def q(self, s: FloatArray) -> FloatArray:
+        return self.limit / self.span * self.law.shape(self._xi(s))
+
+    def Q(self, s: FloatArray) -> FloatArray:
+        """Friction limit integrated from the loaded section to s, N."""
+        p0 = self.law.cumulative(np.full_like(s, self.xi0))
+        return self.limit * self.direction * (self.law.cumulative(self._xi(s)) - p0)
+
+    def R(self, s: FloatArray) -> FloatArray:
+        """integral_0^s Q, N mm."""
+        xi = self._xi(s)
+        x0 = np.full_like(s, self.xi0)
+        p0 = self.law.cumulative(x0)
+        return self.limit * self.span * (self.law.second(xi) - self.law.second(x0)
+                                         - p0 * (xi - x0))
+
+    @property
+    def total(self) -> float:
+        """The domain's macroslip force, N."""
+        return float(self.Q(np.array([self.length]))[0])
+
+    def force(self, a: FloatArray) -> FloatArray:
+        """F(a): the load that puts the slip front at a."""
+        if math.isinf(self.lam):
+            return self.Q(a)
+        return self.Q(a) + self.q(a) / self.lam * np.tanh(self.lam * (self.length - a))
+
+    def displacement(self, a: FloatArray, f: FloatArray) -> FloatArray:
+        """d at the loaded section for slip front a under force f."""
+        layer = 0.0 if math.isinf(self.k) else self.q(a) / self.k
+        return layer + (f * a - self.R(a)) / self.axial
+
+    def stuck_stiffness(self) -> float:
+        return math.inf if math.isinf(self.lam) else self.axial * self.lam * math.tanh(
+            self.lam * self.length)
+
+
+def tip_domain(params: ClampParams, k: float, law: PressureLaw) -> Domain:
+    """The tip-loaded bar: loaded at x = L, one domain of length L."""
+    return Domain(params.length, params.axial_stiffness, k, params.macroslip_force,
+                  params.length, law, 1.0, -1.0)
+
+
+def centre_domains(params: ClampParams, k: float, law: PressureLaw) -> tuple[Domain, Domain]:
+    """The centre-loaded bar: tension (towards x = L) and compression (towards 0) halves."""
+    half = 0.5 * params.length
+    return tuple(Domain(half, params.axial_stiffness, k, params.macroslip_force,  # type: ignore[return-value]
+                        params.length, law, 0.5, sign) for sign in (1.0, -1.0))
+
+
+def slip_front(bar: Domain, force: ArrayLike, iterations: int = 64) -> FloatArray:
+    """The slip front a(F) in [0, L] by bisection on the monotone F(a) (a = 0 before slip)."""
+    f = np.asarray(force, dtype=float)
+    lo = np.zeros_like(f)
+    hi = np.full_like(f, bar.length)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        below = bar.force(mid) < f
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+    a = 0.5 * (lo + hi)
+    return np.where(f <= bar.force(np.zeros_like(f)), 0.0, a)
+
+
+def backbone_force(bar: Domain, force: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """(slip front a, displacement d) of the virgin curve at the forces given, mm."""
+    f = np.asarray(force, dtype=float)
+    if np.any(f >= bar.total):
+        raise ParameterError(f"force must stay below the macroslip force {bar.total:g} N")
+    a = slip_front(bar, f)
+    stuck = a <= 0.0
+    d = np.where(stuck, f / bar.stuck_stiffness(), bar.displacement(a, f))
+    return a, d
+
+
+def tip_backbone(params: ClampParams, force: ArrayLike, *, stick_slope: float = math.inf,
+                 shear_lag: bool = True,
+                 law: PressureLaw | None = None) -> tuple[FloatArray, FloatArray]:
+    """Exact virgin curve of the tip-loaded bar on a shear layer: (a, d) at ``force``, mm."""
+    k = layer_stiffness(params, stick_slope, shear_lag=shear_lag)
+    return backbone_force(tip_domain(params, k, law or _uniform()), force)
+
+
+#: Load cases of the 1-D interface model: the domains that the load acts on in parallel.
+LOADINGS: dict[str, Callable[[ClampParams, float, PressureLaw], tuple[Domain, ...]]] = {
+    "tip": lambda p, k, law: (tip_domain(p, k, law),),
+    "centre": centre_domains,
+}
+
+
+def _split(domains: tuple[Domain, ...], f: FloatArray, law: PressureLaw) -> list[FloatArray]:
+    """Share of the load carried by each parallel domain (equal displacement of all)."""
+    if len(domains) == 1:
+        return [f]
+    if law.symmetric:
+        return [f / len(domains)] * len(domains)
+    first, second = domains
+    lo, hi = np.zeros_like(f), f.copy()
+    for _ in range(60):  # d_1(F_1) - d_2(F - F_1) grows with F_1
+        mid = 0.5 * (lo + hi)
+        d1 = backbone_force(first, mid)[1]
+        d2 = backbone_force(second, f - mid)[1]
+        lo = np.where(d1 < d2, mid, lo)
+        hi = np.where(d1 < d2, hi, mid)
+    share = 0.5 * (lo + hi)
+    return [share, f - share]
+
+
+def virgin_curve(loading: str, params: ClampParams, force: ArrayLike, *,
+                 stick_slope: float = math.inf, shear_lag: bool = True,
+                 law: PressureLaw | None = None) -> tuple[FloatArray, FloatArray]:
+    """Exact virgin curve of a tip- or centre-loaded bar on a shear layer with pressure law.
+
+    Returns ``(slip, d)``: the slip length of each domain, shape (domains, len(force)), mm, and
+    the displacement of the loaded section, mm.
+    """
+    try:
+        build = LOADINGS[loading]
+    except KeyError:
+        raise ParameterError(
+            f"unknown loading {loading!r}; choose one of {', '.join(LOADINGS)}") from None
+    law = law or _uniform()
+    f = np.asarray(force, dtype=float)
+    domains = build(params, layer_stiffness(params, stick_slope, shear_lag=shear_lag), law)
+    limit = sum(d.total for d in domains)
+    if np.any(f >= limit) or np.any(f < 0.0):
+        raise ParameterError(
+            f"force must lie in [0, {limit:g}) N (below the macroslip force), got "
+            f"{float(np.max(f)):g} N")
+    shares = _split(domains, f, law)
+    results = [backbone_force(dom, share) for dom, share in zip(domains, shares, strict=True)]
+    slip = np.array([a for a, _ in results])
+    return slip, results[0][1]
+
+
+def masing_dissipation(loading: str, params: ClampParams, amplitude: float, *,
+                       stick_slope: float = math.inf, shear_lag: bool = True,
+                       law: PressureLaw | None = None, nodes: int = 64) -> tuple[float, float]:
+    """(W_d, d0): energy dissipated per Masing cycle of amplitude F0 (N mm) and peak d (mm).
+
+    W_d = 4 F0 d0 - 8 integral_0^F0 g(F) dF. The virgin curve g is linear up to the slip
+    onset F1 and smooth after it, so the integral is exact on [0, F1] and Gauss-Legendre with
+    ``nodes`` points on [F1, F0] (converged to rounding at the default).
+    """
+    kw = {"stick_slope": stick_slope, "shear_lag": shear_lag, "law": law}
+    f0 = float(amplitude)
+    d0 = float(virgin_curve(loading, params, np.array([f0]), **kw)[1][0])  # type: ignore[arg-type]
+    f1 = _slip_onset(loading, params, **kw)  # type: ignore[arg-type]
+    if f0 <= f1:
+        return 0.0, d0
+    x, wts = np.polynomial.legendre.leggauss(nodes)
+    f = 0.5 * (f0 - f1) * x + 0.5 * (f0 + f1)
+    d = virgin_curve(loading, params, f, **kw)[1]  # type: ignore[arg-type]
+    d1 = float(virgin_curve(loading, params, np.array([f1]), **kw)[1][0])  # type: ignore[arg-type]
+    area = 0.5 * f1 * d1 + 0.5 * (f0 - f1) * float(wts @ d)
+    return max(4.0 * f0 * d0 - 8.0 * area, 0.0), d0
+
+
+def _slip_onset(loading: str, params: ClampParams, *, stick_slope: float, shear_lag: bool,
+                law: PressureLaw | None) -> float:
+    """The load at which the first domain starts to slip, N (0 on a rigid foundation)."""
+    law = law or _uniform()
+    domains = LOADINGS[loading](params, layer_stiffness(params, stick_slope, shear_lag=shear_lag),
+                                law)
+    if math.isinf(domains[0].k):
+        return 0.0
+    zero = np.zeros(1)
+    onsets = [float(d.force(zero)[0]) for d in domains]
+    # Before slip the domains share the load in proportion to their stuck stiffnesses.
+    stiff = np.array([d.stuck_stiffness() for d in domains])
+    return float(min(o * stiff.sum() / k for o, k in zip(onsets, stiff, strict=True)))
