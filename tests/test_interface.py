@@ -141,3 +141,35 @@ def test_shear_lag_model_within_five_percent_of_fe(thickness: float) -> None:
     assert rigid > FE_ISSUE_11[thickness][1]
     if thickness > 20.0:
         assert rigid > 1.05 * FE_ISSUE_11[thickness][1]
+
+
+TITANIUM = dataclasses.replace(P, length=30.0, width=12.0, thickness=8.0, modulus=114000.0,
+                               poisson_ratio=0.34, friction=0.5, normal_force=12000.0)
+
+
+def test_validity_quiet_for_the_slender_bar() -> None:
+    from microslip.models.validity import validity
+
+    v = validity("tip", P, 213.0, stick_slope=1e5)
+    assert v.warnings == ()
+    assert v.slenderness == pytest.approx(254.0 / 3.18, rel=1e-15)
+    # a = F/q on the stiff layer, to within the layer's small share
+    assert v.slip_fraction == pytest.approx(213.0 / P.macroslip_force, rel=0.03)
+    assert 0.0 < v.stiffness_sensitivity < 1e-3
+
+
+def test_validity_warns_where_fe_disagrees() -> None:
+    """Issue 11's table: the 1-D model is 8 % high at L/t = 5 and a factor ~2 for the
+    titanium block; at 25.4 mm the rigid bar is 7 % high, the shear-layer bar within 2 %."""
+    from microslip.models.validity import validity
+
+    thick = validity("tip", dataclasses.replace(P, thickness=50.8), 213.0, stick_slope=1e5)
+    assert any("squat" in w for w in thick.warnings)
+    rigid = validity("tip", dataclasses.replace(P, thickness=25.4), 213.0)
+    assert [w for w in rigid.warnings if "shear lag" in w]
+    assert validity("tip", dataclasses.replace(P, thickness=25.4), 213.0,
+                    stick_slope=1e5).warnings == ()
+    soft = validity("tip", TITANIUM, 3600.0, stick_slope=1e4)
+    assert soft.stiffness_sensitivity > 1.0
+    assert any("contact stiffness" in w for w in soft.warnings)
+    assert all("microslip fe --model tip --length 30" in w for w in soft.warnings if "squat" in w)
