@@ -173,3 +173,66 @@ def test_validity_warns_where_fe_disagrees() -> None:
     assert soft.stiffness_sensitivity > 1.0
     assert any("contact stiffness" in w for w in soft.warnings)
     assert all("microslip fe --model tip --length 30" in w for w in soft.warnings if "squat" in w)
+
+
+@settings(max_examples=25, deadline=None)
+@given(values=st.lists(st.floats(0.0, 10.0), min_size=3, max_size=9), xi=st.floats(0.0, 1.0))
+def test_table_law_integrals(values: list[float], xi: float) -> None:
+    from microslip.models.interface import table_law
+
+    if sum(values) <= 1e-3:
+        values = [v + 1.0 for v in values]
+    nodes = np.linspace(0.0, 1.0, len(values)) ** 1.3  # uneven spacing
+    law = table_law(nodes * 254.0, values, 254.0)
+    x = np.array([xi])
+
+    def quad(f):  # type: ignore[no-untyped-def]
+        return integrate.quad(lambda t: f(np.array([t]))[0], 0, xi, points=list(nodes[1:-1]),
+                              epsabs=1e-14, epsrel=1e-13, limit=200)[0]
+
+    assert law.cumulative(np.array([1.0]))[0] == pytest.approx(1.0, rel=1e-13)
+    assert law.shape(np.array([nodes[1]]))[0] * np.trapezoid(values, nodes) == pytest.approx(
+        values[1], abs=1e-12)
+    assert law.cumulative(x)[0] == pytest.approx(quad(law.shape), abs=1e-12)
+    assert law.second(x)[0] == pytest.approx(quad(law.cumulative), abs=1e-12)
+
+
+def test_table_of_a_power_law_converges_to_it() -> None:
+    """A finely tabulated parabola gives the parabola's loop (second-order interpolation)."""
+    from microslip.models.interface import table_law
+
+    exact = masing_dissipation("centre", P, 213.0, stick_slope=1e4, law=power_law(2.0, 3.0))[0]
+    errors = []
+    for n in (21, 41, 81):
+        x = np.linspace(0.0, P.length, n)
+        law = table_law(x, 1 + 2 * np.abs(2 * x / P.length - 1) ** 2, P.length)
+        assert law.symmetric
+        errors.append(abs(masing_dissipation("centre", P, 213.0, stick_slope=1e4, law=law)[0]
+                          / exact - 1))
+    assert errors[-1] < 1e-4
+    assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.1)  # order 2
+
+
+def test_asymmetric_table_splits_the_centre_load_by_equal_displacement() -> None:
+    from microslip.models.interface import table_law
+
+    law = table_law([0.0, P.length], [1.0, 3.0], P.length)  # rises towards x = L
+    assert not law.symmetric
+    slip, d = virgin_curve("centre", P, np.array([150.0]), shear_lag=False, law=law)
+    # the tension half (towards x = L) is pressed harder: it slips less
+    assert slip[0, 0] < slip[1, 0]
+    # both halves move the loaded section by the same d under their own shares
+    from microslip.models.interface import centre_domains
+
+    halves = centre_domains(P, math.inf, law)
+    shares = _shares(halves, d[0])  # each half's force at the model's d
+    assert sum(shares) == pytest.approx(150.0, rel=1e-10)
+    assert shares[0] > shares[1]
+
+
+def _shares(halves, d):  # type: ignore[no-untyped-def]
+    """Force of each half at displacement d, by root finding on its own virgin curve."""
+    from microslip.models.interface import backbone_force
+
+    return [optimize.brentq(lambda f, h=h: backbone_force(h, np.array([f]))[1][0] - d, 0.0,
+                            0.999 * h.total, xtol=1e-14, rtol=1e-15) for h in halves]

@@ -45,7 +45,9 @@ __all__ = [
     "backbone_force",
     "layer_stiffness",
     "pressure_law",
+    "read_pressure_table",
     "slip_front",
+    "table_law",
     "tip_backbone",
 ]
 
@@ -105,6 +107,78 @@ def power_law(exponent: float = 2.0, edge_ratio: float = 2.0) -> PressureLaw:
 
     return PressureLaw(f"power(n={n:g}, edge_ratio={r:g})", shape, cumulative, second,
                        f"p = c (1 + {b:g} |2x/L - 1|^{n:g}), edges {r:g} x the middle")
+
+
+def table_law(position: ArrayLike, pressure: ArrayLike, length: float) -> PressureLaw:
+    """A measured or computed pressure, linear between the points given (x in mm from the end
+    x = 0 of the clamped zone, any pressure unit: the shape is normalised to a mean of 1).
+
+    The points must start at x = 0, end at x = ``length`` and increase; pressures >= 0 with a
+    positive mean. Integrals are exact for the piecewise-linear shape.
+    """
+    x = np.asarray(position, dtype=float) / float(length)
+    p = np.asarray(pressure, dtype=float)
+    if x.ndim != 1 or x.shape != p.shape or x.size < 2:
+        raise ParameterError("a pressure table needs two columns of equal length, >= 2 rows")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(p))):
+        raise ParameterError("a pressure table must hold finite numbers only")
+    if abs(x[0]) > 1e-9 or abs(x[-1] - 1.0) > 1e-9 or np.any(np.diff(x) <= 0.0):
+        raise ParameterError(
+            f"pressure-table positions must increase from 0 to the clamped length {length:g} mm,"
+            f" got {x[0] * length:g} ... {x[-1] * length:g} mm")
+    if np.any(p < 0.0):
+        raise ParameterError(f"pressure-table values must be >= 0, got {float(p.min()):g}")
+    x[0], x[-1] = 0.0, 1.0
+    h = np.diff(x)
+    mean = float(np.sum(0.5 * (p[:-1] + p[1:]) * h))
+    if mean <= 0.0:
+        raise ParameterError("a pressure table must have a positive mean")
+    p = p / mean
+    slope = np.diff(p) / h
+    # at the nodes: P (exact trapezoid sums) and PP (exact integral of the quadratic P)
+    big_p = np.concatenate(([0.0], np.cumsum(0.5 * (p[:-1] + p[1:]) * h)))
+    big_pp = np.concatenate(([0.0], np.cumsum(big_p[:-1] * h + p[:-1] * h**2 / 2
+                                              + slope * h**3 / 6)))
+
+    def local(xi: FloatArray) -> tuple[NDArray[np.intp], FloatArray]:
+        j = np.clip(np.searchsorted(x, xi, side="right") - 1, 0, x.size - 2)
+        return j, xi - x[j]
+
+    def shape(xi: FloatArray) -> FloatArray:
+        j, e = local(xi)
+        return p[j] + slope[j] * e
+
+    def cumulative(xi: FloatArray) -> FloatArray:
+        j, e = local(xi)
+        return big_p[j] + p[j] * e + slope[j] * e**2 / 2
+
+    def second(xi: FloatArray) -> FloatArray:
+        j, e = local(xi)
+        return big_pp[j] + big_p[j] * e + p[j] * e**2 / 2 + slope[j] * e**3 / 6
+
+    mirrored = np.interp(1.0 - x, x, p)
+    return PressureLaw(f"table({x.size} points)", shape, cumulative, second,
+                       "piecewise-linear pressure from a table", symmetric=bool(
+                           np.allclose(mirrored, p, rtol=1e-12, atol=1e-12)))
+
+
+def read_pressure_table(path: str, length: float) -> PressureLaw:
+    """A :func:`table_law` from a CSV file with the header ``x_mm,pressure``."""
+    import csv
+
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.DictReader(fh))
+    except OSError as exc:
+        raise ParameterError(f"cannot read pressure table {path}: {exc.strerror}") from None
+    if not rows or set(rows[0]) != {"x_mm", "pressure"}:
+        raise ParameterError(f"pressure table {path} needs exactly the columns x_mm,pressure")
+    try:
+        x = [float(r["x_mm"]) for r in rows]
+        p = [float(r["pressure"]) for r in rows]
+    except (TypeError, ValueError):
+        raise ParameterError(f"pressure table {path} holds a value that is not a number") from None
+    return table_law(x, p, length)
 
 
 #: Named pressure laws (``table`` and ``fe`` laws are built from data).
