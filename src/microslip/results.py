@@ -44,10 +44,10 @@ class Backbone:
     stored_energy : ndarray, shape (n + 1,)
         Elastic strain energy held in the bar at each increment, N·mm (linear fall of the
         axial force over each slip length: F_d delta_d / 3 summed over the domains).
-    params : ClampParams, pair of them, or None
-        The clamped zone used (the planar resultant of two models keeps the pair).
-    options : ModelOptions, pair of them, or None
-        The reading of the paper used (a pair for the planar resultant).
+    params : ClampParams or None
+        The clamped zone used (None for the planar resultant of two models).
+    options : ModelOptions or None
+        The reading of the paper used (None for the planar resultant).
     """
 
     model: str
@@ -58,8 +58,8 @@ class Backbone:
     width: FloatArray
     thickness: FloatArray
     stored_energy: FloatArray
-    params: ClampParams | tuple[ClampParams | None, ClampParams | None] | None = None
-    options: ModelOptions | tuple[ModelOptions | None, ModelOptions | None] | None = None
+    params: ClampParams | None = None
+    options: ModelOptions | None = None
 
     @property
     def amplitude(self) -> float:
