@@ -22,6 +22,18 @@ and adding one :class:`ModelSpec` entry, which must provide:
   reports);
 * ``exact``: the closed forms of its rigid-foundation limit (:class:`RigidLimit`).
 
+The step functions return flat tuples (state first, then what is observed): numba's parallel
+analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
+on-disk cache keys a compiled function on its own file only: after editing a step in
+``tip.py`` or ``centre.py`` (or :func:`~microslip.energy.masing_energies`), touch
+``batch_kernels.py`` or remove its ``__pycache__/*.nbi`` so that the batch kernels are
+rebuilt (``tests/test_batch.py`` compares them bit for bit with :func:`first_loading` and
+fails on a stale cache).
+
+This package may import ``closedform``, ``energy`` (its compiled sums), ``options``,
+``params``, ``results``, ``named`` and ``errors``; never ``batch``, ``planar``, the FE code
+or the command line.
+
 >>> from microslip import preset, first_loading, ModelOptions
 >>> b = first_loading("tip", preset("table1"), 267.0, increments=100,
 ...                   options=ModelOptions.uncorrected())
