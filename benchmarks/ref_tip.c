@@ -1,5 +1,5 @@
 /* Reference C loop of the tip model's recurrence (paper Eqs 2-10) with the Masing energies,
- * the same arithmetic as microslip.batch.kernels.tip_kernel (consistent Poisson update,
+ * the same arithmetic as microslip.models.batch_kernels.tip_kernel (consistent Poisson update,
  * length update on, secant strain energy), for benchmarks/bench_batch.py.
  *
  * Usage: ref_tip CASES INCREMENTS MODE OUT.bin

@@ -255,8 +255,15 @@ def test_contract_of_planar_damping():
     for name in ("tip", "centre", "paper"):
         assert getattr(r, name).loss_factor > 0
     assert r.phase_deg == 0.0 and r.strain_energy_kind == "branch"
-    assert r.work_loss_factor == pytest.approx(
-        r.work_dissipated_energy / (2 * math.pi * r.work_strain_energy), rel=1e-15)
+    # the work of the load on decoupled bars: tip_symmetry tip loops plus one centre loop.
+    # U adds exactly; W is the loop work of 256 samples of the cycle against the Masing loop
+    # of the 200-increment backbones (they differ by 7.5e-5)
+    k = r.tip_symmetry
+    w = k * r.tip.dissipated_energy + r.centre.dissipated_energy
+    u = k * r.tip.strain_energy + r.centre.strain_energy
+    assert r.work_strain_energy == pytest.approx(u, rel=1e-14)
+    assert r.work_dissipated_energy == pytest.approx(w, rel=2e-4)
+    assert r.work_loss_factor == pytest.approx(w / (2 * math.pi * u), rel=2e-4)
     # centre_options defaults to options: the physical reading cannot reach 16000 N
     with pytest.raises(MacroslipError):
         planar_damping(TIP, CENTRE, 2000.0, 16000.0, increments=50, options=ModelOptions())

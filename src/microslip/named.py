@@ -23,19 +23,20 @@ False
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
-if TYPE_CHECKING:  # tells mypy that @result makes a frozen dataclass
+T = TypeVar("T")
+
+if TYPE_CHECKING:  # tells mypy that @result makes a (frozen) dataclass
     from typing_extensions import dataclass_transform
 else:
-    def dataclass_transform(**kwargs: Any) -> Any:
+    def dataclass_transform(**kwargs: Any) -> Callable[[T], T]:
         return lambda f: f
 
 __all__ = ["readonly", "result", "short_repr"]
-
-T = TypeVar("T")
 
 
 def readonly(a: Any) -> np.ndarray:

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from .errors import ParameterError
 
-__all__ = ["CENTRE_READINGS", "POISSON_MODES", "ModelOptions"]
+__all__ = ["CENTRE_READINGS", "POISSON_CODES", "POISSON_MODES", "READING_CODES", "ModelOptions"]
 
 #: Poisson (cross-section) update, Eqs 6-7 (tip) and 12-15 (centre).
 #:
@@ -31,6 +31,10 @@ POISSON_MODES = ("consistent", "paper-literal", "off")
 #: Eq. 17 (the only force that recovers the exact displacement F^2/(8EAq)); macroslip where
 #: u reaches the half length, at 2 mu F_N.
 CENTRE_READINGS = ("physical", "paper")
+
+#: Integer codes of the Poisson modes and readings, as the compiled kernels take them.
+POISSON_CODES: dict[str, int] = {m: i for i, m in enumerate(POISSON_MODES)}
+READING_CODES: dict[str, int] = {r: i for i, r in enumerate(CENTRE_READINGS)}
 
 
 @dataclass(frozen=True)
@@ -80,6 +84,11 @@ class ModelOptions:
     def paper(cls) -> ModelOptions:
         """The paper's equations as printed (Eqs 6-7 with total force, Eq. 15's sign, Eq. 11)."""
         return cls(poisson="paper-literal", length_update=True, centre="paper")
+
+    @property
+    def codes(self) -> tuple[int, int, int]:
+        """(Poisson code, length update 0/1, reading code): the compiled kernels' switches."""
+        return POISSON_CODES[self.poisson], int(self.length_update), READING_CODES[self.centre]
 
     @property
     def corrections(self) -> bool:

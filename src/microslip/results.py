@@ -2,36 +2,41 @@
 
 Whatever produced a loop (an incremental model with Masing's rule, a finite-element run),
 it arrives as a :class:`HysteresisLoop`, so comparison code never cares where it came from.
-Units: force N, displacement and lengths mm, energy N·mm.
+Units: force N, displacement and lengths mm, energy N·mm. Every result is a
+:func:`microslip.named.result`: frozen, read-only arrays, identity equality, short repr.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from .named import result
+from .options import ModelOptions
+from .params import ClampParams
 
 __all__ = ["Backbone", "DampingResult", "HysteresisLoop"]
 
 FloatArray = NDArray[np.float64]
 
 
-@dataclass(frozen=True)
+@result
 class Backbone:
     """First-loading (virgin) curve of a 1-D microslip model, increment by increment.
 
     Attributes
     ----------
     model : str
-        ``"tip"`` or ``"centre"``.
+        A key of :data:`microslip.models.MODELS`.
     force : ndarray, shape (n + 1,)
         Applied force F_T(i) = F0 i / n, N; ``force[0] == 0``.
     displacement : ndarray, shape (n + 1,)
         Displacement of the loaded section delta_x(i), mm.
     domains : tuple of str
-        Names of the slip domains: ``("tip",)`` or ``("tension", "compression")``.
+        Names of the slip domains (:attr:`microslip.models.ModelSpec.domains`).
     slip_length : ndarray, shape (n + 1, n_domains)
         Slip length u_i of each domain, mm.
     width, thickness : ndarray, shape (n + 1, n_domains)
@@ -39,10 +44,10 @@ class Backbone:
     stored_energy : ndarray, shape (n + 1,)
         Elastic strain energy held in the bar at each increment, N·mm (linear fall of the
         axial force over each slip length: F_d delta_d / 3 summed over the domains).
-    params : object
-        The :class:`~microslip.params.ClampParams` used.
-    options : object
-        The :class:`~microslip.options.ModelOptions` used.
+    params : ClampParams or None
+        The clamped zone used (None for the planar resultant of two models).
+    options : ModelOptions or None
+        The reading of the paper used (None for the planar resultant).
     """
 
     model: str
@@ -53,8 +58,8 @@ class Backbone:
     width: FloatArray
     thickness: FloatArray
     stored_energy: FloatArray
-    params: Any = None
-    options: Any = None
+    params: ClampParams | None = None
+    options: ModelOptions | None = None
 
     @property
     def amplitude(self) -> float:
@@ -71,7 +76,7 @@ class Backbone:
         return int(self.force.shape[0] - 1)
 
 
-@dataclass(frozen=True)
+@result
 class HysteresisLoop:
     """A closed force-displacement loop, starting and ending at the positive peak.
 
@@ -103,7 +108,7 @@ class HysteresisLoop:
         return float(0.5 * (np.max(self.displacement) - np.min(self.displacement)))
 
 
-@dataclass(frozen=True)
+@result
 class DampingResult:
     """Damping of one loop: dissipated energy, strain energy and loss factor (Eqs 21-23).
 

@@ -10,12 +10,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
-from ..errors import MacroslipError, MicroslipError, ParameterError
-from ..models import MODELS, check_increments, get_model
+from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, STRAIN_ENERGY_CODES
+from ..errors import MacroslipError, ParameterError
+from ..models import check_increments, get_model
+from ..named import result
 from ..options import ModelOptions
 from ..params import ClampParams
-from . import fallback, kernels
 
 __all__ = [
     "BACKENDS",
@@ -40,16 +40,16 @@ PARAM_FIELDS: dict[str, str] = {
     "normal_force": "N",
 }
 
-#: Batch backends: ``numba`` (compiled, parallel), ``numpy`` (vectorised fallback) and
-#: ``python`` (the compiled kernels' source run by the interpreter; for benchmarks only).
-BACKENDS = ("numba", "numpy", "python")
+#: Batch backends: ``numba`` (compiled, parallel) and ``python`` (the same kernels' source
+#: run by the interpreter, each kernel's ``py_func``; slow, for benchmarks and tests only).
+BACKENDS = ("numba", "python")
 
 FloatArray = NDArray[np.float64]
 
 
 def default_backend() -> str:
-    """``numba`` when it is installed, else ``numpy``."""
-    return "numba" if kernels.HAVE_NUMBA else "numpy"
+    """The backend used when none is named: ``numba``."""
+    return BACKENDS[0]
 
 
 @dataclass(frozen=True)
@@ -92,7 +92,7 @@ class BatchInput:
         return int(self.amplitude.shape[0])
 
 
-@dataclass(frozen=True)
+@result
 class BatchResult:
     """Damping of a batch of cases (paper Eqs 21-23), one value per case.
 
@@ -101,7 +101,7 @@ class BatchResult:
     Attributes
     ----------
     model : str
-        ``"tip"`` or ``"centre"``.
+        A key of :data:`microslip.models.MODELS`.
     increments : int
         Force increments of each first loading.
     options : ModelOptions
@@ -233,10 +233,10 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
     opt = options if options is not None else ModelOptions()
     if not isinstance(opt, ModelOptions):
         raise ParameterError(f"options must be ModelOptions, got {type(opt).__name__}")
-    if strain_energy not in STRAIN_ENERGY or strain_energy not in kernels.KIND_CODES:
+    if strain_energy not in STRAIN_ENERGY:
         raise ParameterError(
             f"unknown strain-energy definition {strain_energy!r}; choose one of "
-            f"{', '.join(k for k in STRAIN_ENERGY if k in kernels.KIND_CODES)}"
+            f"{', '.join(STRAIN_ENERGY)}"
         )
     n = check_increments(increments)
     values = _param_values(params)
@@ -268,7 +268,8 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
     ok = amp_f < limit
     if not ok.all():
         i = int(np.argmin(ok))
-        reading = f", {opt.centre} reading" if model == "centre" else ""
+        name = spec.reading(opt)
+        reading = f", {name} reading" if name else ""
         rule = "2 mu F_N" if factor == 2.0 else "mu F_N"
         raise MacroslipError(
             f"amplitude {amp_f[i]:g} N is at or beyond the macroslip limit of the {model} "
@@ -298,12 +299,8 @@ def _numba_threads(threads: int | None) -> Iterator[None]:
 
 
 def _kernel(model: str, backend: str) -> Callable[..., None]:
-    if backend == "numpy":
-        return fallback.tip_numpy if model == "tip" else fallback.centre_numpy
-    k = kernels.tip_kernel if model == "tip" else kernels.centre_kernel
-    if backend == "python":
-        return getattr(k, "py_func", k)
-    return k
+    k: Any = get_model(model).batch_kernel  # a numba dispatcher
+    return k.py_func if backend == "python" else k
 
 
 def run_batch(inp: BatchInput, *, backend: str | None = None,
@@ -312,23 +309,16 @@ def run_batch(inp: BatchInput, *, backend: str | None = None,
     be = default_backend() if backend is None else backend
     if be not in BACKENDS:
         raise ParameterError(f"unknown batch backend {be!r}; choose one of {', '.join(BACKENDS)}")
-    if be == "numba" and not kernels.HAVE_NUMBA:
-        raise MicroslipError("the numba backend needs numba: pip install 'microslip[sweep]'")
     size = inp.size
     out = [np.empty(size) for _ in range(5)]
     opt = inp.options
-    common = (inp.amplitude, inp.length, inp.width, inp.thickness, inp.modulus,
-              inp.poisson_ratio, inp.friction, inp.normal_force, inp.increments,
-              kernels.POISSON_CODES[opt.poisson], int(opt.length_update))
-    kind = kernels.KIND_CODES[inp.strain_energy_kind]
+    args = (inp.amplitude, inp.length, inp.width, inp.thickness, inp.modulus,
+            inp.poisson_ratio, inp.friction, inp.normal_force, inp.increments, *opt.codes,
+            STRAIN_ENERGY_CODES[inp.strain_energy_kind])
     kernel = _kernel(inp.model, be)
     if size:
         with _numba_threads(threads if be == "numba" else None):
-            if inp.model == "tip":
-                kernel(*common, kind, *out)
-            else:
-                reading = 0 if opt.centre == "physical" else 1
-                kernel(*common, reading, kind, *out)
+            kernel(*args, *out)
     d0, w, u, eta, section = out
     ok = (section > 0.0) & np.isfinite(d0) & np.isfinite(eta)
     if not ok.all():
@@ -377,8 +367,8 @@ def batch_damping(model: str, params: ClampParams | Mapping[str, ArrayLike],
     options : ModelOptions, optional
     strain_energy : str
         Definition of U (``secant``, ``backbone``, ``branch``, ``stored``).
-    backend : {"numba", "numpy", "python"}, optional
-        Default: numba when installed, else numpy.
+    backend : {"numba", "python"}, optional
+        Default: numba.
     threads : int, optional
         Threads of the numba backend (default: all).
 
@@ -406,5 +396,4 @@ def batch_damping(model: str, params: ClampParams | Mapping[str, ArrayLike],
     return run_batch(inp, backend=backend, threads=threads)
 
 
-assert set(MODELS) == {"tip", "centre"}, "the batch kernels cover the tip and centre models"
 assert [f.name for f in fields(ClampParams)] == list(PARAM_FIELDS)

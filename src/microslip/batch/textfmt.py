@@ -21,9 +21,10 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 import numpy as np
+from numba import njit, prange
 from numpy.typing import ArrayLike, NDArray
 
-from .kernels import HAVE_NUMBA, njit, prange
+HAVE_NUMBA = True  # numba is a core dependency; the pure-Python path stays as reference
 
 __all__ = ["format_table", "format_table_python"]
 

@@ -6,7 +6,8 @@ import argparse
 from typing import Any
 
 from ..energy import damping
-from ..models import MODELS, check_increments, macroslip_force
+from ..models import MODELS, check_increments, get_model, macroslip_force
+from ..options import ModelOptions
 from ..params import ClampParams
 from ..results import DampingResult
 from .common import (
@@ -37,10 +38,12 @@ def add_parser(sub: Any) -> None:
 
 
 def result_json(model: str, params: ClampParams, result: DampingResult, increments: int,
-                options: Any) -> dict[str, Any]:
-    """The JSON object of a loop result; keys carry their units."""
+                options: ModelOptions) -> dict[str, Any]:
+    """The JSON object of a loop result (made by :func:`microslip.damping`, so it carries its
+    backbone); keys carry their units."""
     bb = result.backbone
-    assert bb is not None
+    if bb is None:
+        raise ValueError("a loop result from microslip.damping carries its backbone")
     slip = {name: float(bb.slip_length[-1, i]) for i, name in enumerate(bb.domains)}
     out = {
         "model": model,
@@ -68,9 +71,10 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
         return 0
+    reading = get_model(args.model).reading(opt)
     print(f"{args.model} model ({MODELS[args.model].equations}), {n} increments, "
           f"poisson={opt.poisson}, length_update={opt.length_update}"
-          + (f", centre reading={opt.centre}" if args.model == "centre" else ""))
+          + (f", centre reading={reading}" if reading else ""))
     print(f"  amplitude F0           {amplitude:12.6g} N  (macroslip at "
           f"{out['macroslip_force_N']:.6g} N)")
     print(f"  peak displacement d0   {result.peak_displacement:12.6g} mm")

@@ -1,5 +1,39 @@
 """The paper's two incremental 1-D microslip models and the registry that names them.
 
+Every caller that needs to know something model-specific asks :data:`MODELS`; nothing
+outside this package compares a model's name with a string. Adding a model (a Menq
+shear-layer bar, a pressure law q(x), a Jenkins or Iwan element) means writing its module
+and adding one :class:`ModelSpec` entry, which must provide:
+
+* ``name``, ``label`` (for headers) and ``equations`` (the paper's equation numbers);
+* ``domains``: the names of its slip domains (one column of a Backbone each);
+* ``load_case``: where a finite-element model applies the force (a key of the load-case
+  registry :mod:`microslip.loading`: ``"tip"`` or ``"centre"``);
+* ``macroslip_factor(options)``: the macroslip force as a multiple of mu F_N;
+* ``reading(options)``: the name of the reading of the paper it follows, or None;
+* ``backbone``: a compiled function recording the first loading of one case, with the
+  signature of :func:`~microslip.models.tip.tip_backbone` (the seven ClampParams fields
+  as numbers, then the three :attr:`ModelOptions.codes`);
+* ``batch_kernel``: a compiled function running many cases with the signature of
+  :func:`~microslip.models.batch_kernels.tip_kernel`; both call the model's one scalar
+  step function (state in, state out, a per-case constants tuple), so the physics is
+  written once;
+* ``stored_energy``: the compiled elastic energy of a state (what strain energy ``stored``
+  reports);
+* ``exact``: the closed forms of its rigid-foundation limit (:class:`RigidLimit`).
+
+The step functions return flat tuples (state first, then what is observed): numba's parallel
+analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
+on-disk cache keys a compiled function on its own file only: after editing a step in
+``tip.py`` or ``centre.py`` (or :func:`~microslip.energy.masing_energies`), touch
+``batch_kernels.py`` or remove its ``__pycache__/*.nbi`` so that the batch kernels are
+rebuilt (``tests/test_batch.py`` compares them bit for bit with :func:`first_loading` and
+fails on a stale cache).
+
+This package may import ``closedform``, ``energy`` (its compiled sums), ``options``,
+``params``, ``results``, ``named`` and ``errors``; never ``batch``, ``planar``, the FE code
+or the command line.
+
 >>> from microslip import preset, first_loading, ModelOptions
 >>> b = first_loading("tip", preset("table1"), 267.0, increments=100,
 ...                   options=ModelOptions.uncorrected())
@@ -17,19 +51,20 @@ from typing import Any
 
 import numpy as np
 
+from .. import closedform
 from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude
 from ..results import Backbone
-from .centre import CentreState, centre_initial, centre_step
-from .tip import TipState, tip_initial, tip_step
+from .batch_kernels import centre_kernel, tip_kernel
+from .centre import centre_backbone, centre_step, centre_stored_energy
+from .tip import tip_backbone, tip_step, tip_stored_energy
 
 __all__ = [
     "MAX_INCREMENTS",
     "MODELS",
-    "CentreState",
     "ModelSpec",
-    "TipState",
+    "RigidLimit",
     "centre_step",
     "check_increments",
     "first_loading",
@@ -43,39 +78,82 @@ MAX_INCREMENTS = 10_000_000
 
 
 @dataclass(frozen=True)
+class RigidLimit:
+    """Closed forms of a model with both updates off (bar on a rigid Coulomb foundation).
+
+    Each takes ``(force or amplitude, ea, q)`` (``slip_length`` only ``(force, q)``) with
+    ea = E A in N and q = mu F_N / L in N/mm; see :mod:`microslip.closedform`.
+    """
+
+    displacement: Callable[..., Any]
+    slip_length: Callable[..., Any]
+    dissipated_energy: Callable[..., float]
+    stored_energy: Callable[..., float]
+
+
+@dataclass(frozen=True)
 class ModelSpec:
-    """One incremental model: its kernel and how to read its state."""
+    """One incremental model: everything a caller may need to know about it."""
 
     name: str
-    domains: tuple[str, ...]
-    initial: Callable[[Any], Any]
-    step: Callable[[Any, Any, Any, ModelOptions], Any]
-    #: Macroslip force as a multiple of mu F_N, for each reading of the centre model.
-    macroslip_factor: Callable[[ModelOptions], float]
-    #: Stored elastic energy from a state (N·mm): sum over domains of F_d delta_d / 3.
-    stored_energy: Callable[[Any], Any]
+    label: str
     equations: str
+    domains: tuple[str, ...]
+    load_case: str
+    #: Macroslip force as a multiple of mu F_N, for the reading in the options.
+    macroslip_factor: Callable[[ModelOptions], float]
+    #: Name of the reading of the paper the model follows (None: only one reading).
+    reading: Callable[[ModelOptions], str | None]
+    backbone: Callable[..., tuple[np.ndarray, ...]]
+    batch_kernel: Callable[..., None]
+    stored_energy: Callable[..., float]
+    exact: RigidLimit
+
+
+def _one(opt: ModelOptions) -> float:
+    return 1.0
+
+
+def _no_reading(opt: ModelOptions) -> str | None:
+    return None
+
+
+def _centre_factor(opt: ModelOptions) -> float:
+    return 1.0 if opt.centre == "physical" else 2.0
+
+
+def _centre_reading(opt: ModelOptions) -> str | None:
+    return opt.centre
 
 
 MODELS: dict[str, ModelSpec] = {
     "tip": ModelSpec(
         name="tip",
-        domains=("tip",),
-        initial=tip_initial,
-        step=tip_step,
-        macroslip_factor=lambda opt: 1.0,
-        stored_energy=lambda s: s.force * s.displacement / 3.0,
+        label="tip-loaded bar",
         equations="Eqs 2-10",
+        domains=("tip",),
+        load_case="tip",
+        macroslip_factor=_one,
+        reading=_no_reading,
+        backbone=tip_backbone,
+        batch_kernel=tip_kernel,
+        stored_energy=tip_stored_energy,
+        exact=RigidLimit(closedform.tip_displacement, closedform.tip_slip_length,
+                         closedform.tip_dissipated_energy, closedform.tip_stored_energy),
     ),
     "centre": ModelSpec(
         name="centre",
-        domains=("tension", "compression"),
-        initial=centre_initial,
-        step=centre_step,
-        macroslip_factor=lambda opt: 1.0 if opt.centre == "physical" else 2.0,
-        # Physically each half carries F/2 over its slip length, whatever the reading.
-        stored_energy=lambda s: 0.5 * s.force * s.domain_displacement.sum(axis=0) / 3.0,
+        label="centre-loaded bar",
         equations="Eqs 11-18",
+        domains=("tension", "compression"),
+        load_case="centre",
+        macroslip_factor=_centre_factor,
+        reading=_centre_reading,
+        backbone=centre_backbone,
+        batch_kernel=centre_kernel,
+        stored_energy=centre_stored_energy,
+        exact=RigidLimit(closedform.centre_displacement, closedform.centre_slip_length,
+                         closedform.centre_dissipated_energy, closedform.centre_stored_energy),
     ),
 }
 
@@ -122,7 +200,8 @@ def check_below_macroslip(model: str, params: ClampParams, amplitude: float,
                           options: ModelOptions) -> None:
     limit = macroslip_force(model, params, options)
     if amplitude >= limit:
-        reading = f", {options.centre} reading" if model == "centre" else ""
+        name = get_model(model).reading(options)
+        reading = f", {name} reading" if name else ""
         raise MacroslipError(
             f"amplitude {amplitude:g} N is at or beyond the macroslip limit of the {model} "
             f"model ({limit:g} N{reading}); microslip needs 0 < amplitude < {limit:g} N"
@@ -149,7 +228,13 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     -------
     Backbone
         Force, displacement, slip length, cross-section and stored energy at each of the
-        n + 1 increments (the unloaded state first).
+        n + 1 increments (the unloaded state first); force i is ``amplitude * (i / n)``.
+
+    Notes
+    -----
+    The recurrence is the model's one compiled step function (tip: Eqs 2-10,
+    :func:`~microslip.models.tip.tip_step`; centre: Eqs 11-18,
+    :func:`~microslip.models.centre.centre_step`), the same the batch engine runs.
 
     Raises
     ------
@@ -164,20 +249,11 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     n = check_increments(increments)
     check_below_macroslip(model, params, f0, opt)
 
-    forces = f0 * np.arange(n + 1) / n
-    state = spec.initial(params)
-    states = [state]
-    for f in forces[1:]:
-        state = spec.step(f, state, params, opt)
-        states.append(state)
-
-    def col(name: str) -> np.ndarray:
-        arr = np.array([getattr(s, name) for s in states], dtype=float)
-        return arr.reshape(n + 1, -1)
-
-    disp = np.array([s.displacement for s in states], dtype=float)
-    stored = np.array([spec.stored_energy(s) for s in states], dtype=float)
-    section_ok = np.all(col("width") > 0) and np.all(col("thickness") > 0)
+    p = params
+    forces, disp, stored, slip, width, thickness = spec.backbone(
+        f0, n, p.length, p.width, p.thickness, p.modulus, p.poisson_ratio, p.friction,
+        p.normal_force, *opt.codes)
+    section_ok = np.all(width > 0) and np.all(thickness > 0)
     if not (np.all(np.isfinite(disp)) and section_ok):
         hint = (" (the paper-literal Poisson update shrinks the section at every increment; "
                 "use fewer increments or poisson='consistent')" if opt.poisson == "paper-literal"
@@ -191,9 +267,9 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
         force=forces,
         displacement=disp,
         domains=spec.domains,
-        slip_length=col("slip_length"),
-        width=col("width"),
-        thickness=col("thickness"),
+        slip_length=slip,
+        width=width,
+        thickness=thickness,
         stored_energy=stored,
         params=params,
         options=opt,

@@ -1,61 +1,67 @@
-"""Centre-loaded microslip model (paper, Section 2.2, Eqs 11-18)."""
+"""Centre-loaded microslip model (paper, Section 2.2, Eqs 11-18): its one compiled kernel.
+
+:func:`centre_step` is the whole recurrence of one increment of one case, a scalar ``@njit``
+function. The batch engine (:func:`microslip.models.batch_kernels.centre_kernel`) inlines it per
+lane of a chunk of cases; :func:`centre_backbone` calls it to record the virgin curve of one
+case (:func:`microslip.first_loading`). There is no other copy of the arithmetic.
+"""
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
-
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numba import njit
 
-from ..options import ModelOptions
-
-__all__ = ["CentreState", "centre_initial", "centre_step"]
-
-#: Sign of the elongation of each domain under a positive load: tension, compression.
-_SIGN = np.array([1.0, -1.0])
+__all__ = ["centre_backbone", "centre_constants", "centre_flags", "centre_step",
+           "centre_stored_energy"]
 
 
-class CentreState(NamedTuple):
-    """State after increment i. Domain arrays have a leading axis of 2: (tension, compression),
-    then the batch shape."""
+@njit(cache=True, fastmath=False, inline="always")
+def centre_flags(poisson_code, length_update, reading):
+    """Switches of the recurrence: (lu, t_sign, f_share, c_sign, len_share, u_share, nu_on).
 
-    force: NDArray[np.float64]  #: F_T(i), N
-    displacement: NDArray[np.float64]  #: delta_x(i) of the loaded section (Eq. 18), mm
-    domain_displacement: NDArray[np.float64]  #: delta_x(it), delta_x(ic) (Eq. 17), mm, >= 0
-    slip_length: NDArray[np.float64]  #: u_it, u_ic, mm
-    width: NDArray[np.float64]  #: w_it, w_ic, mm
-    thickness: NDArray[np.float64]  #: t_it, t_ic, mm
-
-
-def centre_initial(p: Any) -> CentreState:
-    """The unloaded state."""
-    w = np.asarray(p.width, dtype=float)
-    t = np.asarray(p.thickness, dtype=float)
-    z = np.zeros(np.broadcast(w, t).shape)
-    z2 = np.zeros((2, *z.shape))
-    return CentreState(z, z, z2, z2, w + z2, t + z2)
+    ``reading`` 0 is the physical reading (F/2 per half, half lengths L/2 -/+ delta_d), 1 the
+    paper's (Eq. 11 as printed: full F per domain, lengths L + delta_d, u = F L' / (4 mu F_N)).
+    """
+    lu = 1.0 if length_update else 0.0
+    nu_on = 0.0 if poisson_code == 2 else 1.0
+    t_sign = 1.0 if poisson_code == 1 else -1.0  # Eq. 15 as printed: tension domain thickens
+    if reading == 0:
+        return lu, t_sign, 0.5, -1.0, 0.5, 1.0, nu_on
+    return lu, t_sign, 1.0, 1.0, 1.0, 0.25, nu_on
 
 
-def _sign(ndim: int) -> NDArray[np.float64]:
-    return _SIGN.reshape((2,) + (1,) * ndim)
+@njit(cache=True, fastmath=False, inline="always")
+def centre_constants(length, width, thickness, modulus, poisson_ratio, friction, normal_force,
+                     flags):
+    """Per-case constants ``l_d, u_share/(mu F_N), nu, 1/(2E), A`` followed by the unloaded
+    state ``delta_t, delta_c, e_t, e_c = 0``, one flat tuple."""
+    len_share, u_share, nu_on = flags[4], flags[5], flags[6]
+    return (len_share * length, u_share / (friction * normal_force), nu_on * poisson_ratio,
+            0.5 / modulus, width * thickness, 0.0, 0.0, 0.0, 0.0)
 
 
-def centre_step(force: ArrayLike, s: CentreState, p: Any, opt: ModelOptions) -> CentreState:
-    """Advance the centre model by one force increment.
+@njit(cache=True, fastmath=False, inline="always")
+def centre_step(f, fp, state, c, flags):
+    """Advance one case of the centre model by one force increment.
 
     Parameters
     ----------
-    force : array_like
-        The new total centre force F_T(i), N.
-    s : CentreState
-        State of increment i - 1.
-    p : ClampParams or any object with the same attributes as arrays
-    opt : ModelOptions
+    f, fp : float
+        The new total centre force F_T(i) and the previous one, N (``fp`` is unused: the
+        centre model's Poisson update works from the previous strain).
+    state : tuple
+        ``(delta_t, delta_c, e_t, e_c)`` of increment i - 1: domain displacements (mm) and
+        mean strains e_d = delta_d / u_d.
+    c, flags : tuple
+        From :func:`centre_constants` and :func:`centre_flags`.
 
     Returns
     -------
-    CentreState
-        The response at increment i, also the state for increment i + 1.
+    tuple
+        One flat tuple (a nested one defeats numba's parallel analysis of the batch
+        kernels): the state of increment i ``delta_t, delta_c, e_t, e_c``, then the
+        displacement of the loaded section delta (Eq. 18, mm), the slip lengths u_t, u_c
+        (mm) and the cross-section factors w_t / w, t_t / t, w_c / w = t_c / t.
 
     Notes
     -----
@@ -67,7 +73,8 @@ def centre_step(force: ArrayLike, s: CentreState, p: Any, opt: ModelOptions) -> 
        l_d = L/2 + s_d delta_d(i-1) (length update) or L/2, i.e. u_d = F l_d / (mu F_N).
        ``paper`` reading: F_d = F and Eq. 11 as printed,
        u_d = F (L + delta_d(i-1)) / (4 mu F_N).
-    2. Poisson update (Eqs 12-15) from the previous mean strain e_d = delta_d(i-1) / u_d(i-1)::
+    2. Poisson update (Eqs 12-15) from the previous mean strain e_d = delta_d(i-1) / u_d(i-1)
+       = F_d / (2 E A_d)::
 
            w_d = w (1 - s_d nu e_d),  t_d = t (1 - s_d nu e_d)    (consistent)
 
@@ -75,43 +82,75 @@ def centre_step(force: ArrayLike, s: CentreState, p: Any, opt: ModelOptions) -> 
     3. Stiffness (Eq. 16) k_d = 2 E w_d t_d / u_d and displacement (Eq. 17)
        delta_d = F_d / k_d.
     4. Loaded section (Eq. 18): delta = (k_t delta_t + k_c delta_c) / (k_t + k_c)
-       = (F_t + F_c) / (k_t + k_c), the two domains as parallel springs.
+       = 2 F_d u_t u_c / (2 E (A_t u_c + A_c u_t)), the two domains as parallel springs.
+
+    One division per increment: r = 1 / (A_t A_c S) with S = u_t A_c + u_c A_t gives
+    1/A_t = A_c S r, 1/A_c = A_t S r and 1/S = A_t A_c r.
 
     With both updates off, both readings give delta = F^2 / (8 E A q), the exact result
     for a centre-loaded bar on a rigid Coulomb foundation.
     """
-    f = np.asarray(force, dtype=float)
-    sign = _sign(np.ndim(s.displacement))
-    fn = p.friction * p.normal_force
-    prev = s.domain_displacement
-    if opt.centre == "physical":
-        f_d = 0.5 * f
-        half = 0.5 * p.length + (sign * prev if opt.length_update else 0.0 * prev)
-        u = f * half / fn
-    else:
-        f_d = f + 0.0 * f
-        full = p.length + (prev if opt.length_update else 0.0 * prev)
-        u = f * full / (4.0 * fn)
-    if opt.poisson == "off":
-        w, t = s.width, s.thickness
-    else:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            e = np.where(s.slip_length > 0.0, prev / s.slip_length, 0.0)
-        grow = 1.0 - sign * p.poisson_ratio * e
-        w = p.width * grow
-        if opt.poisson == "paper-literal":
-            # Eq. 15 as printed: t_it = t + delta t nu / u, the tension domain thickens.
-            t = p.thickness * (1.0 + p.poisson_ratio * e)
-        else:
-            t = p.thickness * grow
-    area = w * t
-    delta_d = f_d * u / (2.0 * p.modulus * area)
-    # Eq. 18 with k_d delta_d = F_d: delta = 2 F_d / (k_t + k_c), k_d = 2 E A_d / u_d.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        compliance = np.where(
-            u[0] * u[1] > 0.0,
-            u[0] * u[1] / (2.0 * p.modulus * (area[0] * u[1] + area[1] * u[0])),
-            0.0,
-        )
-    delta = 2.0 * f_d * compliance
-    return CentreState(f + 0.0 * delta, delta, delta_d, u, w + 0.0 * u, t + 0.0 * u)
+    dt, dc, et, ec = state
+    lh, rfn, nu, he, a0 = c
+    lu, t_sign, f_share, c_sign = flags[0], flags[1], flags[2], flags[3]
+    fd = f_share * f
+    ut = f * (lh + lu * dt) * rfn
+    uc = f * (lh + c_sign * lu * dc) * rfn
+    gt = 1.0 - nu * et
+    ht = 1.0 + t_sign * nu * et
+    gc = 1.0 + nu * ec
+    at = a0 * gt * ht
+    ac = a0 * gc * gc
+    s = ut * ac + uc * at
+    r = 1.0 / (at * ac * s)
+    x = fd * he
+    et = x * ac * s * r
+    ec = x * at * s * r
+    dt = et * ut
+    dc = ec * uc
+    dn = 2.0 * x * ut * uc * at * ac * r
+    return dt, dc, et, ec, dn, ut, uc, gt, ht, gc
+
+
+@njit(cache=True, fastmath=False, inline="always")
+def centre_stored_energy(force, dt, dc):
+    """Elastic energy in both halves: each carries F/2 over its slip length, whatever the
+    reading, (F/2)(delta_t + delta_c) / 3, N·mm."""
+    return 0.5 * force * (dt + dc) / 3.0
+
+
+@njit(cache=True, fastmath=False)
+def centre_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, friction,
+                    normal_force, poisson_code, length_update, reading):
+    """Record the first loading of one case from rest to ``f0`` in ``n`` equal increments.
+
+    Returns ``force, displacement, stored`` of shape (n + 1,) and ``slip, width,
+    thickness`` of shape (n + 1, 2) (tension, compression).
+    """
+    flags = centre_flags(poisson_code, length_update, reading)
+    cs = centre_constants(length, width, thickness, modulus, poisson_ratio, friction,
+                          normal_force, flags)
+    c = (cs[0], cs[1], cs[2], cs[3], cs[4])
+    state = (cs[5], cs[6], cs[7], cs[8])
+    force = np.zeros(n + 1)
+    disp = np.zeros(n + 1)
+    stored = np.zeros(n + 1)
+    slip = np.zeros((n + 1, 2))
+    w = np.empty((n + 1, 2))
+    t = np.empty((n + 1, 2))
+    w[0, :] = width
+    t[0, :] = thickness
+    fr_prev = 0.0
+    for i in range(1, n + 1):
+        fr = i / n
+        f = f0 * fr
+        dt, dc, et, ec, dn, ut, uc, gt, ht, gc = centre_step(f, f0 * fr_prev, state, c, flags)
+        state = (dt, dc, et, ec)
+        force[i] = f
+        disp[i] = dn
+        slip[i, 0], slip[i, 1] = ut, uc
+        w[i, 0], w[i, 1] = width * gt, width * gc
+        t[i, 0], t[i, 1] = thickness * ht, thickness * gc
+        stored[i] = centre_stored_energy(f, dt, dc)
+        fr_prev = fr
+    return force, disp, stored, slip, w, t

@@ -111,7 +111,8 @@ def resultant_backbone(tip: Backbone, centre: Backbone) -> Backbone:
 
     Needed by the strain-energy definitions that read the virgin curve (``backbone``) or the
     stored energy (``stored``: the sum of the energies held in the two bars). Slip lengths and
-    cross-sections of both models are kept side by side, domains ``tip`` then the centre ones.
+    cross-sections of both models are kept side by side, domains ``tip`` then the centre ones;
+    ``params`` and ``options`` stay None (each model's are on its own backbone).
     """
     _check_same_fractions(np.asarray(tip.force, dtype=float),
                           np.asarray(centre.force, dtype=float), "backbones")
@@ -124,8 +125,6 @@ def resultant_backbone(tip: Backbone, centre: Backbone) -> Backbone:
         width=np.hstack([tip.width, centre.width]),
         thickness=np.hstack([tip.thickness, centre.thickness]),
         stored_energy=np.asarray(tip.stored_energy) + np.asarray(centre.stored_energy),
-        params=(tip.params, centre.params),
-        options=(tip.options, centre.options),
     )
 
 

@@ -12,16 +12,16 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..energy import STRAIN_ENERGY, damping_from_loop
+from ..energy import STRAIN_ENERGY, damping_from_backbone
 from ..errors import MicroslipError, ParameterError
-from ..hysteresis import masing_loop
 from ..models import check_increments, first_loading
+from ..named import result
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude, preset
 from ..results import Backbone, DampingResult
@@ -61,18 +61,12 @@ PAPER_STRAIN_ENERGY = "branch"
 @functools.lru_cache(maxsize=32)
 def _backbone(model: str, params: ClampParams, amplitude: float, increments: int,
               options: ModelOptions) -> Backbone:
-    """:func:`~microslip.first_loading`, remembered: sweeps over R reuse the same amplitudes.
-
-    The arrays of the shared result are made read-only so that no caller can alter it.
-    """
-    bb = first_loading(model, params, amplitude, increments, options)
-    for name in ("force", "displacement", "slip_length", "width", "thickness",
-                 "stored_energy"):
-        getattr(bb, name).setflags(write=False)
-    return bb
+    """:func:`~microslip.first_loading`, remembered: sweeps over R reuse the same amplitudes
+    (a Backbone's arrays are read-only, so sharing it is safe)."""
+    return first_loading(model, params, amplitude, increments, options)
 
 
-@dataclass(frozen=True)
+@result
 class PlanarResult:
     """Damping of one planar load case by the paper's coupling and by the work of the load.
 
@@ -249,8 +243,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
 
     tip_bb = _backbone("tip", tip_params, at, n, opt)
     centre_bb = _backbone("centre", centre_params, ac, n, copt)
-    tip = damping_from_loop(masing_loop(tip_bb), tip_bb, kind)
-    centre = damping_from_loop(masing_loop(centre_bb), centre_bb, kind)
+    tip = damping_from_backbone(tip_bb, kind)
+    centre = damping_from_backbone(centre_bb, kind)
     paper = paper_coupling(tip_bb, centre_bb, kind)
 
     path = LoadPath.harmonic(tip_symmetry * at, ac, phi, samples_per_cycle)
@@ -281,7 +275,7 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     )
 
 
-@dataclass(frozen=True)
+@result
 class RatioCase:
     """One force ratio of a sweep: its levels, amplitudes and result (or why there is none).
 
@@ -308,7 +302,7 @@ class RatioCase:
     error: str = ""
 
 
-@dataclass(frozen=True)
+@result
 class RatioSweep:
     """Loss factor against force ratio R (the paper's Fig. 12), case by case.
 

@@ -34,7 +34,7 @@ Which level pair the paper used for each R is not stated; two readings are offer
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ParameterError
+from ..named import result
 
 __all__ = [
     "CENTRE_LEVEL_FORCE",
@@ -108,6 +109,13 @@ def eccentricity(ratio: ArrayLike) -> Any:
     return float(e) if e.ndim == 0 else e
 
 
+#: R from the minor/major axis ratio m = sqrt(1 - epsilon^2), by the major load component.
+_MAJOR_AXIS: dict[str, Callable[[NDArray[np.float64]], NDArray[np.float64]]] = {
+    "tip": lambda m: 1.0 / m,
+    "centre": lambda m: m,
+}
+
+
 def ratio_from_eccentricity(ecc: ArrayLike, major: str = "tip") -> Any:
     """The force ratio R of an ellipse of eccentricity epsilon, the inverse of :func:`eccentricity`.
 
@@ -131,13 +139,13 @@ def ratio_from_eccentricity(ecc: ArrayLike, major: str = "tip") -> Any:
         raise ParameterError(f"eccentricity must be a number in [0, 1), got {ecc!r}") from None
     if not np.all(np.isfinite(e)) or np.any(e < 0.0) or np.any(e >= 1.0):
         raise ParameterError(f"eccentricity must be in [0, 1), got {ecc!r}")
-    m = np.sqrt(1.0 - e * e)
-    if major == "tip":
-        r = 1.0 / m
-    elif major == "centre":
-        r = m
-    else:
-        raise ParameterError(f"major must be 'tip' or 'centre', got {major!r}")
+    try:
+        ratio_of_minor = _MAJOR_AXIS[major]
+    except (KeyError, TypeError):
+        raise ParameterError(
+            f"major must be one of {', '.join(map(repr, _MAJOR_AXIS))}, got {major!r}"
+        ) from None
+    r = ratio_of_minor(np.sqrt(1.0 - e * e))
     return float(r) if r.ndim == 0 else r
 
 
@@ -230,7 +238,7 @@ def ratio_label(ratio: float) -> str:
     return f"{r:.2f}".rstrip("0").rstrip(".") if r < 1.0 else f"{r:g}"
 
 
-@dataclass(frozen=True)
+@result
 class Trajectory:
     """A sampled planar load path of one R (the paper's Fig. 1).
 
