@@ -29,7 +29,6 @@ __all__ = [
     "CyclicPath",
     "as_cyclic_path",
     "harmonic_path",
-    "paper_sine",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -209,25 +208,6 @@ def harmonic_path(tip_amplitude: float, centre_amplitude: float, phase_deg: floa
     th, ft, fc, k0 = _ramp_to(theta, ft, fc, 0, max(1, round(startup * n)))
     return CyclicPath(th, ft, fc, k0, {"tip_amplitude_N": at, "centre_amplitude_N": ac,
                                        "phase_deg": phi, "increments_per_cycle": n})
-
-
-def paper_sine(amplitude: float, increments: int = 50) -> tuple[FloatArray, FloatArray]:
-    """The paper's 1-D load step: F = F0 sin(2 pi t), t = 0 .. 1.25 s in equal increments.
-
-    ``increments`` (a multiple of 5, as the paper's 50 substeps) covers the 1.25 periods;
-    the loop is t = 0.25 .. 1.25 s. Returns ``(t, F)`` with ``F`` exactly equal at t = 0.25
-    and 1.25.
-
-    >>> t, f = paper_sine(2.0, 10)
-    >>> float(t[2]), bool(f[2] == f[-1]), f.size
-    (0.25, True, 11)
-    """
-    n = _count("increments", increments, 10)
-    if n % 5:
-        raise ParameterError(f"increments must be a multiple of 5 (quarter periods), got {n}")
-    per = 4 * n // 5
-    k = np.arange(n + 1)
-    return k / per, amplitude * np.sin(2.0 * np.pi * (k % per) / per)
 
 
 def as_cyclic_path(path: Any, f_tip: ArrayLike | None = None,
