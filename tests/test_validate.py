@@ -16,7 +16,8 @@ from microslip.cli.main import main
 from microslip.energy import damping_from_loop, loop_work
 from microslip.errors import ParameterError
 from microslip.fe import FECase, SolverNotFoundError, bar_mesh
-from microslip.fe.results import ContactHistory, FEResult, _column_widths
+from microslip.fe.result import ContactHistory, FELoopResult, column_lengths
+from microslip.fe.results import CalculixDetails
 from microslip.results import HysteresisLoop
 from microslip.validate import (
     TOLERANCES,
@@ -34,8 +35,8 @@ P = preset("table1")
 EA, Q, F0 = P.axial_stiffness, P.friction_per_length, 267.0
 
 
-def exact_result(model: str, scale: float = 1.0) -> FEResult:
-    """An FEResult whose loop is the exact Masing loop (times ``scale``) at the 50 substeps
+def exact_result(model: str, scale: float = 1.0) -> FELoopResult:
+    """An FELoopResult whose loop is the exact Masing loop (times ``scale``) at the 50 substeps
     and whose contact status is the closed-form slip zone."""
     case = FECase(model)
     c = 2 * EA * Q if model == "tip" else 8 * EA * Q
@@ -57,12 +58,13 @@ def exact_result(model: str, scale: float = 1.0) -> FEResult:
         else:
             slipping = np.abs(xyz[:, 0] - P.length / 2) < span / (2 * Q) - 1e-9
         status[k, slipping] = 2
-    contact = ContactHistory(ids, xyz, t, np.full(status.shape, 0.07),
-                             np.zeros((*status.shape, 2)), np.zeros((*status.shape, 2)),
-                             status, _column_widths(xyz[:, 0]))
+    contact = ContactHistory(ids - 1, xyz, t, status, column_lengths(xyz[:, 0]),
+                             np.zeros((*status.shape, 2)))
     loop = HysteresisLoop(f[10:], d[10:], "calculix", {"time_s": t[10:]})
-    return FEResult(case, t, f, d, loop, damping_from_loop(loop), contact, case.spec.dof,
-                    np.full(50, 4), 1.0, True, 0.0, None)
+    details = CalculixDetails(case, 0.0, np.full(status.shape, 0.07),
+                              np.zeros((*status.shape, 2)))
+    return FELoopResult("calculix", model, P, F0, t, f, d, loop, damping_from_loop(loop), contact,
+                        case.spec.dof, np.full(50, 4), 1.0, True, "converged", details)
 
 
 @pytest.mark.parametrize("model", ["tip", "centre"])

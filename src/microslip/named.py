@@ -23,9 +23,18 @@ False
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, TypeVar
+import sys
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
+
+if TYPE_CHECKING:  # tells the type checker that @result makes a frozen, eq=False dataclass
+    from typing_extensions import dataclass_transform
+elif sys.version_info >= (3, 11):
+    from typing import dataclass_transform
+else:  # Python 3.10 without typing_extensions: the marker has no run-time effect
+    def dataclass_transform(**_: Any) -> Any:
+        return lambda f: f
 
 __all__ = ["readonly", "result", "short_repr"]
 
@@ -56,6 +65,7 @@ def short_repr(obj: Any) -> str:
     return f"{type(obj).__name__}({', '.join(parts)})"
 
 
+@dataclass_transform(frozen_default=True, eq_default=False)
 def result(cls: type[T]) -> type[T]:
     """Class decorator: a frozen, ``eq=False`` dataclass with read-only arrays, short repr.
 
