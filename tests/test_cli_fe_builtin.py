@@ -32,8 +32,10 @@ def test_builtin_default_matches_closed_form(capsys, model, tol):
     assert data["solver"] == "builtin" and data["converged"] is True
     assert abs(data["peak_displacement_mm"] / d0 - 1) < tol
     assert abs(data["dissipated_energy_Nmm"] / wd - 1) < tol
-    assert data["loss_factor"] == pytest.approx(
-        data["dissipated_energy_Nmm"] / (2 * 3.141592653589793 * data["strain_energy_Nmm"]))
+    # secant U (the default): the closed-form loss factor is 4 / (3 pi) for both load cases
+    # (docs/validation.md); the FE loop's eta is off by its W_d and d0 errors
+    assert data["strain_energy_definition"] == "secant"
+    assert abs(data["loss_factor"] / (4 / (3 * 3.141592653589793)) - 1) < 2 * tol
 
 
 def test_keys_are_those_of_loop_and_of_calculix(capsys):
