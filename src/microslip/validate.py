@@ -36,7 +36,7 @@ from .fe.result import FELoopResult
 from .fe.results import CalculixDetails
 from .fe.runner import run_case
 from .io import write_csv
-from .loading import LOAD_CASES
+from .loading import LOAD_CASES, load_case
 from .options import ModelOptions
 from .params import PRESETS, ClampParams, preset
 from .progress import progress as progress_bar
@@ -107,17 +107,11 @@ def closed_form(model: str, params: ClampParams, amplitude: float) -> dict[str, 
     1.0
     """
     ea, q = params.axial_stiffness, params.friction_per_length
-    if model == "tip":
-        c = 2.0 * ea * q
-        return {"peak_mm": float(cf.tip_displacement(amplitude, ea, q)),
-                "wd_Nmm": cf.tip_dissipated_energy(amplitude, ea, q),
-                "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": amplitude / q, "c": c}
-    if model == "centre":
-        c = 8.0 * ea * q
-        return {"peak_mm": float(cf.centre_displacement(amplitude, ea, q)),
-                "wd_Nmm": cf.centre_dissipated_energy(amplitude, ea, q),
-                "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": amplitude / (2.0 * q), "c": c}
-    raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
+    lc = load_case(model)
+    return {"peak_mm": float(lc.displacement(amplitude, ea, q)),
+            "wd_Nmm": lc.dissipated_energy(amplitude, ea, q),
+            "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": lc.slip_length(amplitude, q),
+            "c": lc.virgin_constant(ea, q)}
 
 
 def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
@@ -140,13 +134,8 @@ def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
 
     ea, q = params.axial_stiffness, params.friction_per_length
     k = stick_slope * params.width
-    if model == "tip":
-        length, force, halves = params.length, amplitude, 1.0
-    elif model == "centre":
-        length, force, halves = params.length / 2.0, amplitude / 2.0, 2.0
-    else:
-        raise ParameterError(f"unknown load case {model!r}; choose one of "
-                             f"{', '.join(LOAD_CASES)}")
+    halves = float(load_case(model).halves)
+    length, force = params.length / halves, amplitude / halves
 
     def residual(a: float) -> float:
         return float(cf.shear_layer_tip(a, ea, k, q, length)[0]) - force
@@ -324,18 +313,19 @@ def plot_contact_status(results: Sequence[FELoopResult], path: str | os.PathLike
             f = float(res.force[k])
             f = 0.0 if abs(f) < 1e-9 * f0 else f
             span = _slipping_force(t, f, f0)
-            if _case(res).model == "tip":
-                xs = [p.length - span / q]
-            else:
-                xs = [p.length / 2.0 - span / (2.0 * q), p.length / 2.0 + span / (2.0 * q)]
-                ax.axvline(p.length / 2.0, color="k", lw=1.0)
+            lc = load_case(res.load_case)
+            x_load, reach = lc.section * p.length, lc.slip_length(span, q)
+            xs = [x for x, inside in ((x_load - reach, lc.section > 0.0),
+                                      (x_load + reach, lc.section < 1.0)) if inside]
+            if 0.0 < lc.section < 1.0:
+                ax.axvline(x_load, color="k", lw=1.0)
             for xb in xs:
                 ax.axvline(xb, color="#D55E00", lw=0.9, ls="--")
             ax.set_xlim(0.0, p.length)
             ax.set_ylim(0.0, p.width)
             ax.set_yticks([0.0, p.width])
             ax.grid(False)
-            ax.set_title(f"{_case(res).model}: t = {t:g} s ({round(360 * t)}°), "
+            ax.set_title(f"{res.load_case}: t = {t:g} s ({round(360 * t)}°), "
                          f"$F_T$ = {f:.0f} N", fontsize=7)
             if col == 0:
                 ax.set_ylabel("y (mm)")
@@ -355,11 +345,11 @@ def plot_fe_vs_model(results: Sequence[FELoopResult], labels: Sequence[str],
     closed form (uncorrected model), one panel per load case."""
     from .plot import COLOURS, new_figure, plot_loops, save_figure
 
-    models = [m for m in LOAD_CASES if any(_case(r).model == m for r in results)]
+    models = [m for m in LOAD_CASES if any(r.load_case == m for r in results)]
     fig, axes = new_figure(ncols=len(models), nrows=1)
     for col, m in enumerate(models):
         ax = axes[0, col]
-        runs = [(r, lab) for r, lab in zip(results, labels, strict=True) if _case(r).model == m]
+        runs = [(r, lab) for r, lab in zip(results, labels, strict=True) if r.load_case == m]
         ref = _case(runs[0][0])
         model = damping(m, ref.params, ref.amplitude, MODEL_INCREMENTS,
                         options or ModelOptions()).loop
@@ -511,8 +501,8 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
     write_csv(out / CSV, columns)
     finest: dict[str, FELoopResult] = {}
     for r in results:
-        if _case(r).model not in finest or r.dof > finest[_case(r).model].dof:
-            finest[_case(r).model] = r
+        if r.load_case not in finest or r.dof > finest[r.load_case].dof:
+            finest[r.load_case] = r
     plot_contact_status([finest[m] for m in models if m in finest], out / FIG08)
     labels = [f"{t.mesh} ({r.dof} DOF)" for r, t in zip(results, tasks, strict=True)]
     plot_fe_vs_model(results, labels, out / FIG09)
