@@ -12,17 +12,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import ClassVar
 
 import numpy as np
 import pytest
 
 from microslip import MacroslipError, ParameterError, closedform, damping_from_loop, preset
+from microslip.loading import LoadPath
 from microslip.solver import (
     NewtonOptions,
     build_model,
     coupling_study,
-    harmonic_path,
     solve_load_path,
     solve_uniaxial,
 )
@@ -122,7 +121,7 @@ def test_newton_variants_and_backends_agree() -> None:
 def test_proportional_path_settles_to_the_uniaxial_loop(table1_loops: dict) -> None:
     """A tip-only harmonic path: the first cycle from the peak is already the steady loop, and
     its W equals the paper-style loop's at the same sampling."""
-    r = solve_load_path(P, harmonic_path(F0, 0.0, 0.0, 40), mesh="coarse", cycles=4)
+    r = solve_load_path(P, LoadPath.ramped(F0, 0.0, 0.0, 40), mesh="coarse", cycles=4)
     assert r.success
     assert r.cycle_work.cycles == 2
     # The start-up ramp and the paper's first quarter sine reach the peak along the same
@@ -133,23 +132,19 @@ def test_proportional_path_settles_to_the_uniaxial_loop(table1_loops: dict) -> N
     assert r.centre_work == 0.0 and r.tip_share == 1.0
 
 
-def test_loadpath_duck_typing_and_arrays() -> None:
-    class PathLike:  # the planar model's LoadPath has these attributes
-        theta = np.linspace(0.0, 2 * np.pi, 17)
-        tip_force = 120.0 * np.sin(theta)
-        centre_force = 120.0 * np.cos(theta)
-        cycle_start = 0
-        meta: ClassVar[dict[str, str]] = {"from": "test"}
+def test_loadpath_object_and_arrays() -> None:
+    theta = np.linspace(0.0, 2 * np.pi, 17)
+    path = LoadPath(theta, 120.0 * np.sin(theta), 120.0 * np.cos(theta), 0, {"from": "test"})
 
-    a = solve_load_path(P, PathLike(), mesh=(8, 2, 1), cycles=3)
-    b = solve_load_path(P, PathLike.theta[:-1], PathLike.tip_force[:-1],
-                        PathLike.centre_force[:-1], mesh=(8, 2, 1), cycles=3)
+    a = solve_load_path(P, path, mesh=(8, 2, 1), cycles=3)
+    b = solve_load_path(P, theta[:-1], path.tip_force[:-1], path.centre_force[:-1],
+                        mesh=(8, 2, 1), cycles=3)
     assert a.converged and b.converged
     # both start from zero load along a ramp and repeat the same closed cycle
     assert a.dissipated_energy == pytest.approx(b.dissipated_energy, rel=1e-9)
     assert a.meta["from"] == "test"
     dt, dc = a.path_response()  # aligned with the path as given (the ramp left out)
-    assert dt.shape == dc.shape == PathLike.theta.shape
+    assert dt.shape == dc.shape == theta.shape
     assert a.meta["prepended_samples"] == 3
 
 
@@ -192,9 +187,9 @@ def test_coupling_study_mirror_symmetry_and_bookkeeping() -> None:
     (lambda: solve_uniaxial(P, "tip", F0, centre_direction="up"), ParameterError,
      "unknown centre direction"),
     (lambda: solve_load_path(P, [0, 1, 2], [0, 1], [0, 1, 2]), ParameterError, "equal length"),
-    (lambda: solve_load_path(P, harmonic_path(300.0, 300.0, 0.0, 16)), MacroslipError,
+    (lambda: solve_load_path(P, LoadPath.ramped(300.0, 300.0, 0.0, 16)), MacroslipError,
      "macroslip"),
-    (lambda: solve_load_path(P, harmonic_path(10.0, 0.0), cycles=0), ParameterError, "cycles"),
+    (lambda: solve_load_path(P, LoadPath.ramped(10.0, 0.0), cycles=0), ParameterError, "cycles"),
     (lambda: coupling_study(P, 0.0, 10.0), ParameterError, "amplitude must be > 0"),
 ])
 def test_bad_inputs_give_one_line_errors(call: Callable[[], object], exc: type[Exception],

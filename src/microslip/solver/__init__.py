@@ -20,7 +20,6 @@ from __future__ import annotations
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .loadpath import CyclicPath, as_cyclic_path, harmonic_path
 from .mesh import MESHES, BoxMesh, box_mesh, mesh_from_spec
 from .results import (
     BuiltinDetails,
@@ -42,6 +41,7 @@ from .study import (
     DEFAULT_MESH,
     CouplingSweep,
     amplitudes_for_ratio,
+    as_load_path,
     coupling_study,
     coupling_sweep,
     solve_load_path,
@@ -59,7 +59,6 @@ __all__ = [
     "CouplingResult",
     "CouplingSweep",
     "CycleWork",
-    "CyclicPath",
     "FrictionModel",
     "FrictionResponse",
     "History",
@@ -68,7 +67,7 @@ __all__ = [
     "Simulation",
     "SolverStats",
     "amplitudes_for_ratio",
-    "as_cyclic_path",
+    "as_load_path",
     "assemble_stiffness",
     "available_linear_solvers",
     "box_mesh",
@@ -77,7 +76,6 @@ __all__ = [
     "coupling_sweep",
     "element_stiffness",
     "friction_dissipation",
-    "harmonic_path",
     "mesh_from_spec",
     "return_map",
     "run_history",

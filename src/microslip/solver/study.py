@@ -27,9 +27,9 @@ from ..energy import loop_work
 from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..fe.result import SLIP, STICK, ContactHistory
+from ..loading import LoadPath
 from ..params import ClampParams, check_amplitude, check_positive
 from ..results import HysteresisLoop
-from .loadpath import CyclicPath, as_cyclic_path, harmonic_path
 from .results import (
     CouplingResult,
     CycleWork,
@@ -107,7 +107,7 @@ def check_body(params: Any, centre_direction: str) -> None:
                              f"{', '.join(CENTRE_DIRECTIONS)}")
 
 
-def _cycle_works(path: CyclicPath, ft: FloatArray, fc: FloatArray, dt: FloatArray,
+def _cycle_works(path: LoadPath, ft: FloatArray, fc: FloatArray, dt: FloatArray,
                  dc: FloatArray, fw: FloatArray, cycles: int
                  ) -> tuple[FloatArray, FloatArray, FloatArray]:
     k0, n = path.cycle_start, path.samples_per_cycle
@@ -120,6 +120,22 @@ def _cycle_works(path: CyclicPath, ft: FloatArray, fc: FloatArray, dt: FloatArra
     return tip, cen, fri
 
 
+def as_load_path(path: Any, f_tip: ArrayLike | None = None,
+                 f_centre: ArrayLike | None = None) -> LoadPath:
+    """The path to solve: a :class:`~microslip.loading.LoadPath`, reached from rest
+    (:meth:`~microslip.loading.LoadPath.from_rest`), or the times of one cycle with the
+    forces at them (:meth:`~microslip.loading.LoadPath.from_cycle`)."""
+    if isinstance(path, LoadPath) and f_tip is None and f_centre is None:
+        out = path.from_rest()
+    elif f_tip is None or f_centre is None:
+        raise ParameterError("give a LoadPath, or times with f_tip and f_centre arrays")
+    else:
+        out = LoadPath.from_cycle(path, f_tip, f_centre)
+    if not out.peak_resultant > 0.0:
+        raise ParameterError("a load path needs a non-zero force")
+    return out
+
+
 def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, int, float]:
     for name, v, lo in (("cycles", cycles, 1), ("min_cycles", min_cycles, 2)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not lo <= v <= 1000:
@@ -128,7 +144,7 @@ def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, in
     return int(cycles), int(min_cycles), tol
 
 
-def _run_path(fem: FrictionModel, path: CyclicPath, *, cycles: int, min_cycles: int,
+def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: int,
               cycle_tol: float, centre_direction: str, setup_s: float) -> LoadPathResult:
     if path.peak_resultant >= fem.params.macroslip_force:
         raise MacroslipError(
@@ -211,9 +227,9 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     Parameters
     ----------
     params : ClampParams
-    times : array_like, CyclicPath or LoadPath-like
+    times : array_like or LoadPath
         The samples of one cycle (any increasing times or angles) with ``f_tip`` and
-        ``f_centre``; or a path object (see :func:`~microslip.solver.loadpath.as_cyclic_path`).
+        ``f_centre``; or a :class:`~microslip.loading.LoadPath` (see :func:`as_load_path`).
         Arrays: the cycle is closed if needed and reached from zero load by a straight ramp.
     f_tip, f_centre : array_like, optional
         Tip force (along the bar, end face) and centre force (mid-length section) at the
@@ -238,15 +254,15 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     Examples
     --------
     >>> from microslip import preset
-    >>> from microslip.solver.loadpath import harmonic_path
-    >>> r = solve_load_path(preset("table1"), harmonic_path(150.0, 150.0, 90.0, 16),
+    >>> from microslip.loading import LoadPath
+    >>> r = solve_load_path(preset("table1"), LoadPath.ramped(150.0, 150.0, 90.0, 16),
     ...                     mesh=(8, 2, 1), cycles=4)
     >>> r.converged, r.dissipated_energy > 0
     (True, True)
     """
     check_body(params, centre_direction)
     cycles, min_cycles, tol = _check_cycles(cycles, min_cycles, cycle_tol)
-    path = as_cyclic_path(times, f_tip, f_centre)
+    path = as_load_path(times, f_tip, f_centre)
     fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
     setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
     return _run_path(fem, path, cycles=cycles, min_cycles=min(min_cycles, cycles),
@@ -281,9 +297,9 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
         turns: at 256 the 90-degree ratios are about 1 % low, at 64 about 3 % (docs/solver.md).
     mesh, cycle_tol, stick_slope, element, centre_direction, linear_solver, newton
         As :func:`solve_load_path`.
-    path : LoadPath-like, optional
-        Use this path (e.g. the planar model's ``LoadPath``) instead of the harmonic one; the
-        amplitudes and phase are then only recorded.
+    path : LoadPath, optional
+        Use this path (e.g. the planar model's ``LoadPath.harmonic``) instead of
+        ``LoadPath.ramped``; the amplitudes and phase are then only recorded.
 
     Returns
     -------
@@ -302,11 +318,10 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
     if path is None:
         at = check_amplitude(tip_amplitude)
         ac = check_amplitude(centre_amplitude)
-        cyc = harmonic_path(at, ac, phase_deg, increments_per_cycle)
+        cyc = LoadPath.ramped(at, ac, phase_deg, increments_per_cycle)
     else:
-        cyc = as_cyclic_path(path)
-        at = float(np.max(np.abs(cyc.f_tip[cyc.cycle])))
-        ac = float(np.max(np.abs(cyc.f_centre[cyc.cycle])))
+        cyc = as_load_path(path)
+        at, ac = cyc.tip_amplitude, cyc.centre_amplitude
         if not (at > 0.0 and ac > 0.0):
             raise ParameterError("a coupling study needs both a tip and a centre force")
     phase = float(cyc.meta.get("phase_deg", phase_deg))
