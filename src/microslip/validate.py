@@ -34,7 +34,7 @@ from .fe.constants import DEFAULT_STICK_SLOPE
 from .fe.mesh import MeshSpec, mesh_spec
 from .fe.result import FELoopResult
 from .fe.results import CalculixDetails
-from .fe.runner import run_case
+from .fe.run import run_loop
 from .io import write_csv
 from .loading import LOAD_CASES, load_case
 from .options import ModelOptions
@@ -377,17 +377,26 @@ class _Task:
     job_dir: Path
 
 
+def _run_task(case: FECase, job_dir: Path, **options: Any) -> FELoopResult:
+    """One CalculiX run of the validation through :func:`microslip.fe.run_loop` (its job files
+    and result.json in ``job_dir``; no VTU)."""
+    result, _ = run_loop(case.model, case.params, case.amplitude, solver="calculix",
+                         out=job_dir, vtu=False, mesh=case.mesh, element=case.element,
+                         stick_slope=case.stick_slope, substeps=case.substeps, **options)
+    return result
+
+
 def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
                timeout: float | None, threads: int, reuse: bool) -> list[FELoopResult]:
     kwargs: dict[str, Any] = {"timeout": timeout, "threads": threads, "reuse": reuse}
     if scheduler is None:
-        return [run_case(t.case, t.job_dir, **kwargs)
+        return [_run_task(t.case, t.job_dir, **kwargs)
                 for t in progress_bar(tasks, "CalculiX runs", total=len(tasks), enabled=show)]
     from functools import partial
 
     from .cluster import map_on_cluster
 
-    return map_on_cluster(partial(run_case, **kwargs), [(t.case, t.job_dir) for t in tasks],
+    return map_on_cluster(partial(_run_task, **kwargs), [(t.case, t.job_dir) for t in tasks],
                           scheduler, retries=0, key_prefix="microslip-ccx",
                           progress="CalculiX runs" if show else None)
 
