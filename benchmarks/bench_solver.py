@@ -60,8 +60,8 @@ def bench_coarse(repeat: int) -> None:
         print(f"{mesh:>12} {r.dof:>6} {w:>8.3f} {c:>7.3f} "
               f"{100 * (r.peak_displacement / d0 - 1):>9.3f} "
               f"{100 * (r.dissipated_energy / w0 - 1):>9.3f} "
-              f"{100 * (r.friction_dissipation / w0 - 1):>12.3f} "
-              f"{r.stats.iterations:>6} {r.stats.factorisations:>7}")
+              f"{100 * (r.details.friction_dissipation / w0 - 1):>12.3f} "
+              f"{r.details.stats.iterations:>6} {r.details.stats.factorisations:>7}")
 
 
 def bench_linear_solvers(mesh: str, repeat: int) -> None:
@@ -88,9 +88,10 @@ def bench_linear_solvers(mesh: str, repeat: int) -> None:
 def bench_paper(repeat: int, ccx: bool, ccx_mesh: str) -> None:
     print("\n== Table 1 tip loop at the paper's size: built-in vs CalculiX, same run ==")
     r, w, c = _best(lambda: solve_uniaxial(P, "tip", F0, mesh="paper"), repeat)
-    print(f"built-in  : {r.dof} DOF (C3D8I {r.stats.mesh['nx']}x{r.stats.mesh['ny']}x"
-          f"{r.stats.mesh['nz']}), wall {w:.2f} s, CPU {c:.2f} s, "
-          f"{r.stats.iterations} Newton iterations, {r.stats.factorisations} factorisations")
+    st = r.details.stats
+    print(f"built-in  : {r.dof} DOF (C3D8I {st.mesh['nx']}x{st.mesh['ny']}x"
+          f"{st.mesh['nz']}), wall {w:.2f} s, CPU {c:.2f} s, "
+          f"{st.iterations} Newton iterations, {st.factorisations} factorisations")
     print(f"            amplitude {r.peak_displacement:.6e} mm (half peak-to-peak), "
           f"W_d {r.dissipated_energy:.5f} N·mm, offset {100 * r.offset / r.peak_displacement:.2f} %"
           f" of the amplitude")

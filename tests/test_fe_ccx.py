@@ -46,7 +46,7 @@ def report(tmp_path_factory) -> ValidationReport:
 
 @pytest.fixture(scope="module")
 def results(report):
-    return {r.case.model: r for r in report.results}
+    return {r.load_case: r for r in report.results}
 
 
 @pytest.mark.parametrize("model", ["tip", "centre"])
@@ -57,10 +57,11 @@ def test_peak_and_dissipation_within_the_issue_tolerances(results, model):
     assert abs(r.damping.dissipated_energy / wd - 1) <= TOLERANCES[model]["wd"]
     # regression: measured 2026-11 with ccx 2.20 (docs/validation.md); the W_d deficit is
     # mostly the 40-sample trapezoidal rule (-0.41 %), the centre's d0 deficit is the 3-D
-    # Poisson constraint at the loaded section
-    expected = {"tip": (3.3e-4, -6.25e-3), "centre": (-5.4e-3, -1.48e-2)}[model]
-    assert r.damping.peak_displacement / d0 - 1 == pytest.approx(expected[0], abs=1e-3)
-    assert r.damping.dissipated_energy / wd - 1 == pytest.approx(expected[1], abs=2e-3)
+    # Poisson constraint at the loaded section. ccx repeats a run to about 1e-5 relative
+    # (its printed displacements change in the 7th digit; see the dask test), hence 2e-5.
+    expected = {"tip": (3.2552e-4, -6.2471e-3), "centre": (-5.3932e-3, -1.48269e-2)}[model]
+    assert r.damping.peak_displacement / d0 - 1 == pytest.approx(expected[0], abs=2e-5)
+    assert r.damping.dissipated_energy / wd - 1 == pytest.approx(expected[1], abs=2e-5)
 
 
 @pytest.mark.parametrize("model", ["tip", "centre"])
@@ -68,7 +69,9 @@ def test_loop_closes_and_is_a_calculix_loop(results, model):
     r = results[model]
     assert abs(r.closure) <= 1e-3
     d = r.loop.displacement
-    assert abs(d[-1] - d[0]) <= 1e-3 * abs(d[0])
+    # Masing: the second half-cycle is the first one mirrored about the loop's centre
+    np.testing.assert_allclose(d[20:] - r.offset, -(d[:21] - r.offset),
+                               atol=2e-3 * r.peak_displacement)
     assert r.loop.source == "calculix" and r.loop.force[0] == r.loop.force[-1] == pytest.approx(F0)
     assert r.loop.force.size == 41 and r.converged and r.dof == 1076
     assert r.iterations.shape == (50,) and np.all(r.iterations >= 1)
@@ -122,24 +125,27 @@ def test_files_and_table(report):
 
 def test_vtu_export(results, tmp_path):
     meshio = pytest.importorskip("meshio")
-    from microslip.fe.vtu import export_vtu
+    from microslip.fe import SOLVERS
+    from microslip.fe.vtu import write_vtu_series
 
-    files = export_vtu(results["tip"], tmp_path)
-    assert [f.name for f in files][-1] == "fe_tip.pvd" and len(files) == 6
-    m = meshio.read(files[0])  # t = 0.25 s
-    assert {"displacement", "contact_status", "contact_pressure"} <= set(m.point_data)
+    r = results["tip"]
+    files = write_vtu_series(r, SOLVERS["calculix"].fields(r), tmp_path)
+    assert [f.name for f in files][-1] == "fe_tip.pvd" and len(files) == 52
+    m = meshio.read(files[10])  # t = 0.25 s
+    assert {"displacement", "contact_status", "contact_slip", "contact_pressure"} <= set(
+        m.point_data)
     status = m.point_data["contact_status"]
     assert set(np.unique(status)) == {-1, 1, 2}
     mesh = bar_mesh(P, "coarse")
     ids, w = mesh.load_weights("tip")
     u = m.point_data["displacement"][ids - 1, 0] @ w
-    assert u - results["tip"].clamp_displacement == pytest.approx(
+    assert u - r.details.clamp_displacement == pytest.approx(
         results["tip"].displacement[10], rel=1e-3)
 
 
 def test_truncated_or_partial_results_are_errors(results, tmp_path):
     src = results["tip"].job_dir
-    case, mesh = results["tip"].case, bar_mesh(P, "coarse")
+    case, mesh = results["tip"].details.case, bar_mesh(P, "coarse")
     cut = tmp_path / "frd"
     shutil.copytree(src, cut)
     text = (cut / "job.frd").read_text()
@@ -183,7 +189,8 @@ def test_cli_fe_json_has_the_loop_keys(tmp_path, capsys):
     assert abs(data["dissipated_energy_Nmm"] / wd - 1) <= 0.03
     assert set(data["slip_length_by_domain_mm"]) == {"tension", "compression"}
     assert (out / "job.inp").is_file() and (out / "fe_centre.pvd").is_file()
-    assert sum(1 for f in out.glob("fe_centre_t*.vtu")) == 5
+    assert (out / "result.json").is_file()
+    assert sum(1 for f in out.glob("fe_centre_*.vtu")) == 51
 
 
 def test_cli_validate_reuses_finished_jobs(report, capsys, monkeypatch, tmp_path):
@@ -200,7 +207,7 @@ def test_dask_scheduler_gives_identical_results(report, tmp_path):
                                   dashboard_address=None) as cluster:
         remote = run_validation(tmp_path, ("coarse",), ("tip",), progress=False,
                                 scheduler=cluster.scheduler_address)
-    local = next(r for r in report.results if r.case.model == "tip")
+    local = next(r for r in report.results if r.load_case == "tip")
     # ccx 2.20 itself is not bit-reproducible from run to run (the 7th printed digit of a
     # displacement can change between two runs of one deck on one machine), so "identical"
     # means identical to the solver's round-off

@@ -29,11 +29,14 @@ import numpy as np
 from . import closedform as cf
 from .energy import DEFAULT_STRAIN_ENERGY, damping, loop_work
 from .errors import ParameterError
-from .fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES, FECase
+from .fe.case import FECase
+from .fe.constants import DEFAULT_STICK_SLOPE
 from .fe.mesh import MeshSpec, mesh_spec
-from .fe.results import FEResult
-from .fe.runner import run_case
+from .fe.result import FELoopResult
+from .fe.results import CalculixDetails
+from .fe.run import run_loop
 from .io import write_csv
+from .loading import LOAD_CASES, load_case
 from .options import ModelOptions
 from .params import PRESETS, ClampParams, preset
 from .progress import progress as progress_bar
@@ -78,7 +81,7 @@ class ValidationReport:
         The rows of ``validation.csv`` (column name -> value; names carry units).
     summary_markdown : str
         A short markdown section: the table and the verdicts.
-    results : tuple of FEResult
+    results : tuple of FELoopResult
         The FE runs, in row order.
     passed : bool
         Every row within its tolerances and every loop closed.
@@ -88,7 +91,7 @@ class ValidationReport:
     files: tuple[Path, ...]
     rows: tuple[dict[str, Any], ...]
     summary_markdown: str
-    results: tuple[FEResult, ...] = field(default=(), repr=False)
+    results: tuple[FELoopResult, ...] = field(default=(), repr=False)
     passed: bool = False
 
 
@@ -104,17 +107,11 @@ def closed_form(model: str, params: ClampParams, amplitude: float) -> dict[str, 
     1.0
     """
     ea, q = params.axial_stiffness, params.friction_per_length
-    if model == "tip":
-        c = 2.0 * ea * q
-        return {"peak_mm": float(cf.tip_displacement(amplitude, ea, q)),
-                "wd_Nmm": cf.tip_dissipated_energy(amplitude, ea, q),
-                "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": amplitude / q, "c": c}
-    if model == "centre":
-        c = 8.0 * ea * q
-        return {"peak_mm": float(cf.centre_displacement(amplitude, ea, q)),
-                "wd_Nmm": cf.centre_dissipated_energy(amplitude, ea, q),
-                "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": amplitude / (2.0 * q), "c": c}
-    raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
+    lc = load_case(model)
+    return {"peak_mm": float(lc.displacement(amplitude, ea, q)),
+            "wd_Nmm": lc.dissipated_energy(amplitude, ea, q),
+            "eta": 4.0 / (3.0 * math.pi), "slip_length_mm": lc.slip_length(amplitude, q),
+            "c": lc.virgin_constant(ea, q)}
 
 
 def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
@@ -137,13 +134,8 @@ def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
 
     ea, q = params.axial_stiffness, params.friction_per_length
     k = stick_slope * params.width
-    if model == "tip":
-        length, force, halves = params.length, amplitude, 1.0
-    elif model == "centre":
-        length, force, halves = params.length / 2.0, amplitude / 2.0, 2.0
-    else:
-        raise ParameterError(f"unknown load case {model!r}; choose one of "
-                             f"{', '.join(LOAD_CASES)}")
+    halves = float(load_case(model).halves)
+    length, force = params.length / halves, amplitude / halves
 
     def residual(a: float) -> float:
         return float(cf.shear_layer_tip(a, ea, k, q, length)[0]) - force
@@ -161,11 +153,11 @@ def shear_layer_reference(model: str, params: ClampParams, amplitude: float,
     return {"peak_mm": d0, "wd_Nmm": wd}
 
 
-def _closed_form_sampled_wd(result: FEResult, c: float) -> float:
+def _closed_form_sampled_wd(result: FELoopResult, c: float) -> float:
     """W_d of the exact Masing loop sampled at the FE's force samples (trapezoidal rule):
     separates the bias of 40 samples per cycle from the FE error."""
     f = result.loop.force
-    f0 = result.case.amplitude
+    f0 = _case(result).amplitude
     t = np.asarray(result.loop.meta["time_s"])
     g = lambda x: x * x / c  # noqa: E731 - the virgin curve d = F^2 / c
     d0 = g(f0)
@@ -174,11 +166,19 @@ def _closed_form_sampled_wd(result: FEResult, c: float) -> float:
     return loop_work(f, d)
 
 
+
+def _case(result: FELoopResult) -> FECase:
+    """The CalculiX load case of a validation run."""
+    if not isinstance(result.details, CalculixDetails):
+        raise ParameterError(f"the validation compares CalculiX runs, got a {result.solver} run")
+    return result.details.case
+
+
 def _rel(a: float, b: float) -> float:
     return (a - b) / b
 
 
-def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = None) -> dict[
+def validation_row(result: FELoopResult, mesh: str, options: ModelOptions | None = None) -> dict[
         str, Any]:
     """One row of ``validation.csv``: FE, analytical model and closed form of one run.
 
@@ -189,7 +189,7 @@ def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = N
     ``*_shear_layer_*`` the bar on an elastic shear layer with the run's stick slope
     (:func:`shear_layer_reference`), what the penalty FE tends to under mesh refinement.
     """
-    case = result.case
+    case = _case(result)
     p, f0 = case.params, case.amplitude
     kind = result.damping.strain_energy_kind
     model = damping(case.model, p, f0, MODEL_INCREMENTS, options or ModelOptions(), kind)
@@ -253,14 +253,14 @@ def validation_row(result: FEResult, mesh: str, options: ModelOptions | None = N
 _STATUS_COLOURS = ("#ffffff", "#404040", "#bdbdbd")  # open, stick (dark), slip (light), Fig. 8
 
 
-def _status_grid(result: FEResult, k: int) -> tuple[Any, Any, Any]:
+def _status_grid(result: FELoopResult, k: int) -> tuple[Any, Any, Any]:
     """Status on the lower face's lattice, with x and y cell edges (mm).
 
     Face-centre lattice points (not nodes of the 8-node faces) take the status of their two
     neighbours along x when these agree, else stick.
     """
-    spec = result.case.spec
-    p = result.case.params
+    spec = _case(result).spec
+    p = _case(result).params
     grid = np.full((2 * spec.nx + 1, 2 * spec.ny + 1), -1, dtype=np.int64)
     xs = np.linspace(0.0, p.length, 2 * spec.nx + 1)
     ys = np.linspace(0.0, p.width, 2 * spec.ny + 1)
@@ -287,7 +287,7 @@ def _slipping_force(t: float, force: float, amplitude: float) -> float:
     return abs(force - reversal) / 2.0
 
 
-def plot_contact_status(results: Sequence[FEResult], path: str | os.PathLike[str],
+def plot_contact_status(results: Sequence[FELoopResult], path: str | os.PathLike[str],
                         times: Sequence[float] = (0.25, 0.5, 0.75, 1.0, 1.25)) -> None:
     """Fig. 8: stick (dark) and slip (light) zones of the lower face at the end of each 90
     degrees, one column per load case. Dashed lines bound the closed-form zone slipping in
@@ -302,9 +302,9 @@ def plot_contact_status(results: Sequence[FEResult], path: str | os.PathLike[str
     fig, axes = new_figure(ncols=len(results), nrows=len(times), width_mm=85.0, height_mm=22.0)
     cmap = ListedColormap(list(_STATUS_COLOURS))
     for col, res in enumerate(results):
-        p = res.case.params
+        p = _case(res).params
         q = p.friction_per_length
-        f0 = res.case.amplitude
+        f0 = _case(res).amplitude
         for row, t in enumerate(times):
             ax = axes[row, col]
             k = res.contact.index(t)
@@ -313,18 +313,19 @@ def plot_contact_status(results: Sequence[FEResult], path: str | os.PathLike[str
             f = float(res.force[k])
             f = 0.0 if abs(f) < 1e-9 * f0 else f
             span = _slipping_force(t, f, f0)
-            if res.case.model == "tip":
-                xs = [p.length - span / q]
-            else:
-                xs = [p.length / 2.0 - span / (2.0 * q), p.length / 2.0 + span / (2.0 * q)]
-                ax.axvline(p.length / 2.0, color="k", lw=1.0)
+            lc = load_case(res.load_case)
+            x_load, reach = lc.section * p.length, lc.slip_length(span, q)
+            xs = [x for x, inside in ((x_load - reach, lc.section > 0.0),
+                                      (x_load + reach, lc.section < 1.0)) if inside]
+            if 0.0 < lc.section < 1.0:
+                ax.axvline(x_load, color="k", lw=1.0)
             for xb in xs:
                 ax.axvline(xb, color="#D55E00", lw=0.9, ls="--")
             ax.set_xlim(0.0, p.length)
             ax.set_ylim(0.0, p.width)
             ax.set_yticks([0.0, p.width])
             ax.grid(False)
-            ax.set_title(f"{res.case.model}: t = {t:g} s ({round(360 * t)}°), "
+            ax.set_title(f"{res.load_case}: t = {t:g} s ({round(360 * t)}°), "
                          f"$F_T$ = {f:.0f} N", fontsize=7)
             if col == 0:
                 ax.set_ylabel("y (mm)")
@@ -338,18 +339,18 @@ def plot_contact_status(results: Sequence[FEResult], path: str | os.PathLike[str
     save_figure(fig, path)
 
 
-def plot_fe_vs_model(results: Sequence[FEResult], labels: Sequence[str],
+def plot_fe_vs_model(results: Sequence[FELoopResult], labels: Sequence[str],
                      path: str | os.PathLike[str], options: ModelOptions | None = None) -> None:
     """Fig. 9: FE loops (markers) against the analytical model (default reading) and the
     closed form (uncorrected model), one panel per load case."""
     from .plot import COLOURS, new_figure, plot_loops, save_figure
 
-    models = [m for m in LOAD_CASES if any(r.case.model == m for r in results)]
+    models = [m for m in LOAD_CASES if any(r.load_case == m for r in results)]
     fig, axes = new_figure(ncols=len(models), nrows=1)
     for col, m in enumerate(models):
         ax = axes[0, col]
-        runs = [(r, lab) for r, lab in zip(results, labels, strict=True) if r.case.model == m]
-        ref = runs[0][0].case
+        runs = [(r, lab) for r, lab in zip(results, labels, strict=True) if r.load_case == m]
+        ref = _case(runs[0][0])
         model = damping(m, ref.params, ref.amplitude, MODEL_INCREMENTS,
                         options or ModelOptions()).loop
         exact = damping(m, ref.params, ref.amplitude, MODEL_INCREMENTS,
@@ -376,17 +377,26 @@ class _Task:
     job_dir: Path
 
 
+def _run_task(case: FECase, job_dir: Path, **options: Any) -> FELoopResult:
+    """One CalculiX run of the validation through :func:`microslip.fe.run_loop` (its job files
+    and result.json in ``job_dir``; no VTU)."""
+    result, _ = run_loop(case.model, case.params, case.amplitude, solver="calculix",
+                         out=job_dir, vtu=False, mesh=case.mesh, element=case.element,
+                         stick_slope=case.stick_slope, substeps=case.substeps, **options)
+    return result
+
+
 def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
-               timeout: float | None, threads: int, reuse: bool) -> list[FEResult]:
+               timeout: float | None, threads: int, reuse: bool) -> list[FELoopResult]:
     kwargs: dict[str, Any] = {"timeout": timeout, "threads": threads, "reuse": reuse}
     if scheduler is None:
-        return [run_case(t.case, t.job_dir, **kwargs)
+        return [_run_task(t.case, t.job_dir, **kwargs)
                 for t in progress_bar(tasks, "CalculiX runs", total=len(tasks), enabled=show)]
     from functools import partial
 
     from .cluster import map_on_cluster
 
-    return map_on_cluster(partial(run_case, **kwargs), [(t.case, t.job_dir) for t in tasks],
+    return map_on_cluster(partial(_run_task, **kwargs), [(t.case, t.job_dir) for t in tasks],
                           scheduler, retries=0, key_prefix="microslip-ccx",
                           progress="CalculiX runs" if show else None)
 
@@ -498,10 +508,10 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
     out.mkdir(parents=True, exist_ok=True)
     columns = {k: [r[k] for r in rows] for k in rows[0]}
     write_csv(out / CSV, columns)
-    finest: dict[str, FEResult] = {}
+    finest: dict[str, FELoopResult] = {}
     for r in results:
-        if r.case.model not in finest or r.dof > finest[r.case.model].dof:
-            finest[r.case.model] = r
+        if r.load_case not in finest or r.dof > finest[r.load_case].dof:
+            finest[r.load_case] = r
     plot_contact_status([finest[m] for m in models if m in finest], out / FIG08)
     labels = [f"{t.mesh} ({r.dof} DOF)" for r, t in zip(results, tasks, strict=True)]
     plot_fe_vs_model(results, labels, out / FIG09)

@@ -1,89 +1,25 @@
-"""``microslip fe``: one finite-element run of the tip or centre load case (paper, Section 4).
+"""``microslip fe``: one finite-element run of a load case (paper, Section 4).
 
-The solver is chosen from :data:`SOLVERS` (``--solver``): the built-in frictional solver
-(default; validated against CalculiX, ``docs/solver.md``) or CalculiX. Each entry takes the
-parsed arguments and a job directory and returns the JSON summary (the keys of
-``microslip loop --json`` plus ``dof``, ``wall_s``, ``converged``) and the files it wrote.
+The solver is chosen from :data:`microslip.fe.SOLVERS` (``--solver``): the built-in
+frictional solver (default; validated against CalculiX, ``docs/solver.md``) or CalculiX.
+The run itself is :func:`microslip.fe.run_loop`; this module parses and prints.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import tempfile
-from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from ..errors import ParameterError
-from ..fe.case import (
-    DEFAULT_NORMAL_SLOPE,
-    DEFAULT_STICK_SLOPE,
-    ELEMENT_TYPES,
-    LOAD_CASES,
-    FECase,
-)
+from ..fe import SOLVERS, run_loop
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
-from ..solver.element import ELEMENTS as _BUILTIN_ELEMENTS
+from ..loading import LOAD_CASES
 from ..solver.mesh import MESHES as BUILTIN_MESHES
 from .common import add_params, add_strain_energy, number, params_from_args, print_json
 
-__all__ = ["SOLVERS", "add_parser", "case_from_args", "run"]
-
-BUILTIN_ELEMENTS = tuple(_BUILTIN_ELEMENTS)
-
-
-#: Default element of each solver.
-DEFAULT_ELEMENT = {"builtin": "C3D8I", "calculix": "C3D20R"}
-
-
-def _run_calculix(args: argparse.Namespace, job_dir: Path | None
-                  ) -> tuple[dict[str, Any], list[Path]]:
-    from ..fe.runner import find_ccx, run_case
-
-    case = case_from_args(args)
-    if not args.reuse:
-        find_ccx()  # one line saying how to install it, before anything is written
-    if job_dir is None:
-        with tempfile.TemporaryDirectory(prefix="microslip-fe-") as tmp:
-            result = run_case(case, Path(tmp), timeout=args.timeout, threads=args.threads,
-                              reuse=False, strain_energy_kind=args.strain_energy)
-        return result.summary() | {"job_dir": None}, []
-    result = run_case(case, job_dir, timeout=args.timeout, threads=args.threads,
-                      reuse=args.reuse, strain_energy_kind=args.strain_energy)
-    files: list[Path] = []
-    if not args.no_vtu:
-        from ..fe.vtu import export_vtu
-
-        files = export_vtu(result, job_dir)
-    return result.summary(), files
-
-
-def _run_builtin(args: argparse.Namespace, job_dir: Path | None
-                 ) -> tuple[dict[str, Any], list[Path]]:
-    from ..io import write_json
-    from ..solver import solve_uniaxial
-    from ..solver.report import uniaxial_summary
-
-    params, amplitude = params_from_args(args)
-    result = solve_uniaxial(params, args.model, amplitude, mesh=args.mesh,
-                            stick_slope=args.stick_slope, increments=args.substeps,
-                            element=args.element)
-    out = uniaxial_summary(result, params, args.strain_energy)
-    files: list[Path] = []
-    if job_dir is not None:
-        out["job_dir"] = str(job_dir)
-        write_json(job_dir / "result.json", out)
-        files.append(job_dir / "result.json")
-    return out, files
-
-
-#: Solvers of ``--solver``: name -> callable(args, job_dir or None) -> (summary, files).
-SOLVERS: dict[str, Callable[[argparse.Namespace, Path | None],
-                            tuple[dict[str, Any], list[Path]]]] = {
-    "builtin": _run_builtin,
-    "calculix": _run_calculix,
-}
+__all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: Any) -> None:
@@ -95,10 +31,10 @@ def add_parser(sub: Any) -> None:
         "(default) needs nothing else; --solver calculix needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     p.add_argument("--model", choices=list(LOAD_CASES), required=True,
-                   help="tip: traction on the end face; centre: on the mid-length section")
+                   help="; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
     add_params(p, default_preset="table1")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
-    g.add_argument("--mesh", choices=sorted(set(MESHES) | set(BUILTIN_MESHES)),
+    g.add_argument("--mesh", choices=sorted({m for e in SOLVERS.values() for m in e.meshes}),
                    default="coarse",
                    help="mesh level; calculix: " + ", ".join(
                        f"{k} {v.label()} ({v.dof} DOF)" for k, v in MESHES.items())
@@ -111,7 +47,8 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
                    f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g})")
-    g.add_argument("--element", choices=[*ELEMENT_TYPES, *BUILTIN_ELEMENTS], default=None,
+    g.add_argument("--element", choices=[e for s in SOLVERS.values() for e in s.elements],
+                   default=None,
                    help="calculix: 20-node brick, reduced (C3D20R, default) or full "
                         "integration (C3D20); builtin: 8-node brick with incompatible modes "
                         "(C3D8I, default) or plain (C3D8)")
@@ -126,22 +63,15 @@ def add_parser(sub: Any) -> None:
     s.add_argument("--threads", type=int, default=1, metavar="N",
                    help="OpenMP threads of the solver (default 1)")
     s.add_argument("--out", metavar="DIR",
-                   help="keep the job directory (deck, solver files, log) and the VTU "
-                        "export in DIR (default: a temporary directory, removed)")
+                   help="write result.json and the VTU series (displacement, contact status "
+                        "and slip of every increment, fe_<model>.pvd for ParaView) into DIR; "
+                        "calculix keeps its job files there too (default: nothing written)")
     s.add_argument("--reuse", action="store_true",
                    help="if DIR already holds a successful run of the identical deck, read it")
     s.add_argument("--no-vtu", action="store_true", help="do not write the VTU files")
     add_strain_energy(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
-
-
-def case_from_args(args: argparse.Namespace) -> FECase:
-    """The validated load case of the command line."""
-    params, amplitude = params_from_args(args)
-    return FECase(args.model, params, amplitude, mesh=args.mesh, stick_slope=args.stick_slope,
-                  normal_slope=args.normal_slope, substeps=args.substeps,
-                  element=args.element)
 
 
 def _check_run_options(args: argparse.Namespace) -> None:
@@ -151,28 +81,30 @@ def _check_run_options(args: argparse.Namespace) -> None:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
 
 
-def _check_solver_choices(args: argparse.Namespace) -> None:
-    meshes = BUILTIN_MESHES if args.solver == "builtin" else MESHES
-    if args.mesh not in meshes:
-        raise ParameterError(f"--mesh {args.mesh} is not a mesh of the {args.solver} solver; "
-                             f"choose one of {', '.join(meshes)}")
-    elements = BUILTIN_ELEMENTS if args.solver == "builtin" else ELEMENT_TYPES
-    if args.element is None:
-        args.element = DEFAULT_ELEMENT[args.solver]
-    elif args.element not in elements:
-        raise ParameterError(f"--element {args.element} is not an element of the {args.solver} "
-                             f"solver; choose one of {', '.join(elements)}")
-    if args.solver == "builtin" and (args.reuse or args.no_vtu or args.normal_slope
-                                     != DEFAULT_NORMAL_SLOPE):
-        raise ParameterError("--reuse, --no-vtu and --normal-slope apply to --solver calculix "
-                             "only (the built-in solver holds the contact closed)")
+def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The solver's own options given on the command line; one line for one it does not take."""
+    entry = SOLVERS[args.solver]
+    given = {"timeout": args.timeout, "threads": args.threads if args.threads != 1 else None,
+             "reuse": args.reuse or None,
+             "normal_slope": (args.normal_slope if args.normal_slope != DEFAULT_NORMAL_SLOPE
+                              else None)}
+    given = {k: v for k, v in given.items() if v is not None}
+    bad = [f"--{k.replace('_', '-')}" for k in given if k not in entry.options]
+    if bad:
+        raise ParameterError(f"{', '.join(bad)} do(es) not apply to --solver {args.solver}")
+    if "threads" in entry.options:
+        given.setdefault("threads", args.threads)
+    return given
 
 
 def run(args: argparse.Namespace) -> int:
     _check_run_options(args)
-    _check_solver_choices(args)
-    job_dir = Path(args.out) if args.out else None
-    out, files = SOLVERS[args.solver](args, job_dir)
+    params, amplitude = params_from_args(args)
+    result, files = run_loop(args.model, params, amplitude, solver=args.solver, out=args.out,
+                             vtu=not args.no_vtu, mesh=args.mesh, element=args.element,
+                             stick_slope=args.stick_slope, substeps=args.substeps,
+                             strain_energy_kind=args.strain_energy, **_solver_options(args))
+    out = result.summary()
     out["files"] = [str(f) for f in files]
     if args.json:
         print_json(out)

@@ -1,4 +1,10 @@
-"""Finite-element validation with CalculiX: deck writer, solver driver and result readers.
+"""Finite-element loops of the clamped bar: one result type, one entry point, two solvers.
+
+:func:`run_loop` runs the paper's FE load step with a solver of :data:`SOLVERS` (the
+built-in solver, :mod:`microslip.solver`, or CalculiX) and returns one
+:class:`FELoopResult` (:mod:`~microslip.fe.result`) either way; with ``out`` both write
+``result.json`` and a VTU series (:mod:`~microslip.fe.vtu`). Constants shared by both
+solvers: :mod:`~microslip.fe.constants`; load cases: :mod:`microslip.loading`.
 
 The paper validates its models against ANSYS contact simulations (Section 4, Table 1,
 Figs 8-9). This subpackage builds the same model for the open solver CalculiX (``ccx``),
@@ -9,22 +15,16 @@ generated, run and read back from Python:
 - :mod:`~microslip.fe.deck`: the ``.inp`` deck, one tested function per keyword card;
 - :mod:`~microslip.fe.runner`: ``ccx`` with a time-out and typed failures;
 - :mod:`~microslip.fe.readers`: ``.dat``, ``.sta`` and ``.frd`` readers;
-- :mod:`~microslip.fe.results`: the named result (:class:`FEResult`): the loop as a
-  :class:`~microslip.results.HysteresisLoop`, its damping, the contact status history;
-- :mod:`~microslip.fe.vtu`: export for ParaView (meshio).
+- :mod:`~microslip.fe.results`: the CalculiX run read into an :class:`FELoopResult`.
 
 Nothing here is imported by ``import microslip``; meshio is imported only by the VTU export.
 """
 
 from __future__ import annotations
 
-from .case import (
-    DEFAULT_NORMAL_SLOPE,
-    DEFAULT_STICK_SLOPE,
-    ELEMENT_TYPES,
-    LOAD_CASES,
-    FECase,
-)
+from ..loading import LOAD_CASES
+from .case import ELEMENT_TYPES, FECase
+from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .deck import build_deck
 from .errors import (
     INSTALL_HINT,
@@ -37,7 +37,9 @@ from .errors import (
 )
 from .mesh import MESHES, BarMesh, MeshSpec, bar_mesh, mesh_spec
 from .readers import read_dat, read_frd, read_sta
-from .results import STATUS, ContactHistory, FEResult, contact_status, read_results
+from .result import STATUS, ContactHistory, FELoopResult
+from .results import CalculixDetails, contact_status, read_results
+from .run import SOLVERS, SolverEntry, run_loop
 from .runner import ccx_available, ccx_version, default_timeout, find_ccx, run_case, run_ccx
 
 __all__ = [
@@ -47,14 +49,17 @@ __all__ = [
     "INSTALL_HINT",
     "LOAD_CASES",
     "MESHES",
+    "SOLVERS",
     "STATUS",
     "BarMesh",
+    "CalculixDetails",
     "ContactHistory",
     "FECase",
-    "FEResult",
+    "FELoopResult",
     "MeshSpec",
     "NonConvergenceError",
     "ResultsError",
+    "SolverEntry",
     "SolverError",
     "SolverKilledError",
     "SolverNotFoundError",
@@ -73,4 +78,5 @@ __all__ = [
     "read_sta",
     "run_case",
     "run_ccx",
+    "run_loop",
 ]

@@ -9,14 +9,15 @@ remaining full period, t = 0.25 .. 1.25 s, is the closed hysteresis loop.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
+from ..loading import LOAD_CASES, PERIOD, PERIODS, PaperSine, load_case
 from ..params import ClampParams, check_amplitude, check_positive, preset
+from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .mesh import MeshSpec, mesh_spec
 
 __all__ = [
@@ -28,20 +29,8 @@ __all__ = [
     "FECase",
 ]
 
-#: Load cases: uniform traction on the end face x = L, or on the mid-length section x = L/2.
-LOAD_CASES = ("tip", "centre")
 #: Quadratic hexahedra, the counterparts of ANSYS SOLID186 (full or reduced integration).
 ELEMENT_TYPES = ("C3D20R", "C3D20")
-#: Stick slope lambda of the penalty friction law, N/mm^3 (the shear traction per unit of
-#: elastic slip before gross slip). 1e4 is within about 0.1 % of the rigid-stick limit on the
-#: Table 1 bar (docs/validation.md, stick-slope study).
-DEFAULT_STICK_SLOPE = 1.0e4
-#: Slope of the linear pressure-overclosure law, N/mm^3 (penetration F_N/(L w K) ~ 1e-6 mm).
-DEFAULT_NORMAL_SLOPE = 1.0e5
-#: Period of the load, s (the paper's 1 Hz; quasi-static, so only the shape of F_T(t) matters).
-PERIOD = 1.0
-#: Load duration in periods (the paper's 125 %).
-PERIODS = 1.25
 
 
 @dataclass(frozen=True)
@@ -94,11 +83,10 @@ class FECase:
     element: str = "C3D20R"
     max_iterations: int = 26
     nlgeom: bool = False
+    load: PaperSine = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        if self.model not in LOAD_CASES:
-            raise ParameterError(
-                f"unknown load case {self.model!r}; choose one of {', '.join(LOAD_CASES)}")
+        load_case(self.model)
         if not isinstance(self.params, ClampParams):
             raise ParameterError("params must be a ClampParams")
         f0 = check_amplitude(self.amplitude)
@@ -112,12 +100,8 @@ class FECase:
                            check_positive("stick_slope", self.stick_slope, "N/mm^3"))
         object.__setattr__(self, "normal_slope",
                            check_positive("normal_slope", self.normal_slope, "N/mm^3"))
-        n = self.substeps
-        if (not isinstance(n, (int, np.integer)) or isinstance(n, bool) or n < 10 or n % 5
-                or n > 100_000):
-            raise ParameterError(
-                f"substeps must be a multiple of 5 in [10, 100000], got {n!r}")
-        object.__setattr__(self, "substeps", int(n))
+        object.__setattr__(self, "load", PaperSine.sampled(f0, self.substeps))
+        object.__setattr__(self, "substeps", self.load.increments)
         if self.element not in ELEMENT_TYPES:
             raise ParameterError(
                 f"element must be one of {', '.join(ELEMENT_TYPES)}, got {self.element!r}")
@@ -130,8 +114,7 @@ class FECase:
     @property
     def spec(self) -> MeshSpec:
         """The mesh as a MeshSpec (``mesh`` is converted on construction)."""
-        assert isinstance(self.mesh, MeshSpec)
-        return self.mesh
+        return mesh_spec(self.mesh)
 
     @property
     def duration(self) -> float:
@@ -146,16 +129,20 @@ class FECase:
     @property
     def times(self) -> NDArray[np.float64]:
         """Substep ends, shape (substeps + 1,), from 0 (clamped state) to 1.25 s."""
-        return np.arange(self.substeps + 1, dtype=np.float64) * self.dt
+        return self.load.time
 
     def force(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """F_T(t) = F0 sin(2 pi t / period), N."""
-        return self.amplitude * np.sin(2.0 * math.pi * np.asarray(t, dtype=float) / PERIOD)
+        """F_T(t) = F0 sin(2 pi t / period), N, at the substep ends ``t`` (:attr:`times`);
+        other times are not load samples."""
+        k = np.rint(np.asarray(t, dtype=float) / self.dt).astype(np.int64)
+        if not np.allclose(k * self.dt, t, rtol=0.0, atol=1e-9):
+            raise ParameterError("FECase.force takes substep ends (FECase.times)")
+        return np.asarray(self.load.force[k], dtype=float)
 
     @property
     def quarter(self) -> int:
         """Substeps per quarter period."""
-        return self.substeps // 5
+        return self.load.quarter
 
     @property
     def pressure(self) -> float:

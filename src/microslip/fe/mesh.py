@@ -193,12 +193,11 @@ class BarMesh:
         return self.plane_nodes(2, 0)
 
     def load_plane(self, model: str) -> int:
-        """Lattice index i of the loaded cross-section: 2 nx (tip, x = L) or nx (centre)."""
-        if model == "tip":
-            return 2 * self.spec.nx
-        if model == "centre":
-            return self.spec.nx
-        raise ParameterError(f"unknown load case {model!r}; choose one of tip, centre")
+        """Lattice index i of the loaded cross-section (:attr:`LoadCase.section` of the 2 nx
+        lattice spacings): 2 nx for the tip (x = L), nx for the centre."""
+        from ..loading import load_case
+
+        return round(load_case(model).section * 2 * self.spec.nx)
 
     def load_weights(self, model: str) -> tuple[IntArray, FloatArray]:
         """Nodes of the loaded cross-section and their share of the total force.

@@ -1,9 +1,9 @@
-"""Named results of a CalculiX run: the loop, the contact status history, solver figures.
+"""Reading a CalculiX run into the one FE result, :class:`~microslip.fe.result.FELoopResult`.
 
 The FE loop arrives as a :class:`~microslip.results.HysteresisLoop` (``source="calculix"``)
 and its damping as a :class:`~microslip.results.DampingResult` from
-:func:`microslip.energy.damping_from_loop`, exactly as the analytical models deliver theirs, so
-comparison code never cares where a loop came from.
+:func:`microslip.energy.damping_from_loop`, exactly as the analytical models and the built-in
+solver deliver theirs, so comparison code never cares where a loop came from.
 
 Conventions (docs/validation.md):
 
@@ -27,7 +27,6 @@ Conventions (docs/validation.md):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -35,26 +34,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..energy import DEFAULT_STRAIN_ENERGY, damping_from_loop
-from ..results import DampingResult, HysteresisLoop
+from ..named import result
+from ..results import HysteresisLoop
 from .case import FECase
 from .errors import ResultsError
 from .mesh import BarMesh
 from .readers import read_dat, read_frd, read_sta
+from .result import OPEN, SLIP, STATUS, STICK, ContactHistory, FELoopResult, column_lengths
 
 __all__ = [
     "STATUS",
-    "ContactHistory",
-    "FEResult",
+    "CalculixDetails",
     "contact_status",
     "read_results",
 ]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-
-#: Contact status codes: index in this tuple.
-STATUS = ("open", "stick", "slip")
-OPEN, STICK, SLIP = 0, 1, 2
 
 
 def contact_status(pressure: FloatArray, shear: FloatArray, slip: FloatArray, friction: float,
@@ -116,181 +112,41 @@ def contact_status(pressure: FloatArray, shear: FloatArray, slip: FloatArray, fr
     return status
 
 
-@dataclass(frozen=True)
-class ContactHistory:
-    """Contact state of every contact point (slave node of the lower face) at every state.
-
-    Attributes
-    ----------
-    nodes : ndarray of int, shape (m,)
-        Node ids.
-    coords : ndarray, shape (m, 3)
-        Reference coordinates, mm (z = 0).
-    time : ndarray, shape (k,)
-        Step time of each state, s: 0 is the clamped state, then the substeps to 1.25 s.
-    pressure : ndarray, shape (k, m)
-        Contact pressure, MPa.
-    shear : ndarray, shape (k, m, 2)
-        Shear traction in the face's two tangent directions (here x and y), MPa.
-    slip : ndarray, shape (k, m, 2)
-        Total tangential relative displacement, mm.
-    status : ndarray of int8, shape (k, m)
-        Codes into :data:`STATUS`.
-    column_width : ndarray, shape (m,)
-        Length along x that each point stands for (half the spacing to its neighbours), mm;
-        used to turn status into slip lengths.
-    """
-
-    nodes: IntArray
-    coords: FloatArray
-    time: FloatArray
-    pressure: FloatArray
-    shear: FloatArray
-    slip: FloatArray
-    status: NDArray[np.int8]
-    column_width: FloatArray
-
-    def index(self, t: float) -> int:
-        """Index of the state at step time ``t`` (s); raises if there is none within 1e-9 s."""
-        k = int(np.argmin(np.abs(self.time - t)))
-        if abs(self.time[k] - t) > 1e-9:
-            raise ValueError(f"no contact state at t = {t:g} s")
-        return k
-
-    def slip_length(self, x_min: float = -math.inf, x_max: float = math.inf) -> FloatArray:
-        """Slipping length along x at every state, mm: slipping share of each x-column of
-        points (over the width) times the column width, summed over x_min <= x <= x_max."""
-        x = self.coords[:, 0]
-        sel = (x >= x_min) & (x <= x_max)
-        cols = np.unique(np.round(x[sel], 9))
-        out = np.zeros(self.time.shape[0])
-        for c in cols:
-            k = sel & (np.abs(x - c) < 1e-6)
-            share = np.mean(self.status[:, k] == SLIP, axis=1)
-            out += share * float(self.column_width[k][0])
-        return out
-
-
-@dataclass(frozen=True)
-class FEResult:
-    """One finite-element run of the clamped bar.
+@result
+class CalculixDetails:
+    """What a CalculiX run adds to its :class:`~microslip.fe.result.FELoopResult`.
 
     Attributes
     ----------
     case : FECase
-    time : ndarray, shape (n + 1,)
-        Step time, s: 0 (clamped) and the n substep ends up to 1.25 s.
-    force : ndarray, shape (n + 1,)
-        Applied tangential force F_T(t), N.
-    displacement : ndarray, shape (n + 1,)
-        Work-conjugate displacement of the loaded section from the clamped state, mm.
-    loop : HysteresisLoop
-        The closed loop t = 0.25 .. 1.25 s, ``source="calculix"``.
-    damping : DampingResult
-        W_d, U and eta of ``loop`` (:func:`microslip.energy.damping_from_loop`).
-    contact : ContactHistory
-    dof : int
-        Free degrees of freedom of the bar.
-    iterations : ndarray of int, shape (n,)
-        Equilibrium iterations of each substep.
-    wall_s : float
-        Wall time of the solver, s.
-    converged : bool
-        Every substep converged (a run that does not converge raises instead of returning).
+        The load case as run (mesh, element, contact slopes, iteration limit).
     clamp_displacement : float
         Work-conjugate displacement caused by the clamping step alone, mm.
-    job_dir : Path or None
-        Where the deck and result files are.
+    pressure : ndarray, shape (k, m)
+        Contact pressure at every state, MPa.
+    shear : ndarray, shape (k, m, 2)
+        Shear traction in x and y at every state, MPa.
     """
 
     case: FECase
-    time: FloatArray
-    force: FloatArray
-    displacement: FloatArray
-    loop: HysteresisLoop
-    damping: DampingResult
-    contact: ContactHistory
-    dof: int
-    iterations: IntArray
-    wall_s: float
-    converged: bool
     clamp_displacement: float
-    job_dir: Path | None = None
+    pressure: FloatArray
+    shear: FloatArray
 
-    @property
-    def closure(self) -> float:
-        """(delta(1.25 s) - delta(0.25 s)) / delta(0.25 s): how far the loop is from closed."""
-        d = self.loop.displacement
-        return float((d[-1] - d[0]) / d[0])
-
-    @property
-    def offset(self) -> float:
-        """Mid-point of the loop's displacement extremes, mm (0 for a point-symmetric loop)."""
-        d = self.loop.displacement
-        return float(0.5 * (np.max(d) + np.min(d)))
-
-    @property
-    def total_iterations(self) -> int:
-        return int(np.sum(self.iterations))
-
-    def slip_lengths(self, t: float = 0.25) -> dict[str, float]:
-        """Slip length of each domain at step time ``t`` (default the first peak), mm.
-
-        Tip: the slipping length measured from the loaded end. Centre: the slipping length
-        in the tension half (x > L/2) and in the compression half (x < L/2).
-        """
-        k = self.contact.index(t)
-        half = 0.5 * self.case.params.length
-        if self.case.model == "tip":
-            return {"tip": float(self.contact.slip_length()[k])}
-        return {"tension": float(self.contact.slip_length(x_min=half)[k]),
-                "compression": float(self.contact.slip_length(x_max=half)[k])}
+    def options(self) -> dict[str, Any]:
+        c = self.case
+        return {"mesh": c.spec.label(), "element": c.element, "stick_slope": c.stick_slope,
+                "normal_slope": c.normal_slope, "max_iterations": c.max_iterations,
+                "nlgeom": c.nlgeom}
 
     def summary(self) -> dict[str, Any]:
-        """The JSON object of ``microslip fe``: the keys of ``microslip loop --json`` plus
-        ``dof``, ``wall_s``, ``converged`` and the FE set-up."""
-        c = self.case
-        return {
-            "model": c.model,
-            "solver": "calculix",
-            "units": {"force": "N", "length": "mm", "modulus": "MPa", "energy": "N·mm",
-                      "time": "s", "stick_slope": "N/mm^3"},
-            "params": c.params.as_dict(),
-            "options": {"mesh": c.spec.label(), "element": c.element,
-                        "stick_slope": c.stick_slope, "normal_slope": c.normal_slope,
-                        "max_iterations": c.max_iterations, "nlgeom": c.nlgeom},
-            "increments": c.substeps,
-            "amplitude_N": c.amplitude,
-            "macroslip_force_N": c.params.macroslip_force,
-            **self.damping.loop_json(self.slip_lengths()),
-            "dof": self.dof,
-            "wall_s": self.wall_s,
-            "converged": self.converged,
-            "iterations": self.total_iterations,
-            "loop_closure": self.closure,
-            "loop_offset_mm": self.offset,
-            "clamp_displacement_mm": self.clamp_displacement,
-            "job_dir": None if self.job_dir is None else str(self.job_dir),
-        }
-
-    def with_strain_energy(self, kind: str) -> FEResult:
-        """The same result with U (and eta) by another definition."""
-        from dataclasses import replace
-
-        return replace(self, damping=damping_from_loop(self.loop, None, kind))
-
-
-def _column_widths(x: FloatArray) -> FloatArray:
-    cols = np.unique(np.round(x, 9))
-    edges = np.concatenate([[cols[0]], 0.5 * (cols[1:] + cols[:-1]), [cols[-1]]])
-    width = np.diff(edges)
-    return np.asarray(width[np.searchsorted(cols, np.round(x, 9))], dtype=float)
+        return {"clamp_displacement_mm": self.clamp_displacement}
 
 
 def read_results(case: FECase, mesh: BarMesh, job_dir: str | Path, jobname: str = "job", *,
                  wall_s: float = math.nan,
-                 strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FEResult:
-    """Assemble the :class:`FEResult` of a finished run from its ``.dat``, ``.sta``, ``.frd``.
+                 strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FELoopResult:
+    """Assemble the :class:`FELoopResult` of a finished run from its ``.dat``, ``.sta``, ``.frd``.
 
     Raises
     ------
@@ -347,9 +203,8 @@ def read_results(case: FECase, mesh: BarMesh, job_dir: str | Path, jobname: str 
     slip = values[:, :, 1:3]
     status = contact_status(pressure, shear, slip, case.params.friction, case.stick_slope)
     coords = mesh.nodes[ids - 1]
-    contact = ContactHistory(ids, coords, case.times.copy(), pressure, shear, slip, status,
-                             _column_widths(coords[:, 0]))
-
+    contact = ContactHistory(ids - 1, coords, case.times.copy(), status,
+                             column_lengths(coords[:, 0]), slip)
     force = case.force(case.times)
     q = case.quarter
     loop = HysteresisLoop(
@@ -357,8 +212,11 @@ def read_results(case: FECase, mesh: BarMesh, job_dir: str | Path, jobname: str 
         meta={"model": case.model, "amplitude_N": case.amplitude, "mesh": case.spec.label(),
               "stick_slope": case.stick_slope, "dof": case.spec.dof,
               "time_s": case.times[q:].copy()})
-    return FEResult(
-        case=case, time=case.times.copy(), force=force, displacement=displacement, loop=loop,
+    details = CalculixDetails(case, float(absolute[0]), pressure, shear)
+    return FELoopResult(
+        solver="calculix", load_case=case.model, params=case.params, amplitude=case.amplitude,
+        time=case.times.copy(), force=force, displacement=displacement, loop=loop,
         damping=damping_from_loop(loop, None, strain_energy_kind), contact=contact,
         dof=case.spec.dof, iterations=sta.iterations.copy(), wall_s=float(wall_s),
-        converged=converged, clamp_displacement=float(absolute[0]), job_dir=job_dir)
+        converged=converged, message="converged" if converged else "cut back", details=details,
+        job_dir=job_dir)

@@ -35,7 +35,8 @@ from .errors import (
     SolverTimeoutError,
 )
 from .mesh import bar_mesh
-from .results import FEResult, read_results
+from .result import FELoopResult
+from .results import read_results
 
 __all__ = [
     "CCX",
@@ -234,7 +235,7 @@ def _reusable(job_dir: Path, jobname: str, digest: str) -> float | None:
 
 def run_case(case: FECase, job_dir: str | Path, *, timeout: float | None = None,
              threads: int = 1, executable: str | None = None, reuse: bool = False,
-             strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FEResult:
+             strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FELoopResult:
     """Write the deck of ``case`` into ``job_dir``, run ccx, and read the results.
 
     Parameters
@@ -256,7 +257,7 @@ def run_case(case: FECase, job_dir: str | Path, *, timeout: float | None = None,
 
     Returns
     -------
-    FEResult
+    FELoopResult
 
     Raises
     ------

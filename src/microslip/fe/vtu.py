@@ -1,32 +1,29 @@
-"""Export a CalculiX run for ParaView: one VTU file per chosen time and a ``.pvd`` collection.
+"""Export an FE loop for ParaView: one VTU file per state and a ``.pvd`` time collection.
 
-Each VTU holds the bar (20-node hexahedra; CalculiX's C3D20 node order is VTK's quadratic
-hexahedron order) and the base (8-node hexahedra) with point data ``displacement`` (mm),
-``contact_status`` (-1: not a contact point, 0 open, 1 stick, 2 slip), ``contact_pressure``
-(MPa) and ``contact_shear`` (MPa), and cell data ``part`` (0 bar, 1 base). meshio is
-imported only here.
+Each VTU holds the solver's mesh with point data ``displacement`` (mm), ``contact_status``
+(-1: not a contact point, 0 open, 1 stick, 2 slip) and ``contact_slip`` (mm), plus any
+extra point or cell data a solver adds (CalculiX: ``contact_pressure``, ``contact_shear``
+in MPa and the cell data ``part``, 0 bar, 1 base). The same files come from both solvers
+(:func:`microslip.fe.run_loop` with ``out``). meshio is imported only here.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import MicroslipError
 from ..io import atomic_path, atomic_write
-from .mesh import BarMesh, bar_mesh
-from .readers import read_frd
-from .results import FEResult
-from .runner import JOBNAME
+from .result import FELoopResult
 
-__all__ = ["QUARTER_TIMES", "export_vtu"]
+__all__ = ["FieldSeries", "write_vtu_series"]
 
-#: The ends of each 90 degrees of the cycle (the paper's Fig. 8), s.
-QUARTER_TIMES = (0.25, 0.5, 0.75, 1.0, 1.25)
+FloatArray = NDArray[np.float64]
 
 
 def _meshio() -> Any:
@@ -37,63 +34,57 @@ def _meshio() -> Any:
     return meshio
 
 
-def export_vtu(result: FEResult, out_dir: str | os.PathLike[str],
-               times: Sequence[float] = QUARTER_TIMES, basename: str | None = None,
-               mesh: BarMesh | None = None) -> list[Path]:
-    """Write ``<basename>_t<time>.vtu`` for each time and ``<basename>.pvd`` listing them.
+class FieldSeries:
+    """The mesh and the nodal displacements of every state of an :class:`FELoopResult`.
 
     Parameters
     ----------
-    result : FEResult
-        A run whose job directory still holds ``job.frd``.
-    out_dir : path
-    times : sequence of float
-        Step times, s; each must be a substep end.
-    basename : str, optional
-        Default ``fe_<model>``.
-    mesh : BarMesh, optional
-        The run's mesh (rebuilt from the case if not given).
-
-    Returns
-    -------
-    list of Path
-        The VTU files, then the ``.pvd`` file.
+    points : ndarray, shape (n, 3)
+        Reference coordinates, mm.
+    cells : sequence of (str, ndarray)
+        meshio cell blocks (0-based node indices).
+    displacement : ndarray, shape (k, n, 3)
+        Displacement of every node at every state of ``result.time``, mm.
+    point_data, cell_data : mapping, optional
+        Extra data: point arrays of shape (k, n, ...) per state; cell data as meshio takes it.
     """
+
+    def __init__(self, points: FloatArray, cells: Sequence[tuple[str, Any]],
+                 displacement: FloatArray, point_data: Mapping[str, FloatArray] | None = None,
+                 cell_data: Mapping[str, Any] | None = None) -> None:
+        self.points, self.cells, self.displacement = points, list(cells), displacement
+        self.point_data = dict(point_data or {})
+        self.cell_data = dict(cell_data or {})
+
+
+def _point_data(result: FELoopResult, fields: FieldSeries, k: int) -> dict[str, Any]:
+    n = fields.points.shape[0]
+    c = result.contact
+    status = np.full(n, -1, dtype=np.int32)
+    status[c.nodes] = c.status[k]
+    slip = np.zeros((n, 3))
+    if c.slip is not None:
+        slip[c.nodes, :2] = c.slip[k]
+    data = {"displacement": fields.displacement[k], "contact_status": status,
+            "contact_slip": slip}
+    return data | {name: v[k] for name, v in fields.point_data.items()}
+
+
+def write_vtu_series(result: FELoopResult, fields: FieldSeries, out_dir: str | os.PathLike[str],
+                     basename: str | None = None) -> list[Path]:
+    """Write ``<basename>_<k>.vtu`` for every state k and ``<basename>.pvd`` listing them with
+    their times (s); ``basename`` defaults to ``fe_<load case>``. Returns the VTU files, then
+    the ``.pvd`` file; each is written atomically."""
     meshio = _meshio()
-    if result.job_dir is None:
-        raise MicroslipError("the FE result has no job directory to read displacements from")
-    case = result.case
-    mesh = mesh or bar_mesh(case.params, case.spec)
-    frd = read_frd(result.job_dir / f"{JOBNAME}.frd", names=("DISP",))
-    disp_blocks = frd.select("DISP")
-    clamp_time = 1.0
-    n_nodes = mesh.nodes.shape[0]
-    cells = [("hexahedron20", mesh.elements - 1), ("hexahedron", mesh.base_elements - 1)]
-    part = [np.zeros(mesh.elements.shape[0], dtype=np.int32),
-            np.ones(mesh.base_elements.shape[0], dtype=np.int32)]
-    contact = result.contact
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    base = basename or f"fe_{case.model}"
+    base = basename or f"fe_{result.load_case}"
     written: list[Path] = []
-    for t in times:
-        k = contact.index(float(t))
-        block = next((b for b in disp_blocks if abs(b.time - (clamp_time + t)) < 1e-6), None)
-        if block is None:
-            raise MicroslipError(f"job.frd has no displacements at t = {t:g} s")
-        u = np.zeros((n_nodes, 3))
-        u[block.nodes - 1] = block.values[:, :3]
-        status = np.full(n_nodes, -1, dtype=np.int32)
-        status[contact.nodes - 1] = contact.status[k]
-        pressure = np.zeros(n_nodes)
-        pressure[contact.nodes - 1] = contact.pressure[k]
-        shear = np.zeros((n_nodes, 3))
-        shear[contact.nodes - 1, :2] = contact.shear[k]
-        m = meshio.Mesh(mesh.nodes, cells,
-                        point_data={"displacement": u, "contact_status": status,
-                                    "contact_pressure": pressure, "contact_shear": shear},
-                        cell_data={"part": part})
-        path = out / f"{base}_t{t:.3f}.vtu"
+    width = len(str(result.time.size - 1))
+    for k in range(result.time.size):
+        m = meshio.Mesh(fields.points, fields.cells, point_data=_point_data(result, fields, k),
+                        cell_data=fields.cell_data)
+        path = out / f"{base}_{k:0{width}d}.vtu"
         with atomic_path(path) as tmp:
             meshio.write(tmp, m, file_format="vtu")
         written.append(path)
@@ -101,8 +92,8 @@ def export_vtu(result: FEResult, out_dir: str | os.PathLike[str],
     with atomic_write(pvd) as fh:
         fh.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n'
                  "  <Collection>\n")
-        for t, path in zip(times, written, strict=False):
-            fh.write(f'    <DataSet timestep="{t:g}" file="{path.name}"/>\n')
+        for t, path in zip(result.time, written, strict=True):
+            fh.write(f'    <DataSet timestep="{t:.12g}" file="{path.name}"/>\n')
         fh.write("  </Collection>\n</VTKFile>\n")
     written.append(pvd)
     return written

@@ -1,8 +1,9 @@
-"""Planar load paths and the work they do: the physically consistent alternative to Eqs 19-23.
+"""The work planar load paths do: the physically consistent alternative to Eqs 19-23.
 
-A :class:`LoadPath` is any sampled in-plane load history on the whole clamp: the force along
-the bar ("tip" direction) and across it at mid-length ("centre" direction) at angles theta,
-with one closed cycle at its end. A solver turns it into a :class:`PathResponse` (the
+A :class:`~microslip.loading.LoadPath` (:mod:`microslip.loading.path`, re-exported here) is
+any sampled in-plane load history on the whole clamp: the force along the bar ("tip"
+direction) and across it at mid-length ("centre" direction) at angles theta, with one closed
+cycle at its end. A solver turns it into a :class:`PathResponse` (the
 displacement of each load point along its own force); this module does so with the two
 decoupled 1-D models and the extended Masing rules (:func:`analytical_response`), and a
 coupled 2-D friction solver can return the same type. From a response:
@@ -32,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, loop_work, loss_factor, strain_energy
 from ..errors import ParameterError
 from ..hysteresis import VirginCurve, masing_loop, masing_response
+from ..loading.path import LoadPath
 from ..results import Backbone
 
 __all__ = [
@@ -50,148 +52,11 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
-#: Relative tolerance on the closure of a cycle's forces.
-_CLOSE_TOL = 1e-9
-
 
 def _readonly(a: ArrayLike) -> FloatArray:
     arr = np.array(a, dtype=float)
     arr.setflags(write=False)
     return arr
-
-
-@dataclass(frozen=True)
-class LoadPath:
-    """A sampled planar load history on the whole clamp, ending with one closed cycle.
-
-    Attributes
-    ----------
-    theta : ndarray, shape (K,)
-        Load parameter (angle of the cycle, radians), non-decreasing.
-    tip_force : ndarray, shape (K,)
-        Total force along the bar on the clamp, N (the paper's tip loading; for the paper's
-        half model it is :data:`~microslip.planar.trajectories.TIP_SYMMETRY` times the model
-        force).
-    centre_force : ndarray, shape (K,)
-        Force across the bar at mid-length, N (the paper's centre loading).
-    cycle_start : int
-        Samples ``cycle_start`` to ``K - 1`` form the closed cycle the energies are taken
-        over (the forces at both ends equal); the samples before it are the start-up from the
-        unloaded state.
-    meta : dict
-        What the producer wants recorded (amplitudes, phase, ...).
-
-    Examples
-    --------
-    >>> p = LoadPath.harmonic(1000.0, 500.0, phase_deg=90.0, samples_per_cycle=8)
-    >>> p.cycle_start, p.theta.size, p.tip_force[p.cycle_start:].round(3).tolist()[:3]
-    (4, 13, [0.0, -707.107, -1000.0])
-    """
-
-    theta: FloatArray
-    tip_force: FloatArray
-    centre_force: FloatArray
-    cycle_start: int = 0
-    meta: dict[str, Any] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        th, ft, fc = (_readonly(x) for x in (self.theta, self.tip_force, self.centre_force))
-        if th.ndim != 1 or th.shape != ft.shape or th.shape != fc.shape:
-            raise ParameterError(
-                "a load path needs 1-D theta, tip_force and centre_force of equal length, got "
-                f"shapes {th.shape}, {ft.shape}, {fc.shape}"
-            )
-        if th.size < 3:
-            raise ParameterError(f"a load path needs at least 3 samples, got {th.size}")
-        if not (np.all(np.isfinite(th)) and np.all(np.isfinite(ft)) and np.all(np.isfinite(fc))):
-            raise ParameterError("a load path's theta and forces must be finite numbers")
-        if np.any(np.diff(th) < 0.0):
-            raise ParameterError("a load path's theta must be non-decreasing")
-        k0 = self.cycle_start
-        if isinstance(k0, bool) or not isinstance(k0, (int, np.integer)) \
-                or not 0 <= k0 <= th.size - 3:
-            raise ParameterError(
-                f"cycle_start must be a whole number in [0, {th.size - 3}], got {k0!r}"
-            )
-        for name, f in (("tip", ft), ("centre", fc)):
-            scale = max(float(np.max(np.abs(f))), 1.0)
-            if abs(f[-1] - f[k0]) > _CLOSE_TOL * scale:
-                raise ParameterError(
-                    f"the {name} force of the cycle does not close: {f[k0]:g} N at its start, "
-                    f"{f[-1]:g} N at its end"
-                )
-        object.__setattr__(self, "theta", th)
-        object.__setattr__(self, "tip_force", ft)
-        object.__setattr__(self, "centre_force", fc)
-        object.__setattr__(self, "cycle_start", int(k0))
-
-    @classmethod
-    def harmonic(cls, tip_amplitude: float, centre_amplitude: float, phase_deg: float = 0.0,
-                 samples_per_cycle: int = 2048, startup: float = 0.5) -> LoadPath:
-        """F_tip = A_t sin(theta), F_centre = A_c sin(theta + phi) from the unloaded state.
-
-        Parameters
-        ----------
-        tip_amplitude, centre_amplitude : float
-            A_t and A_c, N (>= 0; total forces on the clamp).
-        phase_deg : float
-            phi, degrees. 0 is the paper's zero-phase loading (a straight line in the force
-            plane); 90 traces the ellipse of Fig. 1.
-        samples_per_cycle : int
-            Samples of one cycle (>= 8).
-        startup : float
-            Cycles before the closed one (>= 0.5, so that each force has passed its peak
-            once and a Masing model is on its steady loop).
-        """
-        at = _non_negative(tip_amplitude, "tip amplitude")
-        ac = _non_negative(centre_amplitude, "centre amplitude")
-        if at == 0.0 and ac == 0.0:
-            raise ParameterError("at least one of the tip and centre amplitudes must be > 0 N")
-        phi = float(phase_deg)
-        if not math.isfinite(phi):
-            raise ParameterError(f"phase must be a finite angle in degrees, got {phase_deg!r}")
-        if isinstance(samples_per_cycle, bool) or \
-                not isinstance(samples_per_cycle, (int, np.integer)) or samples_per_cycle < 8:
-            raise ParameterError(
-                f"samples_per_cycle must be a whole number >= 8, got {samples_per_cycle!r}"
-            )
-        if not (math.isfinite(startup) and startup >= 0.5):
-            raise ParameterError(f"startup must be >= 0.5 cycles, got {startup!r}")
-        n = int(samples_per_cycle)
-        k0 = round(startup * n)
-        theta = 2.0 * np.pi * np.arange(k0 + n + 1) / n
-        ft = at * np.sin(theta)
-        fc = ac * np.sin(theta + math.radians(phi))
-        # sin(theta) at theta = 2 pi (k0 + n)/n and 2 pi k0/n differ by rounding only: close it.
-        ft[-1], fc[-1] = ft[k0], fc[k0]
-        return cls(theta, ft, fc, k0, meta={"tip_amplitude_N": at, "centre_amplitude_N": ac,
-                                            "phase_deg": phi, "samples_per_cycle": n})
-
-    @property
-    def cycle(self) -> slice:
-        """The samples of the closed cycle."""
-        return slice(self.cycle_start, None)
-
-    @property
-    def tip_amplitude(self) -> float:
-        """Largest |F_tip| over the cycle, N."""
-        return float(np.max(np.abs(self.tip_force[self.cycle])))
-
-    @property
-    def centre_amplitude(self) -> float:
-        """Largest |F_centre| over the cycle, N."""
-        return float(np.max(np.abs(self.centre_force[self.cycle])))
-
-
-def _non_negative(x: Any, name: str) -> float:
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number >= 0 N, got {x!r}") from None
-    if not (math.isfinite(v) and v >= 0.0):
-        raise ParameterError(f"{name} must be finite and >= 0 N, got {x!r}")
-    return v
-
 
 @dataclass(frozen=True)
 class PathResponse:

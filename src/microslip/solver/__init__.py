@@ -11,8 +11,8 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 >>> from microslip import preset
 >>> from microslip.solver import solve_uniaxial
 >>> r = solve_uniaxial(preset("table1"), "tip", 267.0, mesh=(8, 2, 1))
->>> r.loop.source, r.converged
-('builtin', True)
+>>> r.loop.source, r.solver, r.converged
+('builtin', 'builtin', True)
 """
 
 from __future__ import annotations
@@ -20,19 +20,16 @@ from __future__ import annotations
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .loadpath import CyclicPath, as_cyclic_path, harmonic_path, paper_sine
 from .mesh import MESHES, BoxMesh, box_mesh, mesh_from_spec
 from .results import (
-    ContactHistory,
+    BuiltinDetails,
     CouplingResult,
     CycleWork,
     LoadPathResult,
     SolverStats,
-    UniaxialResult,
 )
 from .solve import (
     CENTRE_DIRECTIONS,
-    DEFAULT_STICK_SLOPE,
     FrictionModel,
     History,
     NewtonOptions,
@@ -42,29 +39,26 @@ from .solve import (
 )
 from .study import (
     DEFAULT_MESH,
-    LOAD_CASES,
     CouplingSweep,
     amplitudes_for_ratio,
+    as_load_path,
     coupling_study,
     coupling_sweep,
     solve_load_path,
-    solve_uniaxial,
 )
+from .uniaxial import solve_uniaxial
 
 __all__ = [
     "CENTRE_DIRECTIONS",
     "DEFAULT_MESH",
-    "DEFAULT_STICK_SLOPE",
     "ELEMENTS",
     "LINEAR_SOLVERS",
-    "LOAD_CASES",
     "MESHES",
     "BoxMesh",
-    "ContactHistory",
+    "BuiltinDetails",
     "CouplingResult",
     "CouplingSweep",
     "CycleWork",
-    "CyclicPath",
     "FrictionModel",
     "FrictionResponse",
     "History",
@@ -72,9 +66,8 @@ __all__ = [
     "NewtonOptions",
     "Simulation",
     "SolverStats",
-    "UniaxialResult",
     "amplitudes_for_ratio",
-    "as_cyclic_path",
+    "as_load_path",
     "assemble_stiffness",
     "available_linear_solvers",
     "box_mesh",
@@ -83,9 +76,7 @@ __all__ = [
     "coupling_sweep",
     "element_stiffness",
     "friction_dissipation",
-    "harmonic_path",
     "mesh_from_spec",
-    "paper_sine",
     "return_map",
     "run_history",
     "solve_load_path",

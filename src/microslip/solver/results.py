@@ -8,57 +8,29 @@ loop. Units: force N, displacement mm, energy N·mm, time s.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..energy import DEFAULT_STRAIN_ENERGY, damping_from_loop, dissipated_energy
-from ..results import DampingResult, HysteresisLoop
+from ..fe.result import ContactHistory
+from ..named import result
+from ..results import HysteresisLoop
+
+if TYPE_CHECKING:
+    from .solve import FrictionModel
 
 __all__ = [
-    "ContactHistory",
+    "BuiltinDetails",
     "CouplingResult",
     "CycleWork",
     "LoadPathResult",
     "SolverStats",
-    "UniaxialResult",
 ]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
-
-
-@dataclass(frozen=True, eq=False)
-class ContactHistory:
-    """Stick/slip status of every contact node after every increment.
-
-    Attributes
-    ----------
-    coordinates : ndarray, shape (n_c, 2)
-        (x, y) of the contact nodes (bottom face), mm.
-    area : ndarray, shape (n_c,)
-        Tributary areas A_i, mm^2.
-    normal_force : ndarray, shape (n_c,)
-        N_i from the clamping step, N.
-    slipping : ndarray of bool, shape (n_increments, n_c)
-        True = slip, False = stick, after each increment.
-    """
-
-    coordinates: FloatArray
-    area: FloatArray
-    normal_force: FloatArray
-    slipping: BoolArray
-
-    @property
-    def slip_area_fraction(self) -> FloatArray:
-        """Fraction of the interface area slipping after each increment, dimensionless."""
-        return np.asarray(self.slipping @ self.area / self.area.sum(), dtype=float)
-
-    def status(self, increment: int) -> NDArray[np.str_]:
-        """``"stick"``/``"slip"`` of each contact node after one increment."""
-        return np.where(self.slipping[increment], "slip", "stick")
 
 
 @dataclass(frozen=True)
@@ -115,111 +87,38 @@ class SolverStats:
                 "setup_s": self.setup_s, "wall_s": self.wall_s}
 
 
-@dataclass(frozen=True, eq=False)
-class UniaxialResult:
-    """One 1-D loading of the paper's kind: F = F0 sin(2 pi t), t = 0 .. 1.25 s.
+@result
+class BuiltinDetails:
+    """What the built-in solver adds to its :class:`~microslip.fe.result.FELoopResult`.
 
     Attributes
     ----------
-    model : str
-        ``"tip"`` or ``"centre"``.
-    amplitude : float
-        F0, N.
+    stats : SolverStats
     centre_direction : str
         Direction of the centre load (``axial`` for the paper's centre model).
-    time : ndarray, shape (n + 1,)
-        t at the clamped state (0) and after each increment, s.
-    force, displacement : ndarray, shape (n + 1,)
-        Applied force, N, and work-conjugate displacement of the loaded section relative to
-        the clamped state, mm.
-    loop : HysteresisLoop
-        t = 0.25 .. 1.25 s, ``source="builtin"``.
-    contact : ContactHistory
-        Status after each increment (row 0: the clamped state).
-    iterations : ndarray of int, shape (n + 1,)
-        Newton iterations of each increment (row 0: the clamping step).
     friction_dissipation : float
         Energy dissipated by friction over the loop, sum tau . Delta s, N·mm. Exact in time for
-        1-D loading (the slipping nodes are at the limit mu N_i); the loop area
-        :attr:`dissipated_energy` converges to it as the increments are refined.
-    stats : SolverStats
-    converged : bool
-        Every increment converged.
-    success : bool
-        Converged and the loop is complete.
-    message : str
+        1-D loading (the slipping nodes are at the limit mu N_i); the loop area converges to it
+        as the increments are refined.
+    model : FrictionModel or None
+        The assembled model, kept with ``u`` (``record=True``) for the VTU export.
+    u : ndarray, shape (n + 1, dof) or None
+        Free-dof displacements after every increment, mm (``record=True``).
     """
 
-    model: str
-    amplitude: float
-    centre_direction: str
-    time: FloatArray
-    force: FloatArray
-    displacement: FloatArray
-    loop: HysteresisLoop
-    contact: ContactHistory
-    iterations: IntArray
-    friction_dissipation: float
     stats: SolverStats
-    converged: bool
-    success: bool
-    message: str
+    centre_direction: str
+    friction_dissipation: float
+    model: FrictionModel | None = None
+    u: FloatArray | None = None
 
-    @property
-    def dissipated_energy(self) -> float:
-        """W_d, the loop area (Eq. 21, trapezoidal), N·mm."""
-        return dissipated_energy(self.loop)
-
-    @property
-    def loop_amplitude(self) -> float:
-        """Half the peak-to-peak force of the loop, N."""
-        return self.loop.amplitude
-
-    @property
-    def peak_displacement(self) -> float:
-        """Half the peak-to-peak displacement of the loop, mm (the reported amplitude)."""
-        return self.loop.peak_displacement
-
-    @property
-    def offset(self) -> float:
-        """Mid-point of the loop's displacement range, mm: the shift left by the friction
-        that locks part of the clamping step's Poisson expansion."""
-        d = self.loop.displacement
-        return float(0.5 * (np.max(d) + np.min(d)))
-
-    @property
-    def closure(self) -> float:
-        """|delta(1.25 s) - delta(0.25 s)| over the half peak-to-peak displacement."""
-        d = self.loop.displacement
-        return float(abs(d[-1] - d[0]) / max(self.peak_displacement, 1e-300))
-
-    @property
-    def dof(self) -> int:
-        return self.stats.dof
-
-    @property
-    def wall_s(self) -> float:
-        return self.stats.wall_s
-
-    def damping(self, strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
-        """W_d, U and eta of the loop (Eqs 21-23)."""
-        return damping_from_loop(self.loop, None, strain_energy_kind)
+    def options(self) -> dict[str, Any]:
+        s = self.stats
+        return {"mesh": dict(s.mesh), "element": s.element, "stick_slope": s.stick_slope,
+                "linear_solver": s.linear_solver, "centre_direction": self.centre_direction}
 
     def summary(self) -> dict[str, Any]:
-        """Scalar results with units in the keys."""
-        return {
-            "solver": "builtin", "model": self.model, "centre_direction": self.centre_direction,
-            "amplitude_N": self.amplitude,
-            "loop_amplitude_N": self.loop_amplitude,
-            "peak_displacement_mm": self.peak_displacement,
-            "peak_displacement_definition": "half the peak-to-peak displacement of the loop",
-            "displacement_offset_mm": self.offset,
-            "dissipated_energy_Nmm": self.dissipated_energy,
-            "friction_dissipation_Nmm": self.friction_dissipation,
-            "loop_closure": self.closure,
-            "converged": self.converged, "success": self.success, "message": self.message,
-            **self.stats.summary(),
-        }
+        return {"friction_dissipation_Nmm": self.friction_dissipation}
 
 
 @dataclass(frozen=True, eq=False)

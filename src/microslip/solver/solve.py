@@ -34,6 +34,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
+from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..params import ClampParams, check_positive
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import assemble_stiffness
@@ -42,7 +43,6 @@ from .mesh import BoxMesh, mesh_from_spec
 
 __all__ = [
     "CENTRE_DIRECTIONS",
-    "DEFAULT_STICK_SLOPE",
     "FrictionModel",
     "History",
     "NewtonOptions",
@@ -55,9 +55,6 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
-
-#: Stick slope lambda (N/mm^3), CalculiX's default for *FRICTION in the penalty method.
-DEFAULT_STICK_SLOPE = 1.0e4
 
 #: Direction of the centre load on the mid-length section.
 CENTRE_DIRECTIONS: dict[str, int] = {"axial": 0, "transverse": 1}
@@ -416,6 +413,10 @@ class History:
     wall_s : float
         Wall time of the stepping, s (setup excluded: see :attr:`FrictionModel.setup_s`).
     factorisations : int
+    u : ndarray, shape (n, dof) or None
+        Free-dof displacements after each increment, mm (with ``record=True``).
+    slip : ndarray, shape (n, n_c, 2) or None
+        Slips of the contact nodes after each increment, mm (with ``record=True``).
     """
 
     f_tip: FloatArray
@@ -430,6 +431,12 @@ class History:
     message: str
     wall_s: float
     factorisations: int
+    u: FloatArray | None = None
+    slip: FloatArray | None = None
+
+    def displacement(self, component: str) -> FloatArray:
+        """Work-conjugate displacement of the ``tip`` or ``centre`` load, mm."""
+        return {"tip": self.d_tip, "centre": self.d_centre}[component]
 
 
 @contextlib.contextmanager
@@ -499,13 +506,15 @@ class Simulation:
                 assert resp is not None
                 return False, total_its, 0.0, resp
 
-    def advance(self, f_tip: Any, f_centre: Any) -> History:
+    def advance(self, f_tip: Any, f_centre: Any, *, record: bool = False) -> History:
         """Apply the next samples of the force history (one increment each).
 
         Parameters
         ----------
         f_tip, f_centre : array_like, shape (n,)
             Forces at each sample, N.
+        record : bool
+            Keep the displacements and slips after each increment (for a VTU export).
 
         Returns
         -------
@@ -532,6 +541,8 @@ class Simulation:
         d_tip, d_cen, fwork = np.zeros(n), np.zeros(n), np.zeros(n)
         its = np.zeros(n, dtype=np.int64)
         slipping = np.zeros((n, model.contact_nodes.size), dtype=bool)
+        u_rec = np.zeros((n, model.dof)) if record else None
+        s_rec = np.zeros((n, model.contact_nodes.size, 2)) if record else None
         f0 = self.stepper.factorisations
         t0 = time.perf_counter()
         converged, message, done = True, "converged", n
@@ -550,12 +561,16 @@ class Simulation:
                 d_tip[i] = float(self.p_tip @ self.u) - self.base_tip
                 d_cen[i] = float(self.p_cen @ self.u) - self.base_cen
                 slipping[i] = resp.slipping
+                if u_rec is not None and s_rec is not None:
+                    u_rec[i], s_rec[i] = self.u, self.slip
         self.increments += done
         return History(
             f_tip=ft[:done], f_centre=fc[:done], d_tip=d_tip[:done], d_centre=d_cen[:done],
             iterations=its[:done], slipping=slipping[:done], friction_work=fwork[:done],
             converged=converged, completed=done, message=message,
-            wall_s=time.perf_counter() - t0, factorisations=self.stepper.factorisations - f0)
+            wall_s=time.perf_counter() - t0, factorisations=self.stepper.factorisations - f0,
+            u=None if u_rec is None else u_rec[:done],
+            slip=None if s_rec is None else s_rec[:done])
 
 
 def run_history(model: FrictionModel, f_tip: Any, f_centre: Any, *,

@@ -1,8 +1,8 @@
 """Runs of the built-in solver: the paper's 1-D loops, planar cyclic paths, and the
 coupled-versus-decoupled study.
 
-* :func:`solve_uniaxial` — one 1-D loading as in the paper's FE (Section 4):
-  F = F0 sin(2 pi t), t = 0 .. 1.25 s, the loop from t = 0.25 s.
+* :func:`~microslip.solver.uniaxial.solve_uniaxial` (its own module) — one 1-D loading as
+  in the paper's FE (Section 4).
 * :func:`solve_load_path` — a planar cyclic path, repeated until the energy dissipated per
   cycle W = closed integral (F_tip d delta_tip + F_centre d delta_centre) settles.
 * :func:`coupling_study` — the coupled path against its two uni-axial parts:
@@ -25,20 +25,19 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..energy import loop_work
 from ..errors import MacroslipError, ParameterError
+from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..fe.result import SLIP, STICK, ContactHistory
+from ..loading import LoadPath
 from ..params import ClampParams, check_amplitude, check_positive
 from ..results import HysteresisLoop
-from .loadpath import CyclicPath, as_cyclic_path, harmonic_path, paper_sine
 from .results import (
-    ContactHistory,
     CouplingResult,
     CycleWork,
     LoadPathResult,
     SolverStats,
-    UniaxialResult,
 )
 from .solve import (
     CENTRE_DIRECTIONS,
-    DEFAULT_STICK_SLOPE,
     FrictionModel,
     History,
     NewtonOptions,
@@ -48,13 +47,15 @@ from .solve import (
 
 __all__ = [
     "DEFAULT_MESH",
-    "LOAD_CASES",
     "CouplingSweep",
     "amplitudes_for_ratio",
+    "check_body",
+    "contact_history",
     "coupling_study",
     "coupling_sweep",
+    "model_for",
     "solve_load_path",
-    "solve_uniaxial",
+    "solver_stats",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -62,14 +63,7 @@ FloatArray = NDArray[np.float64]
 #: Mesh used when none is given: mesh-converged for the Table 1 loops (docs/solver.md).
 DEFAULT_MESH = "coarse"
 
-#: The 1-D load cases: name -> where the force acts.
-LOAD_CASES: dict[str, str] = {
-    "tip": "along the bar on the end face x = L",
-    "centre": "on the mid-length section x = L/2 (along the bar unless centre_direction says)",
-}
-
-
-def _model(params: ClampParams, mesh: Any, stick_slope: float, element: str,
+def model_for(params: ClampParams, mesh: Any, stick_slope: float, element: str,
            linear_solver: str, newton: NewtonOptions | None) -> FrictionModel:
     if isinstance(mesh, FrictionModel):
         if mesh.params != params:
@@ -79,7 +73,7 @@ def _model(params: ClampParams, mesh: Any, stick_slope: float, element: str,
                        linear_solver=linear_solver, newton=newton)
 
 
-def _stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:
+def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:
     its = np.concatenate([h.iterations for h in hist]) if hist else np.zeros(0, dtype=int)
     return SolverStats(
         dof=model.dof, total_dof=model.total_dof,
@@ -93,13 +87,18 @@ def _stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> Sol
     )
 
 
-def _contact(model: FrictionModel, slipping: NDArray[np.bool_]) -> ContactHistory:
-    return ContactHistory(coordinates=model.mesh.nodes[model.contact_nodes, :2].copy(),
-                          area=model.contact_area, normal_force=model.normal_force,
-                          slipping=slipping)
+def contact_history(model: FrictionModel, time: FloatArray, slipping: NDArray[np.bool_],
+                    slip: FloatArray | None = None) -> ContactHistory:
+    """The :class:`~microslip.fe.result.ContactHistory` of a run: stick or slip after every
+    increment (the built-in solver holds the contact closed), each node standing for its
+    tributary area over the width in slip lengths."""
+    nodes = model.contact_nodes
+    return ContactHistory(nodes, model.mesh.nodes[nodes].copy(), time,
+                          np.where(slipping, SLIP, STICK).astype(np.int8),
+                          model.contact_area / model.params.width, slip)
 
 
-def _check_body(params: Any, centre_direction: str) -> None:
+def check_body(params: Any, centre_direction: str) -> None:
     """One clear error for a wrong parameter object or centre direction."""
     if not isinstance(params, ClampParams):
         raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
@@ -108,88 +107,7 @@ def _check_body(params: Any, centre_direction: str) -> None:
                              f"{', '.join(CENTRE_DIRECTIONS)}")
 
 
-def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
-                   mesh: Any = DEFAULT_MESH, stick_slope: float = DEFAULT_STICK_SLOPE,
-                   increments: int = 50, element: str = "C3D8I",
-                   centre_direction: str = "axial", linear_solver: str = "banded",
-                   newton: NewtonOptions | None = None) -> UniaxialResult:
-    """The paper's 1-D FE loading of the clamped zone with the built-in solver.
-
-    F = F0 sin(2 pi t), t = 0 .. 1.25 s in ``increments`` equal steps (the paper's 50
-    substeps by default); the first quarter period leads from the clamped state to the peak,
-    the loop is t = 0.25 .. 1.25 s (Section 4).
-
-    Parameters
-    ----------
-    params : ClampParams
-    model : {"tip", "centre"}
-        Where the force acts (:data:`LOAD_CASES`).
-    amplitude : float
-        F0, N; below mu F_N.
-    mesh : str, (nx, ny, nz), BoxMesh or FrictionModel
-        Mesh name (:data:`~microslip.solver.mesh.MESHES`), element counts, a mesh, or a model
-        already built (then ``stick_slope``, ``element``, ``linear_solver`` are its own).
-    stick_slope : float
-        lambda, N/mm^3.
-    increments : int
-        Increments over t = 0 .. 1.25 s, a multiple of 5.
-    element : {"C3D8", "C3D8I"}
-    centre_direction : {"axial", "transverse"}
-        Direction of the centre force (``axial``: the paper's 1-D centre model).
-    linear_solver : {"banded", "splu", "cholmod"}
-    newton : NewtonOptions, optional
-
-    Returns
-    -------
-    UniaxialResult
-        The loop (``source="builtin"``), contact status per increment, dof, iterations,
-        wall time, converged flag.
-
-    Examples
-    --------
-    >>> from microslip import preset, closedform
-    >>> p = preset("table1")
-    >>> r = solve_uniaxial(p, "tip", 267.0, mesh=(8, 2, 1))
-    >>> d0 = closedform.tip_displacement(267.0, p.axial_stiffness, p.friction_per_length)
-    >>> r.success, bool(abs(r.peak_displacement / d0 - 1) < 0.01)
-    (True, True)
-    """
-    if model not in LOAD_CASES:
-        raise ParameterError(f"unknown load case {model!r}; choose one of {', '.join(LOAD_CASES)}")
-    _check_body(params, centre_direction)
-    f0 = check_amplitude(amplitude)
-    if f0 >= params.macroslip_force:
-        raise MacroslipError(f"amplitude {f0:g} N reaches the macroslip force mu F_N = "
-                             f"{params.macroslip_force:g} N")
-    t, force = paper_sine(f0, increments)
-    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
-    sim = Simulation(fem, centre_direction)
-    zero = np.zeros_like(force)
-    hist = sim.advance(force, zero) if model == "tip" else sim.advance(zero, force)
-    d = hist.d_tip if model == "tip" else hist.d_centre
-    quarter = increments // 5
-    done = hist.completed
-    success = hist.converged
-    loop_sl = slice(quarter, done)
-    loop = HysteresisLoop(
-        force=force[loop_sl].copy(), displacement=d[loop_sl].copy(), source="builtin",
-        meta={"model": model, "amplitude_N": f0, "solver": "builtin",
-              "centre_direction": centre_direction, "mesh": fem.mesh.describe(),
-              "element": fem.element, "dof": fem.dof, "stick_slope_N_per_mm3": fem.stick_slope,
-              "increments": increments,
-              "displacement": "force-weighted mean of the loaded section along the load, "
-                              "relative to the clamped state"})
-    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
-    return UniaxialResult(
-        model=model, amplitude=f0, centre_direction=centre_direction, time=t[:done],
-        force=force[:done], displacement=d, loop=loop,
-        contact=_contact(fem, hist.slipping), iterations=hist.iterations,
-        friction_dissipation=float(np.sum(hist.friction_work[quarter + 1:])),
-        stats=_stats(fem, [hist], setup), converged=hist.converged, success=success,
-        message=hist.message if success else f"{hist.message}; the loop is incomplete")
-
-
-def _cycle_works(path: CyclicPath, ft: FloatArray, fc: FloatArray, dt: FloatArray,
+def _cycle_works(path: LoadPath, ft: FloatArray, fc: FloatArray, dt: FloatArray,
                  dc: FloatArray, fw: FloatArray, cycles: int
                  ) -> tuple[FloatArray, FloatArray, FloatArray]:
     k0, n = path.cycle_start, path.samples_per_cycle
@@ -202,6 +120,22 @@ def _cycle_works(path: CyclicPath, ft: FloatArray, fc: FloatArray, dt: FloatArra
     return tip, cen, fri
 
 
+def as_load_path(path: Any, f_tip: ArrayLike | None = None,
+                 f_centre: ArrayLike | None = None) -> LoadPath:
+    """The path to solve: a :class:`~microslip.loading.LoadPath`, reached from rest
+    (:meth:`~microslip.loading.LoadPath.from_rest`), or the times of one cycle with the
+    forces at them (:meth:`~microslip.loading.LoadPath.from_cycle`)."""
+    if isinstance(path, LoadPath) and f_tip is None and f_centre is None:
+        out = path.from_rest()
+    elif f_tip is None or f_centre is None:
+        raise ParameterError("give a LoadPath, or times with f_tip and f_centre arrays")
+    else:
+        out = LoadPath.from_cycle(path, f_tip, f_centre)
+    if not out.peak_resultant > 0.0:
+        raise ParameterError("a load path needs a non-zero force")
+    return out
+
+
 def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, int, float]:
     for name, v, lo in (("cycles", cycles, 1), ("min_cycles", min_cycles, 2)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not lo <= v <= 1000:
@@ -210,7 +144,7 @@ def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, in
     return int(cycles), int(min_cycles), tol
 
 
-def _run_path(fem: FrictionModel, path: CyclicPath, *, cycles: int, min_cycles: int,
+def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: int,
               cycle_tol: float, centre_direction: str, setup_s: float) -> LoadPathResult:
     if path.peak_resultant >= fem.params.macroslip_force:
         raise MacroslipError(
@@ -277,7 +211,7 @@ def _run_path(fem: FrictionModel, path: CyclicPath, *, cycles: int, min_cycles: 
     return LoadPathResult(
         theta=theta, f_tip=ft, f_centre=fc, d_tip=dt, d_centre=dc, cycle_start=k0,
         samples_per_cycle=n, centre_direction=centre_direction, cycle_work=cw, loops=loops,
-        contact=_contact(fem, slipping), stats=_stats(fem, hists, setup_s),
+        contact=contact_history(fem, theta, slipping), stats=solver_stats(fem, hists, setup_s),
         converged=converged, success=converged and settled, message=message,
         meta=dict(path.meta))
 
@@ -293,9 +227,9 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     Parameters
     ----------
     params : ClampParams
-    times : array_like, CyclicPath or LoadPath-like
+    times : array_like or LoadPath
         The samples of one cycle (any increasing times or angles) with ``f_tip`` and
-        ``f_centre``; or a path object (see :func:`~microslip.solver.loadpath.as_cyclic_path`).
+        ``f_centre``; or a :class:`~microslip.loading.LoadPath` (see :func:`as_load_path`).
         Arrays: the cycle is closed if needed and reached from zero load by a straight ramp.
     f_tip, f_centre : array_like, optional
         Tip force (along the bar, end face) and centre force (mid-length section) at the
@@ -320,16 +254,16 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     Examples
     --------
     >>> from microslip import preset
-    >>> from microslip.solver.loadpath import harmonic_path
-    >>> r = solve_load_path(preset("table1"), harmonic_path(150.0, 150.0, 90.0, 16),
+    >>> from microslip.loading import LoadPath
+    >>> r = solve_load_path(preset("table1"), LoadPath.ramped(150.0, 150.0, 90.0, 16),
     ...                     mesh=(8, 2, 1), cycles=4)
     >>> r.converged, r.dissipated_energy > 0
     (True, True)
     """
-    _check_body(params, centre_direction)
+    check_body(params, centre_direction)
     cycles, min_cycles, tol = _check_cycles(cycles, min_cycles, cycle_tol)
-    path = as_cyclic_path(times, f_tip, f_centre)
-    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
+    path = as_load_path(times, f_tip, f_centre)
+    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
     setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
     return _run_path(fem, path, cycles=cycles, min_cycles=min(min_cycles, cycles),
                      cycle_tol=tol, centre_direction=centre_direction, setup_s=setup)
@@ -363,9 +297,9 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
         turns: at 256 the 90-degree ratios are about 1 % low, at 64 about 3 % (docs/solver.md).
     mesh, cycle_tol, stick_slope, element, centre_direction, linear_solver, newton
         As :func:`solve_load_path`.
-    path : LoadPath-like, optional
-        Use this path (e.g. the planar model's ``LoadPath``) instead of the harmonic one; the
-        amplitudes and phase are then only recorded.
+    path : LoadPath, optional
+        Use this path (e.g. the planar model's ``LoadPath.harmonic``) instead of
+        ``LoadPath.ramped``; the amplitudes and phase are then only recorded.
 
     Returns
     -------
@@ -379,20 +313,19 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
     >>> r.converged, 0.5 < r.coupling_ratio < 2.0
     (True, True)
     """
-    _check_body(params, centre_direction)
+    check_body(params, centre_direction)
     cycles, _, tol = _check_cycles(cycles, 2, cycle_tol)
     if path is None:
         at = check_amplitude(tip_amplitude)
         ac = check_amplitude(centre_amplitude)
-        cyc = harmonic_path(at, ac, phase_deg, increments_per_cycle)
+        cyc = LoadPath.ramped(at, ac, phase_deg, increments_per_cycle)
     else:
-        cyc = as_cyclic_path(path)
-        at = float(np.max(np.abs(cyc.f_tip[cyc.cycle])))
-        ac = float(np.max(np.abs(cyc.f_centre[cyc.cycle])))
+        cyc = as_load_path(path)
+        at, ac = cyc.tip_amplitude, cyc.centre_amplitude
         if not (at > 0.0 and ac > 0.0):
             raise ParameterError("a coupling study needs both a tip and a centre force")
     phase = float(cyc.meta.get("phase_deg", phase_deg))
-    fem = _model(params, mesh, stick_slope, element, linear_solver, newton)
+    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
     setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
     kw: dict[str, Any] = {"cycles": cycles, "min_cycles": min(2, cycles), "cycle_tol": tol,
                           "centre_direction": centre_direction}
@@ -480,7 +413,7 @@ def coupling_sweep(params: ClampParams, ratios: Sequence[float] = (0.25, 1 / 3, 
     f = 0.75 * params.macroslip_force if peak_force is None else peak_force
     f = check_positive("peak force", f, "N", upper=params.macroslip_force)
     t0 = time.perf_counter()
-    fem = _model(params, mesh, kw.pop("stick_slope", DEFAULT_STICK_SLOPE),
+    fem = model_for(params, mesh, kw.pop("stick_slope", DEFAULT_STICK_SLOPE),
                  kw.pop("element", "C3D8I"), kw.pop("linear_solver", "banded"),
                  kw.pop("newton", None))
     rows = []
