@@ -3,16 +3,23 @@
 from __future__ import annotations
 
 import contextlib
+import csv
 import json
 import os
-import tempfile
+import uuid
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
 
 import numpy as np
 
-__all__ = ["atomic_path", "atomic_write", "to_jsonable", "write_csv", "write_json"]
+__all__ = [
+    "atomic_path", "atomic_write", "read_csv", "to_jsonable", "write_csv", "write_json",
+]
+
+#: Permissions asked for a new file; the process umask is applied by the kernel (never read or
+#: changed here, so that threads writing files at the same time cannot race on it).
+FILE_MODE = 0o666
 
 
 @contextlib.contextmanager
@@ -20,9 +27,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; move it onto ``path`` only on success."""
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent)
-    os.close(fd)
-    os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give the file the usual permissions
+    tmp = _new_file(target)
     try:
         yield Path(tmp)
         os.replace(tmp, target)
@@ -40,10 +45,18 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "w") -> Iterator[IO[A
         yield fh
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+def _new_file(target: Path) -> Path:
+    """Create an empty, uniquely named file beside ``target`` with the usual permissions
+    (:data:`FILE_MODE` less the umask, as ``open`` gives), and return its path."""
+    for _ in range(100):
+        tmp = target.parent / f".{target.name}.{uuid.uuid4().hex[:12]}{target.suffix}"
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, FILE_MODE)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        return tmp
+    raise FileExistsError(f"cannot create a temporary file beside {str(target)!r}")
 
 
 def to_jsonable(obj: Any) -> Any:
@@ -67,8 +80,6 @@ def write_json(path: str | os.PathLike[str], obj: Any) -> None:
 
 def write_csv(path: str | os.PathLike[str], columns: dict[str, Any]) -> None:
     """Write equal-length columns as CSV; the header names carry the units."""
-    import csv
-
     names = list(columns)
     cols = [np.asarray(columns[n]).ravel() for n in names]
     rows = len(cols[0]) if cols else 0
@@ -87,3 +98,20 @@ def _fmt(v: Any) -> Any:
     if isinstance(v, np.generic):
         return v.item()
     return v
+
+
+def read_csv(path: str | os.PathLike[str]) -> dict[str, list[Any]]:
+    """Columns of a CSV written by :func:`write_csv`: name -> values, as float where every
+    value of the column parses as one, else as text."""
+    with open(path, encoding="utf-8", newline="") as fh:
+        reader = csv.reader(fh)
+        names = next(reader)
+        values = list(zip(*reader, strict=True)) or [()] * len(names)
+    return {name: _column(col) for name, col in zip(names, values, strict=True)}
+
+
+def _column(values: tuple[str, ...]) -> list[Any]:
+    try:
+        return [float(v) for v in values]
+    except ValueError:
+        return list(values)

@@ -189,7 +189,7 @@ def run_analytical(args: argparse.Namespace) -> int:
                                  "(--centre-reading paper) reaches 2 mu F_N") from None
         raise
     if args.plot:
-        from ..reproduce import figure_planar
+        from ..plot.paper import figure_planar
 
         figure_planar(result, args.plot)
     if args.json:

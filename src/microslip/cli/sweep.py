@@ -139,14 +139,8 @@ def _cases(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     if args.model == "planar":
         return _run_planar(args)
-    from ..sweep import (
-        make_sweep,
-        parse_grid,
-        parse_sample,
-        plot_sweep,
-        run_sweep,
-        write_sweep,
-    )
+    from ..plot.sweep import plot_sweep
+    from ..sweep import make_sweep, parse_grid, parse_sample, run_sweep, write_sweep
 
     if args.ratio_range is not None:
         raise ParameterError("--ratio-range applies to --model planar only")
@@ -219,7 +213,8 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
 
 def _run_planar(args: argparse.Namespace) -> int:
     from ..planar import LEVEL_SCHEMES
-    from ..sweep import plot_ratio_sweep, ratio_sweep, write_ratio_sweep
+    from ..plot.sweep import plot_ratio_sweep
+    from ..sweep import ratio_sweep, write_ratio_sweep
 
     unsupported = [flag for flag, present in (
         ("--amplitude-range", args.amplitude_range is not None),

@@ -1,4 +1,4 @@
-"""Figures (matplotlib, an optional extra): labelled axes with units, journal style.
+"""The plotting basics: journal style, figure size, atomic saving, force-displacement loops.
 
 Import is lazy: ``import microslip`` never imports matplotlib.
 """
@@ -9,9 +9,9 @@ import os
 from collections.abc import Sequence
 from typing import Any
 
-from .errors import MicroslipError
-from .io import atomic_path
-from .results import Backbone, DampingResult, HysteresisLoop
+from ..errors import MicroslipError
+from ..io import atomic_path
+from ..results import Backbone, DampingResult, HysteresisLoop
 
 __all__ = ["COLOURS", "new_figure", "plot_damping", "plot_loops", "pyplot", "save_figure"]
 
