@@ -15,6 +15,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe.case import (
     DEFAULT_NORMAL_SLOPE,
@@ -133,6 +134,7 @@ def add_parser(sub: Any) -> None:
     s.add_argument("--no-vtu", action="store_true", help="do not write the VTU files")
     add_strain_energy(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 
