@@ -122,5 +122,7 @@ def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_ST
 
 
 def print_json(obj: Any) -> None:
-    json.dump(to_jsonable(obj), sys.stdout, indent=2)
+    from ..case.options import annotate_json
+
+    json.dump(to_jsonable(annotate_json(obj)), sys.stdout, indent=2)
     sys.stdout.write("\n")

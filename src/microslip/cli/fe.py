@@ -11,6 +11,7 @@ import argparse
 import math
 from typing import Any
 
+from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
@@ -71,6 +72,7 @@ def add_parser(sub: Any) -> None:
     s.add_argument("--no-vtu", action="store_true", help="do not write the VTU files")
     add_strain_energy(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from ..case.options import add_case_option
 from ..energy import damping
 from ..models import MODELS, check_increments, get_model, macroslip_force
 from ..options import ModelOptions
@@ -34,6 +35,7 @@ def add_parser(sub: Any) -> None:
     add_strain_energy(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="write a figure of loop and backbone")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 

@@ -15,12 +15,13 @@ from collections.abc import Sequence
 from typing import NoReturn
 
 from .. import __version__
+from ..case.options import case_output, parse_args
 from ..errors import MicroslipError
 
 __all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
 
 #: Subcommand modules, in the order ``--help`` lists them.
-SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep", "fit")
+SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case")
 
 
 class UsageError(Exception):
@@ -54,14 +55,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code (0 success, 1 failure, 2 usage)."""
     parser = build_parser()
     try:
-        args = parser.parse_args(None if argv is None else list(argv))
+        args = parse_args(parser, argv)  # with --case FILE.toml: the file's keys as defaults
     except UsageError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 2
     except SystemExit as exc:  # --help and --version
         return exc.code if isinstance(exc.code, int) else 0
+    except MicroslipError as exc:  # an unreadable or invalid case file
+        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
+        return 1
     try:
-        return int(args.func(args))
+        with case_output(args):
+            return int(args.func(args))
     except MicroslipError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 1

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from ..case.options import add_case_option
 from ..energy import STRAIN_ENERGY
 from ..errors import MacroslipError, ParameterError
 from ..models import check_increments
@@ -89,6 +90,7 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png",
                    help="write a figure of the loops and the load path")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 

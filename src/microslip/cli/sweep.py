@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..models import MODELS, check_increments
 from ..params import preset
@@ -115,6 +116,7 @@ def add_parser(sub: Any) -> None:
     o.add_argument("--retries", type=int, default=3, metavar="N",
                    help="retries of a failed Dask task (default 3)")
     o.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 

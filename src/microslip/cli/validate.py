@@ -6,6 +6,7 @@ import argparse
 import math
 from typing import Any
 
+from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from ..fe.mesh import MESHES
@@ -40,6 +41,7 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true",
                    help="print the table rows and the files as JSON")
+    add_case_option(p)
     p.set_defaults(func=run)
 
 

@@ -1,0 +1,150 @@
+"""A case file read into a :class:`Case`: validated at the boundary, immutable afterwards.
+
+Notes
+-----
+The slip limit of a uniformly clamped interface is mu F_N (paper, Eq. 5); a case without an
+explicit amplitude is loaded to ``amplitude_fraction`` times that limit
+(:data:`~microslip.case.schema.DEFAULT_AMPLITUDE_FRACTION`, 0.5).
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import sys
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Any
+
+from ..errors import ParameterError
+from ..named import result
+from ..params import PRESETS, ClampParams
+from .schema import CLAMP_KEYS, KEYS, SECTIONS
+from .units import plausibility_warnings
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = ["Case", "load_case", "parse_case"]
+
+_BY_DOTTED = {k.dotted: k for k in KEYS}
+
+
+@result
+class Case:
+    """One joint and its load case, as a case file gives them (units N, mm, MPa).
+
+    ``values`` holds every key the file sets, by dotted name, validated; the seven clamp
+    values are filled in from ``preset`` where the file does not set them. ``params`` is the
+    clamp when it is complete (a preset, or all seven values), else None.
+    """
+
+    source: str | None
+    values: Mapping[str, Any]
+    params: ClampParams | None
+    warnings: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        return str(self.values.get("name", ""))
+
+    def get(self, dotted: str) -> Any:
+        """The value of a key, or its default from the key table (None if it has none)."""
+        if dotted in self.values:
+            return self.values[dotted]
+        default = _BY_DOTTED[dotted].default
+        return default if default != "from preset" else None
+
+    def amplitude(self, friction: float | None = None, normal_force: float | None = None
+                  ) -> float | None:
+        """F0 in N: ``load.amplitude``, or ``load.amplitude_fraction`` times mu F_N.
+
+        ``friction`` and ``normal_force`` replace the case's own (options that override it);
+        None if the slip limit is unknown.
+        """
+        if "load.amplitude" in self.values:
+            return float(self.values["load.amplitude"])
+        mu = friction if friction is not None else self.values.get("contact.friction")
+        fn = normal_force if normal_force is not None else self.values.get(
+            "clamping.normal_force")
+        if mu is None or fn is None:
+            return None
+        return float(self.get("load.amplitude_fraction")) * mu * fn
+
+
+def _suggest(typed: str, names: list[str] | None = None) -> str:
+    names = list(_BY_DOTTED) if names is None else names
+    last = {k.name: k.dotted for k in KEYS}
+    hit = difflib.get_close_matches(typed, names, n=1) or [
+        last[m] for m in difflib.get_close_matches(typed.rsplit(".", 1)[-1], list(last), n=1)]
+    return f"; did you mean {hit[0]}?" if hit else f"; valid keys: {', '.join(names)}"
+
+
+def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    flat: dict[str, Any] = {}
+    for key, value in table.items():
+        dotted = f"{prefix}{key}"
+        if isinstance(value, dict):
+            if dotted not in SECTIONS:
+                raise ParameterError(f"unknown case section [{dotted}]"
+                                     f"{_suggest(dotted, [s for s in SECTIONS if s])}")
+            flat.update(_flatten(value, dotted + "."))
+        elif dotted not in _BY_DOTTED:
+            raise ParameterError(f"unknown case key {dotted}{_suggest(dotted)}")
+        else:
+            flat[dotted] = _BY_DOTTED[dotted].check(dotted, value)
+    return flat
+
+
+def _exclusive(values: Mapping[str, Any], *keys: str) -> None:
+    given = [k for k in keys if k in values]
+    if len(given) > 1:
+        raise ParameterError(f"case keys {' and '.join(given)} exclude each other; give one")
+
+
+def _clamp(values: dict[str, Any]) -> ClampParams | None:
+    if "preset" in values:
+        base = PRESETS[values["preset"]][0].as_dict()
+        for dotted, field in CLAMP_KEYS.items():
+            values.setdefault(dotted, base[field])
+    given = [k for k in CLAMP_KEYS if k in values]
+    if not given:
+        return None
+    missing = [k for k in CLAMP_KEYS if k not in values]
+    if missing:
+        raise ParameterError(f"case gives {', '.join(given)} but not {', '.join(missing)}: "
+                             "give preset = \"...\" as the base or all seven values")
+    return ClampParams(**{field: values[k] for k, field in CLAMP_KEYS.items()})
+
+
+def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
+    """Validate a parsed TOML table (unknown keys and bad values raise ParameterError)."""
+    where = f"case {source}: " if source else "case: "
+    try:
+        values = _flatten(table)
+        _exclusive(values, "load.amplitude", "load.amplitude_fraction")
+        _exclusive(values, "load.planar.ratio", "load.planar.tip_amplitude")
+        _exclusive(values, "load.planar.ratio", "load.planar.centre_amplitude")
+        params = _clamp(values)
+        warnings = plausibility_warnings(
+            {field: values.get(k) for k, field in CLAMP_KEYS.items()}, where)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}{exc}") from None
+    return Case(source, MappingProxyType(values), params, tuple(warnings))
+
+
+def load_case(path: str | os.PathLike[str]) -> Case:
+    """Read and validate a TOML case file; every failure is one ParameterError line."""
+    name = os.fspath(path)
+    try:
+        with open(name, "rb") as fh:
+            table = tomllib.load(fh)
+    except OSError as exc:
+        raise ParameterError(f"cannot read case file {name}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise ParameterError(f"case file {name} is not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError(f"case file {name} is not valid TOML: {exc}") from None
+    return parse_case(table, name)

@@ -1,0 +1,216 @@
+"""``--case FILE.toml`` on every command: the case file becomes the subcommand's defaults.
+
+:func:`parse_args` parses the command line once to find the command and the options given
+explicitly, loads the case, turns its keys into the subcommand's defaults through the one
+table :data:`CASE_OPTIONS` (``set_defaults``), and parses again, so that explicit options win.
+A key the file sets whose option the command does not take is refused with the reason.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import contextvars
+import sys
+from collections.abc import Iterator, Sequence
+from typing import Any
+
+from ..errors import ParameterError
+from ..params import preset
+from .model import Case, load_case
+from .units import plausibility_warnings
+
+__all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args"]
+
+#: Commands that read the planar load case ([load.planar]); every other command reads [load].
+PLANAR_COMMANDS = ("planar",)
+
+#: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
+#: Keys not listed (name, description, preset, clamping.pressure) map to no option.
+CASE_OPTIONS: dict[str, tuple[str, str]] = {
+    "geometry.length": ("length", "all"),
+    "geometry.width": ("width", "all"),
+    "geometry.thickness": ("thickness", "all"),
+    "material.modulus": ("modulus", "all"),
+    "material.poisson_ratio": ("poisson_ratio", "all"),
+    "contact.friction": ("friction", "all"),
+    "clamping.normal_force": ("normal_force", "all"),
+    "contact.stick_slope": ("stick_slope", "all"),
+    "load.model": ("model", "load"),
+    "load.amplitude": ("amplitude", "load"),
+    "load.amplitude_fraction": ("amplitude", "load"),
+    "load.planar.tip_amplitude": ("tip_amplitude", "planar"),
+    "load.planar.centre_amplitude": ("centre_amplitude", "planar"),
+    "load.planar.ratio": ("ratio", "planar"),
+    "load.planar.phase_deg": ("phase", "planar"),
+}
+
+#: Destinations checked for plausible units (case values and command-line options alike).
+UNIT_DESTS = ("length", "width", "thickness", "modulus", "friction", "normal_force")
+
+_ACTIVE: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar(
+    "microslip_case_output", default=None)
+
+
+def add_case_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--case FILE.toml`` to a subcommand's parser (docs/casefile.md)."""
+    parser.add_argument("--case", metavar="FILE.toml",
+                        help="read the joint and load case from a TOML case file (microslip "
+                             "case new FILE.toml writes a template); options given here win")
+
+
+def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return action.choices[command]  # type: ignore[no-any-return]
+    raise LookupError(command)  # pragma: no cover - build_parser always has subcommands
+
+
+def _explicit(parser: argparse.ArgumentParser, sub: argparse.ArgumentParser,
+              argv: list[str] | None) -> dict[str, Any]:
+    """The destinations given on the command line (a parse with every default suppressed)."""
+    saved = [(a, a.default) for a in sub._actions]
+    saved_defaults = dict(sub._defaults)
+    try:
+        for a in sub._actions:
+            a.default = argparse.SUPPRESS
+        sub._defaults.clear()
+        return {k: v for k, v in vars(parser.parse_args(argv)).items() if k != "command"}
+    finally:
+        for a, default in saved:
+            a.default = default
+        sub._defaults.update(saved_defaults)
+
+
+def _reads(command: str, scope: str) -> bool:
+    if scope == "all":
+        return True
+    return (scope == "planar") == (command in PLANAR_COMMANDS)
+
+
+def _amplitude_swept(explicit: dict[str, Any]) -> bool:
+    """True if the command line varies the amplitude itself (sweep) or takes none."""
+    if "amplitude_range" in explicit or explicit.get("model") == "planar":
+        return True
+    specs = [*explicit.get("grid", []), *explicit.get("sample", [])]
+    if not specs:
+        return False
+    from ..sweep import ALIASES
+
+    names = (s.split("=", 1)[0].strip().lower() for s in specs)
+    return any(ALIASES.get(n, n) == "amplitude" for n in names)
+
+
+def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
+                  explicit: dict[str, Any]) -> dict[str, Any]:
+    """The subcommand defaults a case gives; refuses keys whose option the command lacks."""
+    out: dict[str, Any] = {}
+    for key, (dest, scope) in CASE_OPTIONS.items():
+        if key not in case.values or not _reads(command, scope):
+            continue
+        if dest not in dests:
+            flag = "--" + dest.replace("_", "-")
+            raise ParameterError(f"case {case.source}: key {key} maps to {flag}, which "
+                                 f"`microslip {command}` does not take; remove the key or "
+                                 "use a command that takes it")
+        if dest in explicit or dest == "amplitude":
+            continue  # the command line wins; the amplitude is resolved after the parse
+        value = case.values[key]
+        out[dest] = [value] if isinstance(dests[dest], argparse._AppendAction) else value
+    if case.params is not None and "preset" in dests:
+        if "preset" in explicit:
+            raise ParameterError(f"--preset {explicit['preset']} conflicts with the clamp of "
+                                 f"case {case.source}; override single values (--length ...) "
+                                 "instead")
+        out["preset"] = None
+    return out
+
+
+def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str, Any]) -> None:
+    if not hasattr(args, "amplitude") or "amplitude" in explicit or _amplitude_swept(explicit):
+        return
+    base = preset(args.preset) if getattr(args, "preset", None) else None
+    mu = args.friction if args.friction is not None else getattr(base, "friction", None)
+    fn = (args.normal_force if args.normal_force is not None
+          else getattr(base, "normal_force", None))
+    amplitude = case.amplitude(mu, fn)
+    if amplitude is None and "load.amplitude_fraction" in case.values:
+        raise ParameterError(f"case {case.source}: load.amplitude_fraction needs the "
+                             "friction and normal force of the clamp")
+    if amplitude is not None:
+        args.amplitude = amplitude
+
+
+@contextlib.contextmanager
+def _lenient(parser: argparse.ArgumentParser) -> Iterator[None]:
+    """No option is required while the command and the explicit options are found."""
+    subs = [a.choices.values() for a in parser._actions
+            if isinstance(a, argparse._SubParsersAction)]
+    actions = [a for group in subs for p in group for a in p._actions if a.required]
+    for a in actions:
+        a.required = False
+    try:
+        yield
+    finally:
+        for a in actions:
+            a.required = True
+
+
+def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
+               ) -> argparse.Namespace:
+    """Parse ``argv``; with ``--case`` the file's keys are defaults that options override.
+
+    Prints one ``warning:`` line on stderr per implausible unit and keeps the sentences in
+    ``args.input_warnings``.
+    """
+    argv = None if argv is None else list(argv)
+    with _lenient(parser):
+        first = parser.parse_args(argv)
+    case_path = getattr(first, "case", None)
+    if case_path is not None:
+        case = load_case(case_path)
+        sub = _subparser(parser, first.command)
+        with _lenient(parser):
+            explicit = _explicit(parser, sub, argv)
+        dests = {a.dest: a for a in sub._actions}
+        defaults = case_defaults(case, first.command, dests, explicit)
+        for dest in defaults:
+            dests[dest].required = False
+        sub.set_defaults(**defaults)
+    args = parser.parse_args(argv)
+    if case_path is not None:
+        _resolve_amplitude(args, case, explicit)
+        args.case_name = case.name
+    warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
+    for line in warnings:
+        print(f"warning: {line}", file=sys.stderr)
+    args.input_warnings = warnings
+    return args
+
+
+@contextlib.contextmanager
+def case_output(args: argparse.Namespace) -> Iterator[None]:
+    """While a command runs: its text output starts with the case file, its JSON names it."""
+    case_file = getattr(args, "case", None)
+    notes = {"case_file": case_file, "warnings": list(getattr(args, "input_warnings", []))}
+    if case_file is not None and not getattr(args, "json", False):
+        name = getattr(args, "case_name", "")
+        print(f"case file {case_file}" + (f" ({name})" if name else ""))
+    token = _ACTIVE.set(notes)
+    try:
+        yield
+    finally:
+        _ACTIVE.reset(token)
+
+
+def annotate_json(obj: Any) -> Any:
+    """``obj`` with ``case_file`` and the unit warnings added, while a case output is active."""
+    notes = _ACTIVE.get()
+    if notes is None or not isinstance(obj, dict):
+        return obj
+    out = dict(obj)
+    if notes["case_file"] is not None:
+        out["case_file"] = notes["case_file"]
+    if notes["warnings"]:
+        out["warnings"] = [*out.get("warnings", []), *notes["warnings"]]
+    return out

@@ -1,0 +1,62 @@
+"""The commented case-file template of ``microslip case new``, written from the key table.
+
+Every key is written with its meaning, unit, range and default on the line above it. Only
+``preset`` is active; the other keys are commented out with their default (or the preset's
+value) as an example, so the template parses back to the preset and the documented defaults,
+and a command reads from it only what the user uncomments.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..params import PRESETS
+from .schema import CLAMP_KEYS, KEYS, SECTIONS, Key
+
+__all__ = ["TEMPLATE_PRESET", "template"]
+
+#: The preset the template starts from.
+TEMPLATE_PRESET = "table1"
+
+
+def _toml(value: Any) -> str:
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def _line(key: Key) -> str:
+    unit = f"{key.unit}, " if key.unit else ""
+    if key.dotted in CLAMP_KEYS:
+        value = PRESETS[TEMPLATE_PRESET][0].as_dict()[CLAMP_KEYS[key.dotted]]
+        note = f"default: from the preset ({TEMPLATE_PRESET}: {value:g})"
+    elif key.dotted == "preset":
+        value = TEMPLATE_PRESET
+        note = "default: none (then give all seven clamp values)"
+    elif key.default is None:
+        value, note = "", "default: none"
+    else:
+        value = key.default
+        shown = _toml(value) if isinstance(value, str) else format(value, "g")
+        note = f"default: {shown}"
+    active = "" if key.dotted == "preset" else "# "
+    return (f"# {key.meaning}; {unit}{key.range}; {note}\n"
+            f"{active}{key.name} = {_toml(value) if value != '' or key.default == '' else ''}")
+
+
+def template() -> str:
+    """The text of a commented case file with every key, its unit, range and default."""
+    lines = [
+        "# microslip case file (TOML). Units: N, mm, MPa, N/mm^3, degrees.",
+        "# Use it with --case FILE.toml on loop, planar, fe, sweep and validate; options on",
+        "# the command line override the file. See docs/casefile.md.",
+        "# Without an amplitude the load is amplitude_fraction x mu F_N (the slip limit).",
+    ]
+    for section, what in SECTIONS.items():
+        lines.append("")
+        if section:
+            lines.append(f"[{section}]  # {what}")
+        lines.extend(_line(k) for k in KEYS if k.section == section)
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,223 @@
+"""``--case FILE.toml`` on every command and ``microslip case new/check`` through main([...])."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+
+from microslip import preset
+from microslip.case import template
+from microslip.cli.main import main
+
+TITANIUM_TOML = """\
+name = "titanium clamp"
+[geometry]
+length = 30
+width = 12
+thickness = 8
+[material]
+modulus = 114000
+poisson_ratio = 0.34
+[contact]
+friction = 0.5
+[clamping]
+normal_force = 12000
+"""
+
+TITANIUM = {"length": 30.0, "width": 12.0, "thickness": 8.0, "modulus": 114000.0,
+            "poisson_ratio": 0.34, "friction": 0.5, "normal_force": 12000.0}
+
+
+def run(capsys, *argv: str) -> tuple[int, str, str]:
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line_error(code: int, out: str, err: str, *words: str) -> None:
+    assert code == 1 and out == ""
+    assert err.startswith("error: ") and err.count("\n") == 1 and "Traceback" not in err
+    for word in words:
+        assert word in err
+
+
+@pytest.fixture
+def ti(tmp_path):
+    path = tmp_path / "ti.toml"
+    path.write_text(TITANIUM_TOML)
+    return path
+
+
+def write(tmp_path, text: str, name: str = "c.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_case_new_writes_the_template_and_refuses_to_overwrite(capsys, tmp_path):
+    path = tmp_path / "new.toml"
+    code, out, err = run(capsys, "case", "new", path)
+    assert code == 0 and err == "" and str(path) in out
+    assert path.read_text() == template()
+    path.write_text("# mine\n")
+    one_line_error(*run(capsys, "case", "new", path), str(path), "--force")
+    assert path.read_text() == "# mine\n"
+    assert run(capsys, "case", "new", path, "--force")[0] == 0
+    assert path.read_text() == template()
+
+
+def test_case_new_under_a_file_is_one_line(capsys, tmp_path):
+    afile = write(tmp_path, "x", "afile")
+    one_line_error(*run(capsys, "case", "new", afile / "c.toml"), "cannot write")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile"]
+
+
+def test_case_check_prints_the_resolved_case_with_units(capsys, ti):
+    code, out, err = run(capsys, "case", "check", ti)
+    assert code == 0 and err == ""
+    assert "geometry.length                30 mm" in out
+    assert "material.modulus               114000 MPa" in out
+    assert "resolved amplitude F0          3000 N" in out
+    data = json.loads(run(capsys, "case", "check", ti, "--json")[1])
+    assert data["params"] == TITANIUM and data["amplitude_N"] == 3000.0
+
+
+def test_titanium_case_drives_loop_fe_and_sweep_with_identical_inputs(capsys, ti, tmp_path):
+    code, out, err = run(capsys, "loop", "--case", ti, "--model", "tip", "--json",
+                         "--increments", "200")
+    assert code == 0 and err == ""
+    loop = json.loads(out)
+    code, out, err = run(capsys, "fe", "--case", ti, "--model", "tip", "--mesh", "tiny",
+                         "--substeps", "20", "--json")
+    assert code == 0, err
+    fe = json.loads(out)
+    table = tmp_path / "sweep.csv"
+    code, out, err = run(capsys, "sweep", "--case", ti, "--model", "tip", "--out", table,
+                         "--increments", "200", "--no-progress", "--seed", "1")
+    assert code == 0, err
+    (row,) = csv.DictReader(table.open())
+    assert loop["params"] == fe["params"] == TITANIUM
+    assert loop["amplitude_N"] == fe["amplitude_N"] == float(row["amplitude_N"]) == 3000.0
+    assert {k: float(row[c]) for k, c in (("length", "length_mm"), ("modulus", "modulus_MPa"),
+                                          ("friction", "friction"),
+                                          ("normal_force", "normal_force_N"))} == {
+        k: TITANIUM[k] for k in ("length", "modulus", "friction", "normal_force")}
+    assert loop["case_file"] == fe["case_file"] == str(ti)
+    assert out.startswith(f"case file {ti} (titanium clamp)\n")
+
+
+def test_case_equals_the_same_options(capsys, ti):
+    flags = [x for k, v in TITANIUM.items() for x in (f"--{k.replace('_', '-')}", str(v))]
+    by_case = json.loads(run(capsys, "loop", "--case", ti, "--model", "centre", "--json",
+                             "--increments", "100")[1])
+    by_flags = json.loads(run(capsys, "loop", *flags, "--amplitude", "3000", "--model",
+                              "centre", "--json", "--increments", "100")[1])
+    assert by_case.pop("case_file") == str(ti) and "case_file" not in by_flags
+    assert by_case == by_flags
+
+
+def test_command_line_options_win_over_the_case(capsys, tmp_path):
+    path = write(tmp_path, TITANIUM_TOML + '[load]\nmodel = "centre"\n')
+    data = json.loads(run(capsys, "loop", "--case", path, "--friction", "0.4", "--json",
+                          "--increments", "100")[1])
+    assert data["model"] == "centre"
+    assert data["params"] == TITANIUM | {"friction": 0.4}
+    assert data["amplitude_N"] == 0.5 * 0.4 * 12000.0  # the default follows the override
+    data = json.loads(run(capsys, "loop", "--case", path, "--model", "tip", "--amplitude",
+                          "1000", "--json", "--increments", "100")[1])
+    assert data["model"] == "tip" and data["amplitude_N"] == 1000.0
+
+
+def test_case_amplitude_and_fraction(capsys, tmp_path):
+    path = write(tmp_path, TITANIUM_TOML + "[load]\namplitude_fraction = 0.25\n")
+    data = json.loads(run(capsys, "loop", "--case", path, "--model", "tip", "--json",
+                          "--increments", "100")[1])
+    assert data["amplitude_N"] == 1500.0
+    path = write(tmp_path, '[load]\nmodel = "tip"\n', "load_only.toml")
+    data = json.loads(run(capsys, "loop", "--case", path, "--json", "--increments", "100")[1])
+    assert data["params"] == preset("table1").as_dict()
+    assert data["amplitude_N"] == 0.5 * 0.8 * 445.0  # not the preset's 267 N
+
+
+def test_sweep_amplitude_range_overrides_the_case_amplitude(capsys, ti, tmp_path):
+    table = tmp_path / "s.csv"
+    code, out, err = run(capsys, "sweep", "--case", ti, "--model", "tip", "--amplitude-range",
+                         "1000", "2000", "--cases", "2", "--out", table, "--increments", "100",
+                         "--no-progress")
+    assert code == 0, err
+    assert [float(r["amplitude_N"]) for r in csv.DictReader(table.open())] == [1000.0, 2000.0]
+
+
+def test_planar_case_equals_the_same_options(capsys, tmp_path):
+    path = write(tmp_path, "[load.planar]\ntip_amplitude = 4000\ncentre_amplitude = 6000\n"
+                 "phase_deg = 90\n")
+    by_case = json.loads(run(capsys, "planar", "--case", path, "--json",
+                             "--increments", "200")[1])
+    by_flags = json.loads(run(capsys, "planar", "--tip-amplitude", "4000",
+                              "--centre-amplitude", "6000", "--phase", "90", "--json",
+                              "--increments", "200")[1])
+    assert by_case.pop("case_file") == str(path)
+    assert by_case == by_flags
+
+
+@pytest.mark.parametrize("command", [["planar", "--ratio", "1"], ["validate", "--out", "x"]])
+def test_keys_a_command_does_not_take_are_refused(capsys, ti, command):
+    one_line_error(*run(capsys, *command, "--case", ti), "geometry.length", "--length",
+                   f"microslip {command[0]}", "does not take")
+
+
+def test_stick_slope_goes_to_fe_and_is_refused_by_loop(capsys, tmp_path):
+    path = write(tmp_path, TITANIUM_TOML + "stick_slope = 2e5\n")  # lands in [clamping]
+    one_line_error(*run(capsys, "loop", "--case", path, "--model", "tip"),
+                   "clamping.stick_slope", "contact.stick_slope")
+    path = write(tmp_path, TITANIUM_TOML.replace("[contact]\n", "[contact]\nstick_slope = 2e5\n"))
+    one_line_error(*run(capsys, "loop", "--case", path, "--model", "tip"),
+                   "contact.stick_slope", "--stick-slope", "microslip loop")
+    code, out, err = run(capsys, "fe", "--case", path, "--model", "tip", "--mesh", "tiny",
+                         "--substeps", "20", "--json")
+    assert code == 0, err
+    assert json.loads(out)["options"]["stick_slope"] == 2e5
+
+
+def test_preset_on_the_command_line_conflicts_with_the_case_clamp(capsys, ti):
+    one_line_error(*run(capsys, "loop", "--case", ti, "--model", "tip", "--preset", "table1"),
+                   "--preset", "conflicts", str(ti))
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[geometry]\nlenght = 30\n", ["geometry.lenght", "did you mean geometry.length"]),
+    ("[geometry\nlength = 30\n", ["not valid TOML"]),
+    ("[load]\nmodel = 'planar'\n", ["load.model", "tip, centre"]),
+    ("[clamping]\npressure = 'parabolic'\n", ["not yet available"]),
+])
+def test_bad_case_files_are_one_line_exit_1(capsys, tmp_path, text, words):
+    path = write(tmp_path, text)
+    one_line_error(*run(capsys, "loop", "--case", path, "--model", "tip"), str(path), *words)
+
+
+def test_missing_case_file_is_one_line(capsys, tmp_path):
+    one_line_error(*run(capsys, "fe", "--case", tmp_path / "none.toml", "--model", "tip"),
+                   "cannot read case file")
+
+
+def test_implausible_units_warn_from_case_and_options(capsys, tmp_path):
+    path = write(tmp_path, TITANIUM_TOML.replace("modulus = 114000", "modulus = 114e9"))
+    code, out, err = run(capsys, "loop", "--case", path, "--model", "tip", "--json",
+                         "--increments", "100")
+    assert code == 0
+    assert err == "warning: modulus 1.14e+11 MPa is above 1e+07 MPa: pascals given as MPa?\n"
+    assert json.loads(out)["warnings"] == [err[len("warning: "):-1]]
+    code, out, err = run(capsys, "loop", "--model", "tip", "--length", "0.254",
+                         "--increments", "100")
+    assert code == 0 and err == ""
+    code, out, err = run(capsys, "loop", "--model", "tip", "--length", "0.0254",
+                         "--increments", "100")
+    assert code == 0 and err == ("warning: length 0.0254 mm is below 0.05 mm: metres given "
+                                 "as mm?\n")
+
+
+def test_no_case_no_extra_keys(capsys):
+    data = json.loads(run(capsys, "loop", "--model", "tip", "--json", "--increments", "100")[1])
+    assert "case_file" not in data and "warnings" not in data
