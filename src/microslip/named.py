@@ -23,9 +23,15 @@ False
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
+
+if TYPE_CHECKING:  # tells mypy that @result makes a frozen dataclass
+    from typing_extensions import dataclass_transform
+else:
+    def dataclass_transform(**kwargs: Any) -> Any:
+        return lambda f: f
 
 __all__ = ["readonly", "result", "short_repr"]
 
@@ -56,6 +62,7 @@ def short_repr(obj: Any) -> str:
     return f"{type(obj).__name__}({', '.join(parts)})"
 
 
+@dataclass_transform(frozen_default=True, eq_default=False)
 def result(cls: type[T]) -> type[T]:
     """Class decorator: a frozen, ``eq=False`` dataclass with read-only arrays, short repr.
 
