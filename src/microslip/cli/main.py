@@ -20,7 +20,7 @@ from ..errors import MicroslipError
 __all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
 
 #: Subcommand modules, in the order ``--help`` lists them.
-SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep")
+SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep", "joint", "modal", "frf")
 
 
 class UsageError(Exception):
