@@ -97,7 +97,8 @@ def iwan4(chi: float, phi_max: float, r: float, s: float, elements: int = 200) -
     Bin edges e_i = phi_max (i / n)^p with p = 2 / (1 + chi), graded towards the
     integrable singularity at 0. Each bin becomes one element with its stiffness
     k = integral rho and its slip at the centroid integral phi rho / k, so the virgin curve
-    F(a) = R a^(chi+2)/((chi+1)(chi+2)) + ... is exact at every edge. The dissipation
+    F(a) = R a^(chi+2)/(chi+2) + a (R (phi_max^(chi+1) - a^(chi+1))/(chi+1) + S),
+    a <= phi_max, is exact at every edge. The dissipation
     below macroslip, W_d = 4 R A^(3+chi) / ((chi+2)(chi+3)) (REFERENCES.md), is approached
     with an error O(n^-2) (the second moment of each bin is not kept).
     """
