@@ -13,7 +13,7 @@ JENKINS = ["joint", "--joint", "jenkins", "--joint-stiffness", "100", "--slip-fo
 
 
 def run_json(capsys, argv):
-    assert main(argv + ["--json"]) == 0
+    assert main([*argv, "--json"]) == 0
     return json.loads(capsys.readouterr().out)
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -137,8 +139,7 @@ def test_any_history_follows_the_extended_masing_rules(name, turns, scale):
     op = OPERATORS[name]()
     reach = 2.0 * float(op.slip.max()) * scale
     pts = [0.0, *(reach * t for t in turns)]
-    xs = np.concatenate([np.linspace(a, b, 13)[1:] for a, b in zip(pts[:-1], pts[1:],
-                                                                    strict=True)])
+    xs = np.concatenate([np.linspace(a, b, 13)[1:] for a, b in itertools.pairwise(pts)])
     got = op.force_history(xs).force
     np.testing.assert_allclose(got, masing_stack(op, xs), rtol=0, atol=1e-9 * op.slip_force)
 
@@ -166,7 +167,7 @@ def test_analytic_jacobian_matches_finite_differences(name, coef, direction, sca
     reach = float(op.slip.max()) * scale
     x = _signal(coef, 32) * reach
     dx = np.asarray(direction)
-    f, jac = op.periodic_force(x)
+    _f, jac = op.periodic_force(x)
     h = 1e-8 * reach
     fd = (op.periodic_force(x + h * dx)[0] - op.periodic_force(x - h * dx)[0]) / (2.0 * h)
     # the force is piecewise linear in x: central differences are exact up to round-off
