@@ -76,12 +76,13 @@ def test_jenkins_loop_closed_form():
     np.testing.assert_allclose(f, expected, rtol=0, atol=1e-13 * fs)
 
 
-def test_tip_operator_reproduces_the_models_masing_loop_at_its_nodes():
-    """The tip model's own loop (first loading + Masing's rule, behind the series spring)."""
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_clamp_operator_reproduces_the_models_masing_loop_at_its_nodes(model):
+    """The model's own loop (first loading + Masing's rule, behind the series spring)."""
     n, m = 200, 150
-    op = tip_joint(n)
-    f_ms = microslip.macroslip_force("tip", P)
-    bb = microslip.first_loading("tip", P, f_ms * m / (n + 1), m)
+    op = clamp_joint(model, P, K_SERIES, elements=n)
+    f_ms = microslip.macroslip_force(model, P)
+    bb = microslip.first_loading(model, P, f_ms * m / (n + 1), m)
     f_j, d_j = bb.force, bb.displacement + bb.force / K_SERIES
     f0, d0 = f_j[-1], d_j[-1]
     x = np.concatenate([d_j, d0 - 2.0 * d_j[1:], -d0 + 2.0 * d_j[1:]])
@@ -93,11 +94,12 @@ def test_tip_operator_reproduces_the_models_masing_loop_at_its_nodes():
     np.testing.assert_allclose(f_periodic, expected[m:-1], rtol=0, atol=1e-9 * f0)
 
 
-def test_tip_operator_virgin_curve_is_the_models_backbone():
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_clamp_operator_virgin_curve_is_the_models_backbone(model):
     n = 200
-    op = tip_joint(n)
-    f_ms = microslip.macroslip_force("tip", P)
-    bb = microslip.first_loading("tip", P, f_ms * n / (n + 1), n)
+    op = clamp_joint(model, P, K_SERIES, elements=n)
+    f_ms = microslip.macroslip_force(model, P)
+    bb = microslip.first_loading(model, P, f_ms * n / (n + 1), n)
     d = bb.displacement + bb.force / K_SERIES
     np.testing.assert_allclose(op.backbone_force(d), bb.force, rtol=1e-12, atol=0)
     assert op.slip_force == pytest.approx(f_ms, rel=1e-12)
