@@ -111,8 +111,13 @@ def frequency_response(structure: Structure, force: float, shape: Array,
     direction[-1] = 1.0
     curve = arclength(fun, np.append(x0, lo), direction, step, lambda y: y[-1] >= hi,
                       scale, rescale, tol=TOLERANCE, max_points=max_points)
-    coeffs = curve.points[:, :-1]
-    omega = curve.points[:, -1]
+    coeffs = np.array(curve.points[:, :-1])
+    omega = np.array(curve.points[:, -1])
+    if curve.success and omega.size > 1 and omega[-1] > hi:  # end exactly at MAX
+        u = (hi - omega[-2]) / (omega[-1] - omega[-2])
+        end = _solve_at(hb, load, hi, (1.0 - u) * coeffs[-2] + u * coeffs[-1])
+        if end is not None:
+            coeffs[-1], omega[-1] = end, hi
     amps = np.array([hb.amplitude(x)[0] for x in coeffs])
     peak_a, peak_w = _peak(hb, load, coeffs, omega, amps)
     return FrequencyResponse(force=float(force), frequency=omega / (2.0 * np.pi),
