@@ -21,7 +21,9 @@ from ..errors import MicroslipError
 __all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
 
 #: Subcommand modules, in the order ``--help`` lists them.
-SUBCOMMANDS = ("loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case")
+SUBCOMMANDS = (
+    "loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case", "joint", "modal", "frf",
+)
 
 
 class UsageError(Exception):

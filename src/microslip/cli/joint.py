@@ -1,0 +1,228 @@
+"""``microslip joint``: a joint's stiffness and damping versus vibration amplitude.
+
+Also the joint options every dynamics command shares (:func:`add_joint_options`,
+:func:`joint_from_args`): ``--joint jenkins|iwan|tip|centre`` and its parameters.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .. import MODELS
+from ..dynamics.describing import (
+    DEFAULT_SAMPLES,
+    DescribingFunction,
+    amplitude_for_force,
+    describing_function,
+)
+from ..dynamics.distributions import clamp_joint, iwan4_segalman
+from ..dynamics.operators import IwanOperator, jenkins
+from ..errors import ParameterError
+from .common import add_model_options, add_params, model_options, number, params_from_args
+
+__all__ = ["JOINTS", "add_joint_options", "add_parser", "describe_joint", "joint_from_args",
+           "run"]
+
+#: Default number of Jenkins elements of the iwan, tip and centre joints.
+DEFAULT_ELEMENTS = 200
+
+
+def _jenkins(args: argparse.Namespace) -> IwanOperator:
+    return jenkins(_need(args, "joint_stiffness"), _need(args, "slip_force"))
+
+
+def _iwan(args: argparse.Namespace) -> IwanOperator:
+    return iwan4_segalman(_need(args, "joint_stiffness"), _need(args, "slip_force"),
+                          _need(args, "chi"), _need(args, "beta"), _elements(args))
+
+
+def _clamp(args: argparse.Namespace) -> IwanOperator:
+    params, _ = params_from_args(args, fallback_amplitude=1.0)
+    if args.amplitude is not None:
+        raise ParameterError("--amplitude (a load amplitude) does not apply to a joint; give "
+                             "--amplitude-range or --force-range")
+    if (args.joint_stiffness is None) == (args.stick_slope is None):
+        raise ParameterError(
+            f"the {args.joint} joint needs exactly one of --joint-stiffness N/MM (a series "
+            "spring) or --stick-slope N/MM3 (series spring = stick slope x width x length): "
+            "a bar on a rigid Coulomb foundation has no finite stiffness at zero "
+            "displacement (F ~ sqrt(d))")
+    if args.stick_slope is not None:
+        slope = _positive(args.stick_slope, "--stick-slope", "N/mm^3")
+        series = slope * params.width * params.length
+    else:
+        series = args.joint_stiffness
+    return clamp_joint(args.joint, params, series, elements=_elements(args),
+                       options=model_options(args))
+
+
+#: Joint name -> builder from the parsed options, and the joint options it uses.
+JOINTS: dict[str, tuple[Callable[[argparse.Namespace], IwanOperator], frozenset[str]]] = {
+    "jenkins": (_jenkins, frozenset({"joint_stiffness", "slip_force"})),
+    "iwan": (_iwan, frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"})),
+    **{m: (_clamp, frozenset({"joint_stiffness", "stick_slope", "elements"})) for m in MODELS},
+}
+
+#: Joint option dest -> flag.
+_FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", "chi": "--chi",
+          "beta": "--beta", "stick_slope": "--stick-slope", "elements": "--elements"}
+
+
+def add_joint_options(parser: argparse.ArgumentParser) -> None:
+    """``--joint`` and its parameters, with the clamp's options for the tip and centre joints."""
+    g = parser.add_argument_group("joint (units N, mm, N/mm)")
+    g.add_argument("--joint", choices=list(JOINTS), required=True,
+                   help="jenkins: one spring-slider; iwan: Segalman's 4-parameter Iwan; "
+                        "tip, centre: the clamp's microslip model as an Iwan operator")
+    g.add_argument("--joint-stiffness", type=number, metavar="N/MM",
+                   help="jenkins: spring stiffness; iwan: initial stiffness K_T; tip, centre: "
+                        "stiffness of a spring in series with the clamp")
+    g.add_argument("--slip-force", type=number, metavar="N",
+                   help="jenkins, iwan: macroslip force F_S")
+    g.add_argument("--chi", type=number, metavar="X", help="iwan: density exponent, in (-1, 0]")
+    g.add_argument("--beta", type=number, metavar="X",
+                   help="iwan: macroslip elements' share of the stiffness, >= 0")
+    g.add_argument("--stick-slope", type=number, metavar="N/MM3",
+                   help="tip, centre: contact stick slope; series spring = slope x width x "
+                        "length (instead of --joint-stiffness)")
+    g.add_argument("--elements", type=int, metavar="N",
+                   help=f"iwan, tip, centre: Jenkins elements (default {DEFAULT_ELEMENTS})")
+    add_params(parser, default_preset="table1")
+    for action in parser._actions:  # the clamp's load amplitude is not a joint option
+        if action.dest == "amplitude":
+            action.help = argparse.SUPPRESS
+    add_model_options(parser)
+
+
+def joint_from_args(args: argparse.Namespace) -> IwanOperator:
+    """The joint operator the options describe; options of another joint are refused."""
+    build, uses = JOINTS[args.joint]
+    extra = [flag for dest, flag in _FLAGS.items()
+             if dest not in uses and getattr(args, dest, None) is not None]
+    if extra:
+        raise ParameterError(f"{', '.join(extra)} not used by --joint {args.joint}")
+    return build(args)
+
+
+def describe_joint(joint: IwanOperator) -> dict[str, Any]:
+    """JSON description of a joint operator (keys carry units)."""
+    return {"name": joint.name, "elements": int(joint.stiffness.size),
+            "initial_stiffness_N_per_mm": joint.initial_stiffness,
+            "macroslip_force_N": joint.slip_force}
+
+
+def add_parser(sub: Any) -> None:
+    p = sub.add_parser(
+        "joint", help="describing function of a joint: stiffness, damping, loss factor",
+        description="Equivalent stiffness K_eq, damping D_eq (f_1 = K_eq x + D_eq/w dx/dt), "
+        "dissipated energy W_d and loss factor eta = D_eq/K_eq of a joint under harmonic "
+        "relative displacement, versus displacement or force amplitude.")
+    add_joint_options(p)
+    r = p.add_argument_group("amplitudes (one of)")
+    r.add_argument("--amplitude-range", nargs=2, type=number, metavar=("MIN", "MAX"),
+                   help="displacement amplitudes, mm (geometric spacing)")
+    r.add_argument("--force-range", nargs=2, type=number, metavar=("MIN", "MAX"),
+                   help="force amplitudes, N, below the macroslip force (geometric spacing)")
+    p.add_argument("--amplitudes", type=int, default=20, metavar="N",
+                   help="number of amplitudes (default 20)")
+    p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES, metavar="N",
+                   help=f"time samples per period of the quadrature (default {DEFAULT_SAMPLES})")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="write a figure of K_eq, D_eq and eta")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from .common import print_json
+
+    joint = joint_from_args(args)
+    result = describing_function(joint, _amplitudes(args, joint), args.samples)
+    out = result_json(joint, result)
+    if args.plot:
+        _plot(result, args.plot)
+    if args.json:
+        print_json(out)
+        return 0
+    print(f"joint {joint.name}: {joint.stiffness.size} Jenkins element(s), initial stiffness "
+          f"{joint.initial_stiffness:.6g} N/mm, macroslip force {joint.slip_force:.6g} N")
+    print(f"{'A (mm)':>12} {'F (N)':>12} {'K_eq (N/mm)':>13} {'D_eq (N/mm)':>13} "
+          f"{'W_d (N·mm)':>12} {'eta (-)':>10}")
+    for row in zip(result.amplitude, result.force, result.stiffness, result.damping,
+                   result.dissipated_energy, result.loss_factor, strict=True):
+        print("{:12.5g} {:12.5g} {:13.6g} {:13.6g} {:12.5g} {:10.5g}".format(*row))
+    return 0
+
+
+def result_json(joint: IwanOperator, result: DescribingFunction) -> dict[str, Any]:
+    return {
+        "joint": describe_joint(joint),
+        "units": {"displacement": "mm", "force": "N", "stiffness": "N/mm", "energy": "N·mm"},
+        "samples": result.samples,
+        "amplitude_mm": result.amplitude,
+        "force_N": result.force,
+        "stiffness_N_per_mm": result.stiffness,
+        "damping_N_per_mm": result.damping,
+        "dissipated_energy_Nmm": result.dissipated_energy,
+        "loss_factor": result.loss_factor,
+    }
+
+
+def _amplitudes(args: argparse.Namespace, joint: IwanOperator) -> np.ndarray:
+    n = args.amplitudes
+    if not 1 <= n <= 100_000:
+        raise ParameterError(f"--amplitudes must be in [1, 100000], got {n}")
+    if (args.amplitude_range is None) == (args.force_range is None):
+        raise ParameterError("give exactly one of --amplitude-range MIN MAX (mm) or "
+                             "--force-range MIN MAX (N)")
+    if args.amplitude_range is not None:
+        lo, hi = (_positive(v, "--amplitude-range", "mm") for v in args.amplitude_range)
+        return _spaced(lo, hi, n, "--amplitude-range")
+    lo, hi = (_positive(v, "--force-range", "N") for v in args.force_range)
+    return amplitude_for_force(joint, _spaced(lo, hi, n, "--force-range"))
+
+
+def _spaced(lo: float, hi: float, n: int, flag: str) -> np.ndarray:
+    if lo > hi:
+        raise ParameterError(f"{flag} must have MIN <= MAX, got {lo:g} > {hi:g}")
+    return np.geomspace(lo, hi, n) if n > 1 else np.array([lo])
+
+
+def _positive(value: float, flag: str, unit: str) -> float:
+    if not (math.isfinite(value) and value > 0.0):
+        raise ParameterError(f"{flag} must be finite and > 0 {unit}, got {value!r}")
+    return float(value)
+
+
+def _need(args: argparse.Namespace, dest: str) -> float:
+    value = getattr(args, dest)
+    if value is None:
+        raise ParameterError(f"--joint {args.joint} needs {_FLAGS[dest]}")
+    return float(value)
+
+
+def _elements(args: argparse.Namespace) -> int:
+    n = DEFAULT_ELEMENTS if args.elements is None else args.elements
+    if not 2 <= n <= 100_000:
+        raise ParameterError(f"--elements must be in [2, 100000], got {n}")
+    return int(n)
+
+
+def _plot(result: DescribingFunction, path: str) -> None:
+    from ..plot import COLOURS, new_figure, save_figure
+
+    fig, axes = new_figure(ncols=3, width_mm=60.0)
+    a = result.amplitude
+    for ax, y, label, colour in zip(
+            axes[0], (result.stiffness, result.damping, result.loss_factor),
+            ("equivalent stiffness K_eq (N/mm)", "equivalent damping D_eq (N/mm)",
+             "loss factor eta = D_eq / K_eq (-)"), COLOURS, strict=False):
+        ax.semilogx(a, y, color=colour, marker="." if a.size < 40 else None)
+        ax.set_xlabel("displacement amplitude A (mm)")
+        ax.set_ylabel(label)
+    fig.suptitle(f"describing function of the {result.joint} joint")
+    save_figure(fig, path)

@@ -1,0 +1,169 @@
+"""``microslip modal``: natural frequency and damping ratio of a mode versus amplitude.
+
+Also the options of a one-mode structure and of harmonic balance that ``microslip frf``
+shares (:func:`add_structure_options`, :func:`structure_from_args`,
+:func:`add_balance_options`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+import numpy as np
+
+from ..dynamics.hb import DEFAULT_HB_SAMPLES
+from ..dynamics.modal import METHODS, ModalCurve, energy_method
+from ..dynamics.structure import Structure, one_mode
+from ..errors import ParameterError
+from .common import number
+from .joint import add_joint_options, describe_joint, joint_from_args
+
+__all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
+           "balance_from_args", "describe_structure", "run", "structure_from_args"]
+
+#: Harmonics of the balance unless --harmonics is given.
+DEFAULT_HARMONICS = 7
+
+
+def add_structure_options(parser: argparse.ArgumentParser) -> None:
+    """``--frequency``, ``--modal-mass``, ``--damping-ratio``, ``--participation`` and the
+    joint's options."""
+    g = parser.add_argument_group("structure: one mode (units Hz, kg)")
+    g.add_argument("--frequency", type=number, required=True, metavar="HZ",
+                   help="natural frequency with the joint removed, Hz")
+    g.add_argument("--modal-mass", type=number, required=True, metavar="KG",
+                   help="modal mass, kg")
+    g.add_argument("--damping-ratio", type=number, default=0.0, metavar="X",
+                   help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
+                        "(default 0)")
+    g.add_argument("--participation", type=number, default=1.0, metavar="X",
+                   help="joint displacement per unit modal displacement, != 0 (default 1)")
+    add_joint_options(parser)
+
+
+def structure_from_args(args: argparse.Namespace) -> Structure:
+    """The one-mode structure with its joint that the options describe."""
+    return one_mode(args.frequency, args.modal_mass, args.damping_ratio,
+                    joint_from_args(args), args.participation)
+
+
+def describe_structure(structure: Structure) -> dict[str, Any]:
+    """JSON description of a one-mode structure and its joint (keys carry units)."""
+    m = float(structure.mass[0, 0])
+    k = float(structure.stiffness[0, 0])
+    link = structure.joints[0]
+    return {"modal_mass_kg": m,
+            "frequency_Hz": math.sqrt(k / m) / (2.0 * math.pi),
+            "damping_ratio": float(structure.damping[0, 0]) / (2.0 * math.sqrt(k * m)),
+            "participation": float(link.participation[0]),
+            "stuck_frequency_Hz": float(structure.linear_frequencies(stuck=True)[0]),
+            "joint": describe_joint(link.operator)}  # type: ignore[arg-type]
+
+
+def add_balance_options(parser: argparse.ArgumentParser) -> None:
+    """``--harmonics`` and ``--samples``."""
+    g = parser.add_argument_group("harmonic balance")
+    g.add_argument("--harmonics", type=int, default=DEFAULT_HARMONICS, metavar="H",
+                   help=f"harmonics, 1 = single-harmonic (describing-function) balance "
+                        f"(default {DEFAULT_HARMONICS})")
+    g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
+                   help=f"time samples per period of the alternating frequency-time scheme "
+                        f"(default {DEFAULT_HB_SAMPLES})")
+
+
+def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
+    """(harmonics, samples), checked."""
+    if not 1 <= args.harmonics <= 256:
+        raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
+    low = 2 * args.harmonics + 2
+    if not low <= args.samples <= 65536:
+        raise ParameterError(f"--samples must be in [{low}, 65536] for {args.harmonics} "
+                             f"harmonics, got {args.samples}")
+    return int(args.harmonics), int(args.samples)
+
+
+def add_parser(sub: Any) -> None:
+    p = sub.add_parser(
+        "modal", help="nonlinear modal analysis: frequency and damping ratio vs amplitude",
+        description="Natural frequency and damping ratio (linear damping included) of a "
+        "mode with a joint versus its modal amplitude: by the extended periodic motion "
+        "concept with harmonic balance (epmc) or by the energy method from the joint's "
+        "describing function (energy).")
+    add_structure_options(p)
+    add_balance_options(p)
+    g = p.add_argument_group("amplitudes and output")
+    g.add_argument("--amplitude-range", nargs=2, type=number, required=True,
+                   metavar=("MIN", "MAX"), help="modal amplitudes, mm (geometric spacing)")
+    g.add_argument("--amplitudes", type=int, default=20, metavar="N",
+                   help="number of amplitudes (default 20)")
+    g.add_argument("--method", choices=list(METHODS), default="epmc",
+                   help="epmc (default) or energy")
+    g.add_argument("--json", action="store_true", help="print one JSON object")
+    g.add_argument("--csv", metavar="FILE.csv", help="write the table as CSV")
+    g.add_argument("--plot", metavar="FILE.png",
+                   help="write a figure of frequency and damping ratio vs amplitude")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..io import write_csv
+    from .common import print_json
+
+    structure = structure_from_args(args)
+    harmonics, samples = balance_from_args(args)
+    amps = amplitudes_from_args(args)
+    curve = METHODS[args.method](structure, amps, harmonics, samples)
+    energy = curve if args.method == "energy" else energy_method(structure, amps)
+    if args.csv:
+        write_csv(args.csv, {"amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
+                             "damping_ratio": curve.damping_ratio})
+    if args.plot:
+        _plot(curve, energy, args.plot)
+    if args.json:
+        print_json({"structure": describe_structure(structure), "method": curve.method,
+                    "harmonics": curve.harmonics, "samples": curve.samples,
+                    "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
+                    "damping_ratio": curve.damping_ratio,
+                    "energy_method": {"frequency_Hz": energy.frequency,
+                                      "damping_ratio": energy.damping_ratio}})
+        return 0
+    d = describe_structure(structure)
+    print(f"mode {d['frequency_Hz']:.6g} Hz with the joint removed, "
+          f"{d['stuck_frequency_Hz']:.6g} Hz stuck; {args.method}, {curve.harmonics} "
+          f"harmonic(s), {curve.samples} samples")
+    print(f"{'a (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")
+    for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
+        print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
+    return 0
+
+
+def amplitudes_from_args(args: argparse.Namespace) -> np.ndarray:
+    """Geometrically spaced modal amplitudes (mm) of --amplitude-range and --amplitudes."""
+    n = args.amplitudes
+    if not 1 <= n <= 100_000:
+        raise ParameterError(f"--amplitudes must be in [1, 100000], got {n}")
+    lo, hi = args.amplitude_range
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
+        raise ParameterError(f"--amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
+                             f"{lo:g} {hi:g}")
+    return np.geomspace(lo, hi, n) if n > 1 else np.array([lo])
+
+
+def _plot(curve: ModalCurve, energy: ModalCurve, path: str) -> None:
+    from ..plot import COLOURS, new_figure, save_figure
+
+    fig, axes = new_figure(ncols=2, width_mm=80.0)
+    for ax, attr, label in zip(axes[0], ("frequency", "damping_ratio"),
+                               ("natural frequency f (Hz)", "damping ratio zeta (-)"),
+                               strict=True):
+        ax.semilogx(curve.amplitude, getattr(curve, attr), color=COLOURS[0],
+                    label=f"{curve.method}, {curve.harmonics} harmonic(s)")
+        if energy is not curve:
+            ax.semilogx(energy.amplitude, getattr(energy, attr), color=COLOURS[1],
+                        linestyle="--", label="energy method")
+        ax.set_xlabel("modal amplitude a (mm)")
+        ax.set_ylabel(label)
+        ax.legend()
+    save_figure(fig, path)

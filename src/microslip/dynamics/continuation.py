@@ -1,0 +1,161 @@
+"""Newton's method and pseudo-arclength continuation of a solution curve R(y) = 0.
+
+``y`` has one more entry than ``R`` (the continuation parameter is the last one, e.g. the
+frequency); ``fun(y)`` returns ``R`` and its Jacobian ``dR/dy`` of shape (n, n + 1). Lengths
+along the curve are measured in a weighted norm, ``|dy|_W^2 = sum (dy_i / scale_i)^2``, so
+that coefficients in mm and a frequency in rad/s count alike; ``scale`` may be updated after
+every accepted point (e.g. with the amplitude reached so far).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..named import result
+
+__all__ = ["Curve", "arclength", "newton"]
+
+Array = NDArray[np.float64]
+Fun = Callable[[Array], tuple[Array, Array]]
+
+#: Newton iterations at most per corrector.
+MAX_ITERATIONS = 12
+
+#: Relative step below which a sharp turn of the tangent is accepted as a kink of the curve.
+KINK_STEP = 1.0 / 64.0
+
+
+@result
+class Curve:
+    """Points of a continued solution curve.
+
+    Attributes
+    ----------
+    points : ndarray, shape (m, n + 1)
+        Converged points y along the curve, in order.
+    success : bool
+        True if the curve reached its end condition.
+    message : str
+        Why the continuation stopped.
+    """
+
+    points: np.ndarray
+    success: bool
+    message: str
+
+
+def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
+           tol: float, max_iter: int = MAX_ITERATIONS) -> tuple[Array, bool, Array]:
+    """Solve the square system ``fun(y) = (r, dr/dy) = 0`` from ``y0``.
+
+    Converged when the Newton step is below ``tol`` in the norm ``max |dy / scale|``.
+    A step that increases the residual norm is halved (up to 10 times). Returns the
+    solution, whether it converged, and the Jacobian at the solution.
+    """
+    y = np.array(y0, dtype=np.float64)
+    r, jac = fun(y)
+    for _ in range(max_iter):
+        try:
+            step = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            return y, False, jac
+        norm0 = float(np.linalg.norm(r))
+        lam = 1.0
+        for _ in range(10):
+            trial = y + lam * step
+            r_new, jac_new = fun(trial)
+            if np.linalg.norm(r_new) <= norm0 or lam * np.max(np.abs(step / scale)) < tol:
+                break
+            lam *= 0.5
+        y, r, jac = trial, r_new, jac_new
+        if lam * np.max(np.abs(step / scale)) < tol:
+            return y, bool(np.all(np.isfinite(y))), jac
+    return y, False, jac
+
+
+def _tangent(jac: Array, previous: Array, scale: Array) -> Array:
+    """Unit tangent (weighted norm) of the curve, oriented like ``previous``."""
+    aug = np.vstack([jac, previous / scale**2])
+    rhs = np.zeros(aug.shape[0])
+    rhs[-1] = 1.0
+    t = np.linalg.solve(aug, rhs)
+    return np.asarray(t / np.linalg.norm(t / scale))
+
+
+def arclength(fun: Fun, y0: Array, direction: Array, step: float,
+              stop: Callable[[Array], bool], scale: Array,
+              rescale: Callable[[Array, Array], Array] | None = None, *,
+              tol: float = 1e-10, min_step: float | None = None,
+              max_points: int = 10_000) -> Curve:
+    """Pseudo-arclength continuation from the solution ``y0`` of ``fun(y)[0] = 0``.
+
+    Parameters
+    ----------
+    fun : callable
+        ``y -> (R (n,), dR/dy (n, n + 1))``.
+    y0 : ndarray, shape (n + 1,)
+        A converged starting point.
+    direction : ndarray, shape (n + 1,)
+        Initial orientation (only its sign against the first tangent matters).
+    step : float
+        Largest step along the curve (weighted norm).
+    stop : callable
+        ``y -> True`` when the curve has reached its end (the point is kept).
+    scale : ndarray, shape (n + 1,)
+        Weights of the norm; ``rescale(y, scale)`` may return new ones after each point.
+    tol : float
+        Newton tolerance in the weighted max norm.
+    min_step : float
+        Smallest step before giving up (default step / 1024).
+    max_points : int
+        Largest number of points.
+
+    Notes
+    -----
+    Predictor ``y_p = y + h t`` with t the unit tangent (null vector of dR/dy), corrector
+    Newton on ``[R(y); t . W (y - y_p)] = 0`` (Keller's pseudo-arclength). The step h is
+    halved when the corrector fails or the tangent turns by more than 30 degrees (unless the
+    step is already below ``KINK_STEP * step``: a corner of a piecewise-smooth curve), and
+    grows by 1.5 (up to ``step``) after every accepted point.
+    """
+    min_step = step / 1024.0 if min_step is None else min_step
+    y = np.array(y0, dtype=np.float64)
+    scale = np.array(scale, dtype=np.float64)
+    _, jac = fun(y)
+    t = _tangent(jac, direction, scale)
+    points = [y.copy()]
+    h = step
+    while len(points) < max_points:
+        y_pred = y + h * t
+        row = t / scale**2
+
+        def corrector(z: Array, y_pred: Array = y_pred, row: Array = row
+                      ) -> tuple[Array, Array]:
+            r, j = fun(z)
+            return np.append(r, row @ (z - y_pred)), np.vstack([j, row])
+
+        y_new, ok, jac = newton(corrector, y_pred, scale, tol)
+        t_new = t
+        if ok:
+            t_new = _tangent(jac[:-1], t, scale)
+            # a kink of the curve (an element starting to slip) turns the tangent at any h
+            ok = (float((t_new / scale) @ (t / scale)) > np.cos(np.pi / 6.0)
+                  or h <= KINK_STEP * step)
+        if not ok:
+            h *= 0.5
+            if h < min_step:
+                return Curve(np.array(points), False,
+                             f"step fell below {min_step:.3g} at parameter {y[-1]:.6g}")
+            continue
+        y, t = y_new, t_new
+        points.append(y.copy())
+        if stop(y):
+            return Curve(np.array(points), True, "reached the end of the range")
+        h = min(1.5 * h, step)
+        if rescale is not None:
+            scale = rescale(y, scale)
+            t = t / np.linalg.norm(t / scale)
+    return Curve(np.array(points), False, f"stopped after {max_points} points")

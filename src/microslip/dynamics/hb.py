@@ -1,0 +1,152 @@
+"""Harmonic balance with the alternating frequency-time scheme (AFT).
+
+Every degree of freedom is a truncated Fourier series in theta = w t,
+``q(theta) = c_0 + sum_{k=1..H} (c_k cos(k theta) + s_k sin(k theta))``, stored per degree of
+freedom as ``[c_0, c_1, s_1, ..., c_H, s_H]`` (mm; vector index ``dof * (2H + 1) + j``).
+The joint forces are evaluated at N time samples of one period (inverse real FFT), their
+Fourier coefficients taken back with a real FFT, and their Jacobian follows from the
+operator's analytic time-domain Jacobian by the same two transforms.
+
+Units: the residual is in N (force harmonics), coefficients in mm, frequency in rad/s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ParameterError
+from .structure import SI_PER_MM, Structure
+
+__all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
+
+#: Time samples per period of the AFT scheme, unless given.
+DEFAULT_HB_SAMPLES = 128
+
+Array = NDArray[np.float64]
+
+
+def to_time(coeffs: Array, samples: int) -> Array:
+    """Values at theta_j = 2 pi j / N (last axis) of the series with ``coeffs`` (last axis)."""
+    h = (coeffs.shape[-1] - 1) // 2
+    spec = np.zeros((*coeffs.shape[:-1], samples // 2 + 1), dtype=np.complex128)
+    spec[..., 0] = coeffs[..., 0] * samples
+    spec[..., 1:h + 1] = (coeffs[..., 1::2] - 1j * coeffs[..., 2::2]) * (samples / 2.0)
+    return np.fft.irfft(spec, n=samples, axis=-1)
+
+
+def from_time(values: Array, harmonics: int) -> Array:
+    """Fourier coefficients ``[c_0, c_1, s_1, ...]`` (last axis) of periodic samples (last
+    axis), by the rectangle rule (a real FFT)."""
+    n = values.shape[-1]
+    spec = np.fft.rfft(values, axis=-1)[..., :harmonics + 1]
+    out = np.empty((*values.shape[:-1], 2 * harmonics + 1))
+    out[..., 0] = spec[..., 0].real / n
+    out[..., 1::2] = spec[..., 1:].real * (2.0 / n)
+    out[..., 2::2] = spec[..., 1:].imag * (-2.0 / n)
+    return out
+
+
+class Residual:
+    """The harmonic-balance residual (N) and its derivatives at one point.
+
+    Attributes: ``r`` (n_eq,), ``dx`` (n_eq, n_eq) = dr/dX (N/mm), ``dw`` (n_eq,) = dr/dw
+    (N·s), ``dxi`` (n_eq,) = dr/dxi (N·s), xi being the mass-proportional negative damping
+    of the extended periodic motion concept.
+    """
+
+    __slots__ = ("dw", "dx", "dxi", "r")
+
+    def __init__(self, r: Array, dx: Array, dw: Array, dxi: Array) -> None:
+        self.r, self.dx, self.dw, self.dxi = r, dx, dw, dxi
+
+
+class HarmonicBalance:
+    """Harmonic balance of a :class:`Structure` with H harmonics and N AFT samples.
+
+    Notes
+    -----
+    Residual for harmonic k (forces in N, coefficients in mm, SI matrices times 1e-3):
+    ``1e-3 [(K - k^2 w^2 M) c_k + k w (C - xi M) s_k] + F_c,k - P_c,k``,
+    ``1e-3 [(K - k^2 w^2 M) s_k - k w (C - xi M) c_k] + F_s,k - P_s,k``,
+    where F are the joint-force harmonics and P the excitation's. With ``u = w . q`` the
+    joint displacement, ``dF/dU = P_N J E_N`` (E_N: coefficients -> samples, P_N: samples
+    -> coefficients, J the operator's time-domain Jacobian), and the structure sees
+    ``w F`` and ``w w^T dF/dU``.
+    """
+
+    def __init__(self, structure: Structure, harmonics: int,
+                 samples: int = DEFAULT_HB_SAMPLES) -> None:
+        if not (isinstance(harmonics, int) and 1 <= harmonics <= 256):
+            raise ParameterError(f"harmonics must be a whole number in [1, 256], got "
+                                 f"{harmonics!r}")
+        if not (isinstance(samples, int) and 2 * harmonics + 2 <= samples <= 1 << 16):
+            raise ParameterError(f"samples must be a whole number in [{2 * harmonics + 2}, "
+                                 f"65536] for {harmonics} harmonics, got {samples!r}")
+        self.structure = structure
+        self.harmonics = harmonics
+        self.samples = samples
+        h = 2 * harmonics + 1
+        order = np.zeros(h)
+        order[1::2] = order[2::2] = np.arange(1, harmonics + 1)
+        dc = np.zeros((h, h))  # d/dtheta on the coefficients
+        for k in range(1, harmonics + 1):
+            dc[2 * k - 1, 2 * k] = k
+            dc[2 * k, 2 * k - 1] = -k
+        s = SI_PER_MM
+        self._k = s * np.kron(structure.stiffness, np.eye(h))
+        self._m = s * np.kron(structure.mass, np.diag(order**2))
+        self._c = s * np.kron(structure.damping, dc)
+        self._mc = s * np.kron(structure.mass, dc)
+        self._synth = to_time(np.eye(h), samples).T  # (N, h): coefficients -> samples
+        # joint j's harmonics U = B_j^T x, its force enters as B_j F (B_j = w_j kron I_h)
+        self._links = tuple((link.operator, np.kron(link.participation[:, None], np.eye(h)))
+                            for link in structure.joints)
+
+    @property
+    def size(self) -> int:
+        """Number of unknown coefficients, n_dof (2H + 1)."""
+        return self.structure.dofs * (2 * self.harmonics + 1)
+
+    def excitation(self, shape: Array, force: float) -> Array:
+        """Coefficient vector of the excitation ``shape * force * cos(w t)`` (N)."""
+        p = np.zeros((self.structure.dofs, 2 * self.harmonics + 1))
+        p[:, 1] = np.asarray(shape, dtype=np.float64) * force
+        return p.ravel()
+
+    def stuck_guess(self, omega: float, load: Array) -> Array:
+        """Coefficients (mm) of the linear response with every joint stuck."""
+        extra = np.zeros((self.size, self.size))
+        h = 2 * self.harmonics + 1
+        for link in self.structure.joints:
+            w = link.participation
+            extra += np.kron(np.outer(w, w), np.eye(h)) * link.operator.initial_stiffness
+        lin = self._k - omega**2 * self._m + omega * self._c + extra
+        return np.asarray(np.linalg.solve(lin, load))
+
+    def residual(self, x: Array, omega: float, load: Array, xi: float = 0.0) -> Residual:
+        """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
+        (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s)."""
+        dyn = self._k - omega**2 * self._m + omega * (self._c - xi * self._mc)
+        r = dyn @ x - load
+        dx = dyn.copy()
+        for operator, b in self._links:
+            f, jac = operator.periodic_force(to_time(b.T @ x, self.samples))
+            r += b @ from_time(f, self.harmonics)
+            dx += b @ from_time((jac @ self._synth).T, self.harmonics).T @ b.T
+        dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
+        dxi = -omega * (self._mc @ x)
+        return Residual(r, dx, dw, dxi)
+
+    def amplitude(self, x: Array) -> tuple[float, Array]:
+        """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
+        h = 2 * self.harmonics + 1
+        out = self.structure.output
+        q = x.reshape(self.structure.dofs, h)
+        c, s = float(out @ q[:, 1]), float(out @ q[:, 2])
+        a = float(np.hypot(c, s))
+        grad = np.zeros((self.structure.dofs, h))
+        if a > 0.0:
+            grad[:, 1] = out * (c / a)
+            grad[:, 2] = out * (s / a)
+        return a, grad.ravel()

@@ -1,0 +1,169 @@
+"""Nonlinear modal analysis: natural frequency and damping ratio versus vibration amplitude.
+
+Two methods: the single-nonlinear-mode energy method (:func:`energy_method`, from each
+joint's describing function along the stuck linear mode) and the extended periodic motion
+concept with harmonic balance (:func:`epmc`, Krack 2015: several harmonics, the mode
+shape free to change with amplitude). The amplitude is the first-harmonic amplitude of the
+structure's output coordinate, mm.
+
+Units: amplitude mm, frequency Hz, damping ratio (-).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import eigh
+
+from ..errors import ParameterError
+from ..named import result
+from .continuation import newton
+from .describing import DEFAULT_SAMPLES, describing_function
+from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
+from .structure import SI_PER_MM, Structure
+
+__all__ = ["METHODS", "ModalCurve", "energy_method", "epmc"]
+
+Array = NDArray[np.float64]
+
+#: Newton tolerance of the extended periodic motion concept (relative).
+TOLERANCE = 1e-11
+
+
+@result
+class ModalCurve:
+    """Amplitude-dependent natural frequency and damping ratio of one mode.
+
+    Attributes
+    ----------
+    method : str
+        ``energy`` or ``epmc``.
+    amplitude : ndarray, shape (n,)
+        First-harmonic amplitude of the output coordinate, mm.
+    frequency : ndarray, shape (n,)
+        Natural frequency, Hz.
+    damping_ratio : ndarray, shape (n,)
+        Modal damping ratio, linear damping included (-).
+    harmonics : int
+        Harmonics of the balance (1 for the energy method).
+    samples : int
+        Time samples per period (of the describing function or the AFT scheme).
+    """
+
+    method: str
+    amplitude: np.ndarray
+    frequency: np.ndarray
+    damping_ratio: np.ndarray
+    harmonics: int
+    samples: int
+
+
+def stuck_mode(structure: Structure) -> tuple[Array, float, float, float]:
+    """Lowest linear mode with every joint stuck: shape (output . shape = 1), modal mass
+    (kg), stiffness (N/m, joints removed) and damping (N·s/m)."""
+    _, vecs = eigh(structure.stuck_stiffness(), structure.mass)
+    phi = vecs[:, 0]
+    norm = float(structure.output @ phi)
+    if norm == 0.0:
+        raise ParameterError("the output coordinate does not move in the lowest stuck mode")
+    phi = phi / norm
+    return (phi, float(phi @ structure.mass @ phi), float(phi @ structure.stiffness @ phi),
+            float(phi @ structure.damping @ phi))
+
+
+def energy_method(structure: Structure, amplitude: ArrayLike,
+                  samples: int = DEFAULT_SAMPLES) -> ModalCurve:
+    """Frequency and damping ratio from the joints' describing functions.
+
+    Notes
+    -----
+    Along the stuck mode shape phi (output . phi = 1) of modal mass m, stiffness k and
+    damping c, a joint with participation p = w . phi sees the amplitude |p| a and adds
+    p^2 K_eq and p^2 D_eq (N/mm, x 1e3 to N/m): w^2 = (k + sum p^2 K_eq) / m and
+    zeta = (c w + sum p^2 D_eq) / (2 m w^2) = zeta_lin + W_d / (2 pi m w^2 a^2)
+    (REFERENCES.md, 1-DOF single-harmonic balance). Exact single-harmonic balance for one
+    degree of freedom.
+    """
+    a = _amplitudes(amplitude)
+    phi, m, k, c = stuck_mode(structure)
+    k_eq = np.full(a.size, k)
+    d_eq = np.zeros(a.size)
+    for link in structure.joints:
+        p = float(link.participation @ phi)
+        if p == 0.0:
+            continue
+        df = describing_function(link.operator, abs(p) * a, samples)
+        k_eq += p * p * df.stiffness / SI_PER_MM
+        d_eq += p * p * df.damping / SI_PER_MM
+    omega = np.sqrt(k_eq / m)
+    return ModalCurve(method="energy", amplitude=a, frequency=omega / (2.0 * np.pi),
+                      damping_ratio=(c * omega + d_eq) / (2.0 * m * omega**2), harmonics=1,
+                      samples=samples)
+
+
+def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
+         samples: int = DEFAULT_HB_SAMPLES) -> ModalCurve:
+    """Frequency and damping ratio by the extended periodic motion concept.
+
+    Notes
+    -----
+    The autonomous system ``M q'' + (C - xi M) q' + K q + joints = 0`` has periodic
+    solutions once the artificial negative damping xi balances the dissipation; harmonic
+    balance with the amplitude constraint ``output . c_1 = a`` and the phase constraint
+    ``output . s_1 = 0`` gives X, w and xi, and the modal damping ratio is
+    ``zeta = xi / (2 w)`` (Krack 2015). Each amplitude starts Newton's method from the
+    previous one (the first from the stuck linear mode).
+    """
+    a = _amplitudes(amplitude)
+    hb = HarmonicBalance(structure, harmonics, samples)
+    h = 2 * harmonics + 1
+    n = hb.size
+    phi, m, _, c = stuck_mode(structure)
+    omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
+    guess = np.zeros(n + 2)
+    guess[:n].reshape(structure.dofs, h)[:, 1] = phi
+    guess[n], guess[n + 1] = omega0, c / m
+    rows = np.zeros((2, n + 2))
+    rows[0, :n].reshape(structure.dofs, h)[:, 1] = structure.output
+    rows[1, :n].reshape(structure.dofs, h)[:, 2] = structure.output
+    load = np.zeros(n)
+    freq = np.empty(a.size)
+    zeta = np.empty(a.size)
+    previous = 1.0
+    for i, ai in enumerate(a):
+        def fun(y: Array, ai: float = ai) -> tuple[Array, Array]:
+            res = hb.residual(y[:n], float(y[n]), load, float(y[n + 1]))
+            r = np.concatenate([res.r, rows @ y - (ai, 0.0)])
+            jac = np.vstack([np.column_stack([res.dx, res.dw, res.dxi]), rows])
+            return r, jac
+
+        guess[:n] *= ai / previous
+        scale = np.concatenate([np.full(n, ai), [omega0, omega0]])
+        y, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=50)
+        if not ok:
+            raise ParameterError(f"the extended periodic motion concept did not converge at "
+                                 f"amplitude {ai:.6g} mm")
+        freq[i] = y[n] / (2.0 * np.pi)
+        zeta[i] = y[n + 1] / (2.0 * y[n])
+        guess, previous = y, ai
+    return ModalCurve(method="epmc", amplitude=a, frequency=freq, damping_ratio=zeta,
+                      harmonics=harmonics, samples=samples)
+
+
+def _energy(structure: Structure, amplitude: ArrayLike, harmonics: int, samples: int
+            ) -> ModalCurve:
+    return energy_method(structure, amplitude, samples)
+
+
+#: Modal method name -> ``(structure, amplitudes mm, harmonics, samples) -> ModalCurve``.
+METHODS: dict[str, Callable[[Structure, ArrayLike, int, int], ModalCurve]] = {
+    "epmc": epmc, "energy": _energy}
+
+
+def _amplitudes(amplitude: ArrayLike) -> Array:
+    a = np.asarray(amplitude, dtype=np.float64).reshape(-1)
+    if not (a.size and np.all(np.isfinite(a)) and np.all(a > 0.0)):
+        raise ParameterError("modal amplitudes must be finite and > 0 mm")
+    return a
