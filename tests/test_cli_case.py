@@ -143,7 +143,7 @@ def test_case_amplitude_and_fraction(capsys, tmp_path):
 
 def test_sweep_amplitude_range_overrides_the_case_amplitude(capsys, ti, tmp_path):
     table = tmp_path / "s.csv"
-    code, out, err = run(capsys, "sweep", "--case", ti, "--model", "tip", "--amplitude-range",
+    code, _, err = run(capsys, "sweep", "--case", ti, "--model", "tip", "--amplitude-range",
                          "1000", "2000", "--cases", "2", "--out", table, "--increments", "100",
                          "--no-progress")
     assert code == 0, err

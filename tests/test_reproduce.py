@@ -14,6 +14,8 @@ from microslip import ModelOptions, planar, preset, reproduce
 from microslip.cli.main import main
 from microslip.errors import MicroslipError
 from microslip.planar import PAPER_RATIOS
+from microslip.reproduce import job as reproduce_job
+from microslip.reproduce.report import _claim_short
 
 FILES = ("fig01_trajectories.png", "fig10_loops_R_ge_1.png", "fig11_loops_R_le_1.png",
          "fig12_loss_factor_vs_R.png", "fig01_trajectories.csv", "fig10_loops_R_ge_1.csv",
@@ -63,7 +65,7 @@ def test_report_verdicts_agree_with_the_csv_files(job):
     summary = next(line for line in text.splitlines() if line.startswith("Summary: "))
     for c in claims:
         assert c.verdict in reproduce.VERDICTS
-        assert f"{reproduce._claim_short(c.key)}: {c.verdict}" in summary
+        assert f"{_claim_short(c.key)}: {c.verdict}" in summary
         assert c.evidence in text
     # and independently of check_claims: where is eta lowest, where highest?
     for coupling in ("paper", "work"):
@@ -132,7 +134,9 @@ def _fake_validation(fail: bool = False):
         csv = Path(out_dir) / "validation.csv"
         csv.write_text("case,mesh,converged,err_peak_model_fe,err_wd_model_fe,tolerance_peak,"
                        "tolerance_wd\ntip,coarse,True,0.001,0.03,0.01,0.02\n", encoding="utf-8")
-        return SimpleNamespace(files=(p, csv), rows=(),
+        row = {"case": "tip", "mesh": "coarse", "converged": True, "err_peak_model_fe": 0.001,
+               "err_wd_model_fe": 0.03, "tolerance_peak": 0.01, "tolerance_wd": 0.02}
+        return SimpleNamespace(files=(p, csv), rows=(row,),
                                summary_markdown="| FE | ok |\n|---|---|")
     return run_validation
 
@@ -148,7 +152,7 @@ def _small_coupling_sweep(monkeypatch):
 
 def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys):
     _small_coupling_sweep(monkeypatch)
-    monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(), ""))
+    monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(), ""))
     code = main(["reproduce", "--out", str(tmp_path / "a"), "--fe", "--quiet",
                  "--increments", "20"])
     assert code == 0
@@ -158,7 +162,7 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "models agree with FE: not confirmed" in text
     assert "coupling_ratio_vs_R.csv" in text and (tmp_path / "a" / "coupling_ratio_vs_R.csv"
                                                    ).is_file()
-    monkeypatch.setattr(reproduce, "_fe_module", lambda: (_fake_validation(fail=True), ""))
+    monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(fail=True), ""))
     code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20"])
     _, err = capsys.readouterr()
     assert code == 1 and "ccx failed" in err
@@ -166,8 +170,8 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
 
 
 def test_fe_missing_is_reported_not_fatal(monkeypatch):
-    monkeypatch.setattr(reproduce.importlib.util, "find_spec", lambda name: None)
-    run, why = reproduce._fe_module()
+    monkeypatch.setattr(reproduce_job.importlib.util, "find_spec", lambda name: None)
+    run, why = reproduce_job._fe_module()
     assert run is None and "microslip.validate" in why
 
 

@@ -6,7 +6,8 @@ import pytest
 
 from microslip import preset
 from microslip.io import write_csv
-from microslip.reproduce import _coupling_section, coupling_table, figure_coupling, read_csv
+from microslip.reproduce import coupling_table, figure_coupling, read_csv
+from microslip.reproduce.report import _coupling_section
 from microslip.solver import coupling_sweep
 
 

@@ -62,7 +62,7 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
 def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
-            return action.choices[command]  # type: ignore[no-any-return]
+            return action.choices[command]
     raise LookupError(command)  # pragma: no cover - build_parser always has subcommands
 
 

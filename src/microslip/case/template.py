@@ -29,6 +29,7 @@ def _toml(value: Any) -> str:
 
 def _line(key: Key) -> str:
     unit = f"{key.unit}, " if key.unit else ""
+    value: object
     if key.dotted in CLAMP_KEYS:
         value = PRESETS[TEMPLATE_PRESET][0].as_dict()[CLAMP_KEYS[key.dotted]]
         note = f"default: from the preset ({TEMPLATE_PRESET}: {value:g})"

@@ -22,7 +22,8 @@ __all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
 
 #: Subcommand modules, in the order ``--help`` lists them.
 SUBCOMMANDS = (
-    "loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case", "joint", "modal", "frf",
+    "loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case",
+    "joint", "modal", "frf",
 )
 
 

@@ -115,6 +115,7 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
     Examples
     --------
     >>> from microslip import preset
+    >>> from microslip.sweep import make_sweep
     >>> s = make_sweep("tip", preset("table2-tip"), grid=[("amplitude", [4000.0, 8000.0])],
     ...                increments=200)
     >>> r = run_sweep(s, progress=False)
