@@ -17,7 +17,7 @@ import pytest
 from microslip.cli.main import main
 
 matplotlib.use("Agg")
-from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.figure import Figure
 
 #: a unit in a label: "(mm)", "[N]", "/ N·mm", or a dimensionless quantity said as such
 UNIT = re.compile(r"\([^)]*\)\s*$|\[[^\]]*\]\s*$|/\s*\S+\s*$|\((?:-|–|1|dimensionless)\)")
