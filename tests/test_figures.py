@@ -1,8 +1,8 @@
 """What the figures show, not only that a PNG was written.
 
 Every figure a command saves is captured at ``savefig``: each panel that holds data must have
-both axes labelled with a unit, and no infinite or all-NaN line; the loop figure must draw the loop that
-the same command reports in JSON.
+both axes labelled with a unit, and no infinite or all-NaN line; the loop figure must draw the
+loop that the same command reports in JSON.
 """
 
 from __future__ import annotations
