@@ -78,7 +78,7 @@ def _computed(s: Settings) -> list[str]:
     add(f"- The tip model (Eqs 2-10) with Table 2's tip zone (`table2-tip`: L = {tp.length:g} mm, "
         f"w = {tp.width:g} mm, t = {tp.thickness:g} mm, E = {tp.modulus:g} MPa, ν = "
         f"{tp.poisson_ratio:g}, μ = {tp.friction:g}, F_N = {tp.normal_force:g} N) and the centre "
-        f"model (Eqs 11-18) with the centre zone (`table2-centre`, t = {cp.thickness:g} mm), "
+        f"model (Eqs 11-18) with the centre zone (`table2-centre`, w = {cp.width:g} mm), "
         f"each run from rest in {n} equal force increments and closed with Masing's rule.")
     add("- For each of the paper's seven force ratios R (Fig. 1) the two loops at the paper's "
         "amplitudes, the paper's resultant loop (Eqs 19-20) and its W_d, U and η (Eqs 21-23): "
