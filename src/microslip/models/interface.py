@@ -286,8 +286,12 @@ def tip_domain(params: ClampParams, k: float, law: PressureLaw) -> Domain:
 def centre_domains(params: ClampParams, k: float, law: PressureLaw) -> tuple[Domain, Domain]:
     """The centre-loaded bar: tension (towards x = L) and compression (towards 0) halves."""
     half = 0.5 * params.length
-    return tuple(Domain(half, params.axial_stiffness, k, params.macroslip_force,  # type: ignore[return-value]
-                        params.length, law, 0.5, sign) for sign in (1.0, -1.0))
+
+    def domain(sign: float) -> Domain:
+        return Domain(half, params.axial_stiffness, k, params.macroslip_force, params.length,
+                      law, 0.5, sign)
+
+    return domain(1.0), domain(-1.0)
 
 
 def slip_front(bar: Domain, force: ArrayLike, iterations: int = 64) -> FloatArray:
@@ -384,16 +388,19 @@ def masing_dissipation(loading: str, params: ClampParams, amplitude: float, *,
     onset F1 and smooth after it, so the integral is exact on [0, F1] and Gauss-Legendre with
     ``nodes`` points on [F1, F0] (converged to rounding at the default).
     """
-    kw = {"stick_slope": stick_slope, "shear_lag": shear_lag, "law": law}
+    def curve(force: ArrayLike) -> FloatArray:
+        return virgin_curve(loading, params, force, stick_slope=stick_slope,
+                            shear_lag=shear_lag, law=law)[1]
+
     f0 = float(amplitude)
-    d0 = float(virgin_curve(loading, params, np.array([f0]), **kw)[1][0])  # type: ignore[arg-type]
-    f1 = _slip_onset(loading, params, **kw)  # type: ignore[arg-type]
+    d0 = float(curve(np.array([f0]))[0])
+    f1 = _slip_onset(loading, params, stick_slope=stick_slope, shear_lag=shear_lag, law=law)
     if f0 <= f1:
         return 0.0, d0
     x, wts = np.polynomial.legendre.leggauss(nodes)
     f = 0.5 * (f0 - f1) * x + 0.5 * (f0 + f1)
-    d = virgin_curve(loading, params, f, **kw)[1]  # type: ignore[arg-type]
-    d1 = float(virgin_curve(loading, params, np.array([f1]), **kw)[1][0])  # type: ignore[arg-type]
+    d = curve(f)
+    d1 = float(curve(np.array([f1]))[0])
     area = 0.5 * f1 * d1 + 0.5 * (f0 - f1) * float(wts @ d)
     return max(4.0 * f0 * d0 - 8.0 * area, 0.0), d0
 

@@ -195,9 +195,8 @@ def paper_level_pair(ratio: float, scheme: str = "base") -> tuple[float, float]:
     if scheme == "base":
         return (r, 1.0) if r >= 1.0 else (1.0, 1.0 / r)
     if scheme == "top":
-        frac = Fraction(r).limit_denominator(12)
-        if abs(float(frac) - r) > 1e-9 * r:
-            frac = None  # type: ignore[assignment]
+        nearest = Fraction(r).limit_denominator(12)
+        frac = nearest if abs(float(nearest) - r) <= 1e-9 * r else None
         if frac is not None:
             for lc in sorted(PAPER_LEVELS, reverse=True):
                 lt = frac * lc
