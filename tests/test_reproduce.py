@@ -142,9 +142,12 @@ def _fake_validation(fail: bool = False):
 
 
 def _small_coupling_sweep(monkeypatch):
-    """The coupled-friction step on a tiny mesh (its own test: test_reproduce_coupling.py)."""
+    """The coupled-friction and Table 2 FE steps on a tiny mesh (their own tests:
+    test_reproduce_coupling.py, test_reproduce_table2_fe.py)."""
+    import microslip.reproduce.table2_fe as table2_fe
     import microslip.solver as solver
 
+    monkeypatch.setattr(table2_fe, "TABLE2_FE_MESH", "tiny")
     real = solver.coupling_sweep
     monkeypatch.setattr(solver, "coupling_sweep", lambda params, ratios, phases: real(
         params, ratios[:2], phases, mesh="tiny", cycles=2, increments_per_cycle=16))

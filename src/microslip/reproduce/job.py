@@ -80,6 +80,9 @@ class ReproduceResult:
     coupling : dict or None
         Columns of ``coupling_ratio_vs_R.csv`` (coupled 2-D friction, built-in FE solver), when
         the finite-element part ran.
+    table2_fe : dict or None
+        Columns of ``table2_fe_vs_1d.csv`` (the Table 2 zones in the built-in FE solver beside
+        the 1-D models), when the finite-element part ran.
     """
 
     out_dir: Path
@@ -96,6 +99,7 @@ class ReproduceResult:
     fe_report: Any
     elapsed_s: float
     coupling: dict[str, Any] | None = None
+    table2_fe: dict[str, Any] | None = None
 
     __repr__ = short_repr
 
@@ -212,13 +216,15 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
         steps.update(1)
         coupling, coupling_files = _run_coupling(out, fe, table, say)
         files += coupling_files
+        table2, table2_files = _run_table2_fe(out, fe, say)
+        files += table2_files
         steps.update(1)
     res = ReproduceResult(
         out_dir=out, files=(*files, out / "report.md"), sweep=sweep, phase90=phase90,
         readings=readings, components=components, table=table, equal_levels=r1,
         claims=check_claims(components, table, fe_run.columns()), fe_status=fe_run.status,
         fe_message=fe_run.message, fe_report=fe_run.report,
-        elapsed_s=time.perf_counter() - t0, coupling=coupling)
+        elapsed_s=time.perf_counter() - t0, coupling=coupling, table2_fe=table2)
     with atomic_write(out / "report.md") as fh:
         fh.write(report_markdown(res, s))
     return res
@@ -338,3 +344,17 @@ def _run_coupling(out: Path, fe: bool | None, table: dict[str, Any], say: Echo
     write_csv(out / "coupling_ratio_vs_R.csv", cols)
     figure_coupling(out / "fig12b_coupling_ratio_vs_R.png", table, cols)
     return cols, (out / "coupling_ratio_vs_R.csv", out / "fig12b_coupling_ratio_vs_R.png")
+
+
+def _run_table2_fe(out: Path, fe: bool | None, say: Echo
+                   ) -> tuple[dict[str, Any] | None, tuple[Path, ...]]:
+    """The Table 2 zones in the built-in FE solver beside the 1-D models (table2_fe.py)."""
+    if fe is False:
+        return None, ()
+    from .table2_fe import table2_fe_table
+
+    cols = table2_fe_table(say=say)
+    if not cols["model"]:
+        return None, ()
+    write_csv(out / "table2_fe_vs_1d.csv", cols)
+    return cols, (out / "table2_fe_vs_1d.csv",)
