@@ -144,3 +144,20 @@ def test_planar_gross_sliding_is_said(capsys):
 def test_bad_contact_options_are_one_line(capsys, argv, message):
     code, out, err = run(capsys, *argv)
     assert code == 1 and out == "" and message in err and len(err.strip().splitlines()) == 1
+
+
+def test_sweep_on_a_contact_is_the_loop_of_each_case(capsys, tmp_path):
+    table = tmp_path / "s.csv"
+    code, out, err = run(capsys, "sweep", "--model", "tip", "--amplitude-range", "100", "300",
+                         "--cases", "3", "--increments", "200", "--stick-slope", "1e4",
+                         "--no-progress", "--out", table)
+    assert code == 0, err
+    assert "contact: stick slope 10000 N/mm^3 + shear lag, uniform pressure" in out
+    rows = np.genfromtxt(table, delimiter=",", names=True)
+    for row in rows:
+        r = damping("tip", P, float(row["amplitude_N"]), 200, contact=Contact.layer(1e4))
+        assert row["dissipated_energy_Nmm"] == r.dissipated_energy
+        assert row["loss_factor"] == r.loss_factor
+    code, _, err = run(capsys, "sweep", "--model", "tip", "--amplitude-range", "100", "300",
+                       "--cases", "3", "--stick-slope", "1e4", "--scheduler", "tcp://x:1")
+    assert code == 1 and "leave out --scheduler" in err
