@@ -9,7 +9,7 @@ import sys
 from typing import Any
 
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
-from ..io import to_jsonable
+from ..io import check_writable, to_jsonable
 from ..options import CENTRE_READINGS, POISSON_MODES, ModelOptions
 from ..params import PRESETS, ClampParams, preset
 
@@ -17,6 +17,8 @@ __all__ = [
     "add_model_options",
     "add_params",
     "add_strain_energy",
+    "check_output_dir",
+    "check_plot",
     "model_options",
     "params_from_args",
     "print_json",
@@ -119,6 +121,23 @@ def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_ST
         + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
         + f" (default {default}{why})",
     )
+
+
+def check_plot(path: str | None) -> None:
+    """Before the work: a figure file ``path`` (if given) has a known format, can be written,
+    and matplotlib is installed."""
+    if path is None:
+        return
+    from ..plot.core import PLOT_FORMATS, pyplot
+
+    check_writable(path, PLOT_FORMATS, "plot file")
+    pyplot()
+
+
+def check_output_dir(path: str | None) -> None:
+    """Before the work: an output directory ``path`` (if given) can be created or written."""
+    if path is not None:
+        check_writable(path, what="output directory", directory=True)
 
 
 def print_json(obj: Any) -> None:

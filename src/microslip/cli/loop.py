@@ -15,6 +15,7 @@ from .common import (
     add_model_options,
     add_params,
     add_strain_energy,
+    check_plot,
     model_options,
     params_from_args,
     print_json,
@@ -63,6 +64,7 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
 def run(args: argparse.Namespace) -> int:
     params, amplitude = params_from_args(args)
     n = check_increments(args.increments)
+    check_plot(args.plot)
     opt = model_options(args)
     result = damping(args.model, params, amplitude, n, opt, args.strain_energy)
     out = result_json(args.model, params, result, n, opt)

@@ -20,7 +20,14 @@ from ..planar import (
     planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, add_strain_energy, model_options, number, print_json
+from .common import (
+    add_model_options,
+    add_strain_energy,
+    check_plot,
+    model_options,
+    number,
+    print_json,
+)
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 
@@ -178,6 +185,7 @@ def result_message(result: Any) -> str:
 def run_analytical(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     n = check_increments(args.increments)
+    check_plot(args.plot)
     opt = model_options(args)
     try:
         result = planar_damping(

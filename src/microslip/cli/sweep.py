@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 from typing import Any
 
 import numpy as np
@@ -18,6 +17,7 @@ from .common import (
     add_model_options,
     add_params,
     add_strain_energy,
+    check_plot,
     model_options,
     number,
     params_from_args,
@@ -121,17 +121,13 @@ def add_parser(sub: Any) -> None:
 
 
 def _check_outputs(args: argparse.Namespace) -> None:
+    from ..io import check_writable
     from ..sweep import check_output
 
     if args.out:
         check_output(args.out)
-    if args.plot:
-        ext = os.path.splitext(args.plot)[1].lower()
-        if ext not in (".png", ".pdf", ".svg"):
-            raise ParameterError(f"plot file must end in .png, .pdf or .svg, got {args.plot!r}")
-        from ..plot import pyplot
-
-        pyplot()
+        check_writable(args.out)
+    check_plot(args.plot)
 
 
 def _cases(args: argparse.Namespace) -> int:

@@ -10,7 +10,7 @@ from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from ..fe.mesh import MESHES
-from .common import number, print_json
+from .common import check_output_dir, number, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -52,6 +52,7 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--timeout must be > 0 s, got {args.timeout!r}")
     if not 1 <= args.threads <= 256:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
+    check_output_dir(args.out)
     meshes = tuple(dict.fromkeys(args.mesh or ["coarse"]))
     models = tuple(dict.fromkeys(args.model or list(LOAD_CASES)))
     report = run_validation(args.out, meshes, models, progress=not args.no_progress,

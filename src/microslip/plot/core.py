@@ -13,10 +13,14 @@ from ..errors import MicroslipError
 from ..io import atomic_path
 from ..results import Backbone, DampingResult, HysteresisLoop
 
-__all__ = ["COLOURS", "new_figure", "plot_damping", "plot_loops", "pyplot", "save_figure"]
+__all__ = ["COLOURS", "PLOT_FORMATS", "new_figure", "plot_damping", "plot_loops", "pyplot",
+           "save_figure"]
 
 #: One colour per series, the same across the figures of a report.
 COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
+
+#: Figure formats a command writes, by the file's extension.
+PLOT_FORMATS = (".png", ".pdf", ".svg")
 
 
 def pyplot() -> Any:
