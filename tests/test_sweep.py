@@ -228,7 +228,7 @@ def test_parse_grid_and_sample() -> None:
     (["--increments", "0"], "increments must be a whole number", 1),
     (["--out", "x.txt"], "output file must end in .csv or .nc", 1),
     (["--plot", "x.gif"], "plot file must end in .png, .pdf or .svg", 1),
-    (["--ratio-range", "1", "2"], "--ratio-range applies to --model planar only", 1),
+    (["--ratio-range", "1", "2"], "--ratio-range does not apply to --model tip", 1),
 ])
 def test_bad_inputs_give_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                   args: list[str], message: str, code: int) -> None:
@@ -250,8 +250,8 @@ def test_bad_inputs_give_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[
      "--grid does not apply to --model planar"),
     (["--model", "planar"], "--model planar needs --ratio-range"),
     (["--model", "planar", "--ratio-range", "0", "2"], "--ratio-range ends must be finite and > 0"),
-    (["--model", "planar", "--ratio-range", "1", "2", "--length", "3"],
-     "--length does not apply to --model planar"),
+    (["--model", "planar", "--ratio-range", "1", "2", "--samples", "3"],
+     "--samples does not apply to --model planar"),
     (["--model", "planar", "--ratio-range", "1", "2", "--levels", "odd"],
      "unknown level scheme 'odd'"),
 ])

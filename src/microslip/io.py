@@ -102,7 +102,9 @@ def check_writable(path: str | os.PathLike[str], formats: tuple[str, ...] = (),
     target = Path(path)
     name = os.fspath(path)
     if formats and target.suffix.lower() not in formats:
-        raise ParameterError(f"{what} must end in {', '.join(formats)}, got {name!r}")
+        allowed = " or ".join([", ".join(formats[:-1]), formats[-1]] if len(formats) > 1
+                              else formats)
+        raise ParameterError(f"{what} must end in {allowed}, got {name!r}")
     if target.exists() and target.is_dir() != directory:
         kind = "a directory" if target.is_dir() else "a file"
         raise ParameterError(f"cannot write {what} {name}: it is {kind}")

@@ -161,23 +161,24 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     """Parse ``argv``; with ``--case`` the file's keys are defaults that options override.
 
     Prints one ``warning:`` line on stderr per implausible unit and keeps the sentences in
-    ``args.input_warnings``.
+    ``args.input_warnings``; the destinations given on the command line are
+    ``args.given_options`` (for options that apply to some modes only).
     """
     argv = None if argv is None else list(argv)
     with _lenient(parser):
         first = parser.parse_args(argv)
+        sub = _subparser(parser, first.command)
+        explicit = _explicit(parser, sub, argv)
     case_path = getattr(first, "case", None)
     if case_path is not None:
         case = load_case(case_path)
-        sub = _subparser(parser, first.command)
-        with _lenient(parser):
-            explicit = _explicit(parser, sub, argv)
         dests = {a.dest: a for a in sub._actions}
         defaults = case_defaults(case, first.command, dests, explicit)
         for dest in defaults:
             dests[dest].required = False
         sub.set_defaults(**defaults)
     args = parser.parse_args(argv)
+    args.given_options = frozenset(explicit)
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name

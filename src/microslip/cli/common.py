@@ -9,19 +9,24 @@ import sys
 from typing import Any
 
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
+from ..errors import ParameterError
 from ..io import check_writable, to_jsonable
 from ..options import CENTRE_READINGS, POISSON_MODES, ModelOptions
 from ..params import PRESETS, ClampParams, preset
 
 __all__ = [
+    "add_clamp_flags",
     "add_model_options",
     "add_params",
     "add_strain_energy",
     "check_output_dir",
     "check_plot",
+    "clamp_overrides",
     "model_options",
     "params_from_args",
+    "planar_zones",
     "print_json",
+    "refuse_inapplicable",
 ]
 
 #: Command-line name, ClampParams field, unit.
@@ -48,18 +53,43 @@ def add_params(parser: argparse.ArgumentParser, default_preset: str | None = Non
     g = parser.add_argument_group("clamped zone (override the preset's values)")
     g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
                    help=f"paper parameter set (default {default_preset})")
-    for flag, field, unit in PARAM_FLAGS:
-        g.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
-                       help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+    add_clamp_flags(g)
     g.add_argument("--amplitude", type=number, metavar="N",
                    help="load amplitude F0, N (default: the preset's)")
+
+
+def add_clamp_flags(group: Any) -> None:
+    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude)."""
+    for flag, field, unit in PARAM_FLAGS:
+        group.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
+                           help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+
+
+def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:
+    """The clamp values given by the flags of :func:`add_clamp_flags` (field -> value)."""
+    return {field: float(v) for _, field, _ in PARAM_FLAGS
+            if (v := getattr(args, field, None)) is not None}
+
+
+def planar_zones(tip: ClampParams, centre: ClampParams, overrides: dict[str, float],
+                 tip_symmetry: int = 2) -> tuple[ClampParams, ClampParams]:
+    """The tip and centre zones of the planar case with the clamp flags ``overrides`` applied.
+
+    The flags describe the whole clamp: the centre model is the whole clamp; the tip model is
+    one of ``tip_symmetry`` symmetric parts, so it takes thickness t / ``tip_symmetry`` (as in
+    the paper's Table 2: tip t = 25 mm, centre t = 50 mm) and every other value as given.
+    """
+    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, int) or tip_symmetry < 1:
+        raise ParameterError(f"tip symmetry must be a whole number >= 1, got {tip_symmetry!r}")
+    tip_values = dict(overrides)
+    if "thickness" in overrides:
+        tip_values["thickness"] = overrides["thickness"] / tip_symmetry
+    return tip.replace(**tip_values), centre.replace(**overrides)
 
 
 def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None = None
                      ) -> tuple[ClampParams, float]:
     """ClampParams (preset overridden by explicit flags) and the amplitude, validated."""
-    from ..errors import ParameterError
-
     if args.preset is not None:
         base = preset(args.preset)
         values = base.as_dict()
@@ -138,6 +168,28 @@ def check_output_dir(path: str | None) -> None:
     """Before the work: an output directory ``path`` (if given) can be created or written."""
     if path is not None:
         check_writable(path, what="output directory", directory=True)
+
+
+#: The flags of :func:`add_model_options` (the analytical models' reading of the paper).
+MODEL_OPTION_DESTS = ("no_corrections", "poisson", "no_length_update", "centre_reading",
+                      "paper_literal")
+
+
+def refuse_inapplicable(args: argparse.Namespace, mode: str,
+                        applies: dict[str, tuple[str, ...]]) -> None:
+    """Refuse an option given on the command line for a mode it does nothing in.
+
+    ``mode`` is the destination that selects the mode (``"solver"``); ``applies`` maps an
+    option's destination to the modes where it applies. Options not given explicitly
+    (``args.given_options``, from :func:`microslip.case.options.parse_args`) pass.
+    """
+    value = getattr(args, mode)
+    given = getattr(args, "given_options", frozenset())
+    for dest, modes in applies.items():
+        if dest in given and value not in modes:
+            flag = "--" + dest.replace("_", "-")
+            raise ParameterError(f"{flag} does not apply to --{mode} {value} (only to "
+                                 f"--{mode} {' or '.join(modes)}); remove it")
 
 
 def print_json(obj: Any) -> None:

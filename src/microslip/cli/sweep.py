@@ -18,9 +18,12 @@ from .common import (
     add_params,
     add_strain_energy,
     check_plot,
+    clamp_overrides,
     model_options,
     number,
     params_from_args,
+    planar_zones,
+    refuse_inapplicable,
 )
 
 __all__ = ["add_parser", "run"]
@@ -130,18 +133,26 @@ def _check_outputs(args: argparse.Namespace) -> None:
     check_plot(args.plot)
 
 
+#: Options that apply to some models only (the others are refused, not silently ignored).
+MODEL_OPTIONS: dict[str, tuple[str, ...]] = {
+    **{dest: ("tip", "centre") for dest in (
+        "amplitude_range", "grid", "sample", "samples", "seed", "scheduler", "amplitude",
+        "chunk_size", "threads", "retries", "preset")},
+    **{dest: ("planar",) for dest in ("ratio_range", "levels")},
+}
+
+
 def _cases(args: argparse.Namespace) -> int:
     return 100 if args.cases is None else int(args.cases)
 
 
 def run(args: argparse.Namespace) -> int:
+    refuse_inapplicable(args, "model", MODEL_OPTIONS)
     if args.model == "planar":
         return _run_planar(args)
     from ..plot.sweep import plot_sweep
     from ..sweep import make_sweep, parse_grid, parse_sample, run_sweep, write_sweep
 
-    if args.ratio_range is not None:
-        raise ParameterError("--ratio-range applies to --model planar only")
     if args.cases is not None and args.amplitude_range is None:
         raise ParameterError("--cases sets the number of points of --amplitude-range "
                              "(use --samples for random draws, --grid for other axes)")
@@ -214,14 +225,6 @@ def _run_planar(args: argparse.Namespace) -> int:
     from ..plot.sweep import plot_ratio_sweep
     from ..sweep import ratio_sweep, write_ratio_sweep
 
-    unsupported = [flag for flag, present in (
-        ("--amplitude-range", args.amplitude_range is not None),
-        ("--grid", bool(args.grid)), ("--sample", bool(args.sample)),
-        ("--scheduler", args.scheduler is not None), ("--amplitude", args.amplitude is not None),
-    ) if present]
-    if unsupported:
-        raise ParameterError(f"{unsupported[0]} does not apply to --model planar "
-                             "(sweep the force ratio with --ratio-range A B --cases N)")
     if args.ratio_range is None:
         raise ParameterError("--model planar needs --ratio-range A B (force ratios R > 0)")
     if args.levels not in LEVEL_SCHEMES:
@@ -233,19 +236,8 @@ def _run_planar(args: argparse.Namespace) -> int:
             raise ParameterError(f"--ratio-range ends must be finite and > 0, got {v!r}")
     n = check_increments(args.increments)
     _check_outputs(args)
-    if args.preset is not None:
-        raise ParameterError("--model planar uses the presets table2-tip and table2-centre; "
-                             "override --friction, --normal-force, --modulus or "
-                             "--poisson-ratio instead of --preset")
-    overrides = {f: getattr(args, f) for f in ("friction", "normal_force", "modulus",
-                                               "poisson_ratio") if getattr(args, f) is not None}
-    geometry = [f"--{flag}" for flag, f, _ in PARAM_FLAGS
-                if f in ("length", "width", "thickness") and getattr(args, f) is not None]
-    if geometry:
-        raise ParameterError(f"{geometry[0]} does not apply to --model planar (the tip and "
-                             "centre models have their own geometry: table2-tip, table2-centre)")
-    tip_p = preset("table2-tip").replace(**overrides)
-    centre_p = preset("table2-centre").replace(**overrides)
+    tip_p, centre_p = planar_zones(preset("table2-tip"), preset("table2-centre"),
+                                   clamp_overrides(args))
     ratios = np.geomspace(a, b, _cases(args)) if a != b else np.array([a])
     opt = model_options(args)
     sweep = ratio_sweep(ratios, tip_params=tip_p, centre_params=centre_p, levels=args.levels,
@@ -258,7 +250,8 @@ def _run_planar(args: argparse.Namespace) -> int:
     failed = [c for c in sweep.cases if c.result is None]
     print(f"planar model, {len(sweep.cases)} force ratios R from {a:g} to {b:g} "
           f"(levels {args.levels}, {n} increments, U: {sweep.strain_energy_kind}; "
-          "tip table2-tip, centre table2-centre)")
+          "tip table2-tip, centre table2-centre"
+          + "".join(f", {k} {v:g}" for k, v in clamp_overrides(args).items()) + ")")
     eta_p = sweep.loss_factor("paper")
     eta_w = sweep.loss_factor("work")
     ok = np.isfinite(eta_p)
