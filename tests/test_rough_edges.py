@@ -6,6 +6,7 @@ behind: the checks run before the work, and files are written atomically.
 
 from __future__ import annotations
 
+import json
 import os
 
 import pytest
@@ -144,3 +145,56 @@ def test_staged_directory_gives_a_new_directory_the_usual_permissions(tmp_path):
     mode = os.stat(tmp_path / "out").st_mode
     assert mode == os.stat(tmp_path / "reference").st_mode
     assert (tmp_path / "out" / "a.txt").read_text() == "a"
+
+
+# --- options that do nothing in a mode are refused with the reason ---------------------------
+
+@pytest.mark.parametrize("argv, flag, mode", [
+    (["planar", "--solver", "fe", "--tip-amplitude", "100", "--centre-amplitude", "100",
+      "--plot", "x.png"], "--plot", "--solver fe"),
+    (["planar", "--solver", "fe", "--tip-amplitude", "100", "--centre-amplitude", "100",
+      "--strain-energy", "secant"], "--strain-energy", "--solver fe"),
+    (["planar", "--ratio", "1", "--mesh", "tiny"], "--mesh", "--solver analytical"),
+    (["planar", "--ratio", "1", "--cycles", "3"], "--cycles", "--solver analytical"),
+    (["planar", "--ratio", "1", "--preset", "table1"], "--preset", "--solver analytical"),
+    (["sweep", "--model", "planar", "--ratio-range", "1", "2", "--seed", "1"], "--seed",
+     "--model planar"),
+    (["sweep", "--model", "tip", "--amplitude-range", "1", "2", "--levels", "base"],
+     "--levels", "--model tip"),
+], ids=lambda v: v if isinstance(v, str) else None)
+def test_options_a_mode_ignores_are_refused(capsys, tmp_path, argv, flag, mode):
+    one_line_error(run(capsys, *argv), f"{flag} does not apply to {mode}")
+    assert listing(tmp_path) == []
+
+
+def test_default_values_of_other_modes_are_not_refused(capsys):
+    code, _, err = run(capsys, "planar", "--ratio", "1", "--increments", "50")
+    assert code == 0 and err == ""
+
+
+# --- custom geometry everywhere --------------------------------------------------------------
+
+def test_planar_clamp_flags_change_the_zones(capsys):
+    base = run(capsys, "planar", "--ratio", "1", "--increments", "100", "--json")
+    longer = run(capsys, "planar", "--ratio", "1", "--increments", "100", "--json",
+                 "--length", "100")
+    a, b = (json.loads(r[1]) for r in (base, longer))
+    assert "tip_params" not in a
+    assert b["tip_params"]["length"] == b["centre_params"]["length"] == 100.0
+    assert b["tip_params"]["thickness"] == 25.0 and b["centre_params"]["thickness"] == 50.0
+    # the rigid-foundation d0 ~ F0^2 / (E A q) with q = mu F_N / L: proportional to L
+    ratio = b["tip"]["peak_displacement_mm"] / a["tip"]["peak_displacement_mm"]
+    assert ratio == pytest.approx(2.0, rel=0.05)
+
+
+def test_sweep_planar_takes_the_clamp(capsys, tmp_path):
+    out = tmp_path / "r.csv"
+    code, text, err = run(capsys, "sweep", "--model", "planar", "--ratio-range", "1", "1",
+                          "--cases", "1", "--no-progress", "--thickness", "100", "--out", out)
+    assert code == 0, err
+    assert "thickness 100" in text
+    code, text2, err = run(capsys, "planar", "--ratio", "1", "--thickness", "100",
+                           "--strain-energy", "secant", "--increments", "1000", "--json")
+    header, values = (line.split(",") for line in out.read_text().splitlines())
+    assert float(values[header.index("paper_loss_factor")]) == pytest.approx(
+        json.loads(text2)["paper_loss_factor"], rel=1e-12)
