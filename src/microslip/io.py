@@ -106,8 +106,8 @@ def check_writable(path: str | os.PathLike[str], formats: tuple[str, ...] = (),
                               else formats)
         raise ParameterError(f"{what} must end in {allowed}, got {name!r}")
     if target.exists() and target.is_dir() != directory:
-        kind = "a directory" if target.is_dir() else "a file"
-        raise ParameterError(f"cannot write {what} {name}: it is {kind}")
+        want, kind = ("a directory", "file") if directory else ("a file", "directory")
+        raise ParameterError(f"{what} must be {want}, got the {kind} {name!r}")
     base = target if directory else target.parent
     for parent in (base, *base.parents):
         if parent.exists() or parent.is_symlink():

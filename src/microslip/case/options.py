@@ -20,7 +20,8 @@ from ..params import preset
 from .model import Case, load_case
 from .units import plausibility_warnings
 
-__all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args"]
+__all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
+           "warn"]
 
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
@@ -202,6 +203,15 @@ def case_output(args: argparse.Namespace) -> Iterator[None]:
         yield
     finally:
         _ACTIVE.reset(token)
+
+
+def warn(message: str) -> None:
+    """One ``warning:`` line on standard error, also listed under ``warnings`` in the JSON
+    output of the running command."""
+    print(f"warning: {message}", file=sys.stderr)
+    notes = _ACTIVE.get()
+    if notes is not None:
+        notes["warnings"].append(message)
 
 
 def annotate_json(obj: Any) -> Any:

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..energy import damping
-from ..models import MODELS, check_increments, get_model, macroslip_force
+from ..models import MODELS, get_model, macroslip_force
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..results import DampingResult
@@ -16,6 +16,7 @@ from .common import (
     add_params,
     add_strain_energy,
     check_plot,
+    increments_option,
     model_options,
     params_from_args,
     print_json,
@@ -63,7 +64,7 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
 
 def run(args: argparse.Namespace) -> int:
     params, amplitude = params_from_args(args)
-    n = check_increments(args.increments)
+    n = increments_option(args.increments)
     check_plot(args.plot)
     opt = model_options(args)
     result = damping(args.model, params, amplitude, n, opt, args.strain_energy)

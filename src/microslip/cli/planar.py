@@ -8,7 +8,6 @@ from typing import Any
 from ..case.options import add_case_option
 from ..energy import STRAIN_ENERGY
 from ..errors import MacroslipError, ParameterError
-from ..models import check_increments
 from ..params import PRESETS, preset
 from ..planar import (
     LEVEL_SCHEMES,
@@ -27,6 +26,7 @@ from .common import (
     add_strain_energy,
     check_plot,
     clamp_overrides,
+    increments_option,
     model_options,
     number,
     planar_zones,
@@ -208,7 +208,7 @@ def result_message(result: Any) -> str:
 
 def run_analytical(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=2)
     check_plot(args.plot)
     opt = model_options(args)
     tip, centre = planar_zones(preset(args.tip_preset), preset(args.centre_preset),

@@ -7,12 +7,21 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..models import check_increments
 from ..planar import LEVEL_SCHEMES, PAPER_STRAIN_ENERGY, WORK_STRAIN_ENERGY
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, add_strain_energy, check_output_dir, model_options
+from .common import (
+    add_model_options,
+    add_strain_energy,
+    check_output_dir,
+    increments_option,
+    model_options,
+)
 
 __all__ = ["add_parser", "run"]
+
+#: First loadings of one reproduce run, roughly (the seven R twice, readings, tables), for the
+#: cost estimate of --increments.
+REPRODUCE_LOADINGS = 40
 
 
 def add_parser(sub: Any) -> None:
@@ -54,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     def echo(msg: str) -> None:
         print(msg, file=sys.stderr)
 
-    increments = check_increments(args.increments)
+    increments = increments_option(args.increments, loops=REPRODUCE_LOADINGS)
     check_output_dir(args.out)
     with staged_directory(args.out) as stage:  # an interrupted run leaves no partial DIR
         res = reproduce(stage, increments=increments,

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..case.options import add_case_option
 from ..errors import ParameterError
-from ..models import MODELS, check_increments
+from ..models import MODELS
 from ..params import preset
 from .common import (
     PARAM_FLAGS,
@@ -19,11 +19,13 @@ from .common import (
     add_strain_energy,
     check_plot,
     clamp_overrides,
+    increments_option,
     model_options,
     number,
     params_from_args,
     planar_zones,
     refuse_inapplicable,
+    warn_cost,
 )
 
 __all__ = ["add_parser", "run"]
@@ -158,7 +160,7 @@ def run(args: argparse.Namespace) -> int:
                              "(use --samples for random draws, --grid for other axes)")
     if args.retries < 0:
         raise ParameterError(f"--retries must be >= 0, got {args.retries}")
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=0)  # the cost follows from the spec below
     _check_outputs(args)
     grid = []
     if args.amplitude_range is not None:
@@ -182,6 +184,7 @@ def run(args: argparse.Namespace) -> int:
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
                       increments=n, options=opt, strain_energy=args.strain_energy)
+    warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
                        progress=not args.no_progress)
@@ -234,7 +237,7 @@ def _run_planar(args: argparse.Namespace) -> int:
     for v in (a, b):
         if not (math.isfinite(v) and v > 0):
             raise ParameterError(f"--ratio-range ends must be finite and > 0, got {v!r}")
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=2 * _cases(args))
     _check_outputs(args)
     tip_p, centre_p = planar_zones(preset("table2-tip"), preset("table2-centre"),
                                    clamp_overrides(args))
