@@ -183,11 +183,17 @@ def run(args: argparse.Namespace) -> int:
     opt = model_options(args)
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
-                      increments=n, options=opt, strain_energy=args.strain_energy)
+                      increments=n, options=opt, strain_energy=args.strain_energy,
+                      check_draws=False)
     warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
-                       progress=not args.no_progress)
+                       progress=not args.no_progress, failures="record")
+    if len(result.failures) == spec.size:
+        from ..sweep.failures import summarise_failures
+
+        raise ParameterError(f"no case can be computed: "
+                             f"{summarise_failures(result.failures, spec.size)}")
     if args.out:
         write_sweep(result, args.out, chunk_size=args.chunk_size)
     if args.plot:
@@ -208,9 +214,11 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
     for line in spec.describe():
         print(f"  {line}")
     eta = result.loss_factor
-    q = np.percentile(eta, [0, 5, 50, 95, 100])
-    print(f"  loss factor eta        min {q[0]:.6g}, 5% {q[1]:.6g}, median {q[2]:.6g}, "
-          f"95% {q[3]:.6g}, max {q[4]:.6g} (dimensionless)")
+    if np.isfinite(eta).any():
+        q = np.nanpercentile(eta, [0, 5, 50, 95, 100])
+        print(f"  loss factor eta        min {q[0]:.6g}, 5% {q[1]:.6g}, median {q[2]:.6g}, "
+              f"95% {q[3]:.6g}, max {q[4]:.6g} (dimensionless"
+              + (", computed cases" if result.failures else "") + ")")
     rate = spec.size * spec.increments / result.elapsed if result.elapsed > 0 else math.inf
     where = f"Dask scheduler {result.scheduler}" if result.scheduler else "this machine"
     print(f"  computed in            {result.elapsed:.3g} s on {where} ({result.backend}), "
@@ -221,6 +229,11 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
         print(f"  wrote                  {args.out} ({what})")
     if args.plot:
         print(f"  figure                 {args.plot}")
+    if result.failures:
+        from ..case.options import warn
+        from ..sweep.failures import summarise_failures
+
+        warn(summarise_failures(result.failures, spec.size))
 
 
 def _run_planar(args: argparse.Namespace) -> int:

@@ -6,11 +6,13 @@ which gives the same numbers bit for bit. Units: N, mm, N·mm.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..batch import batch_damping, default_backend, prepare_batch
 from ..batch.driver import run_batch
@@ -18,8 +20,11 @@ from ..cluster import map_on_cluster
 from ..errors import ParameterError
 from ..options import ModelOptions
 from ..progress import progress_bar
+from .failures import case_failures
 from .parameters import PARAMETERS, FloatArray
 from .spec import DEFAULT_CHUNK, SweepSpec
+
+BoolArray = NDArray[np.bool_]
 
 __all__ = ["SweepResult", "run_sweep"]
 
@@ -45,6 +50,9 @@ class SweepResult:
         Address of the Dask scheduler, None for a local run.
     elapsed : float
         Wall time of the computation, s.
+    failures : mapping
+        Case index -> why it was not computed (its results are NaN); empty unless
+        :func:`run_sweep` was asked to record failures.
     """
 
     spec: SweepSpec
@@ -56,6 +64,7 @@ class SweepResult:
     scheduler: str | None = None
     elapsed: float = 0.0
     meta: dict[str, Any] = field(default_factory=dict)
+    failures: Mapping[int, str] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
@@ -87,7 +96,7 @@ class SweepResult:
 def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
               scheduler: str | None = None, backend: str | None = None,
               threads: int | None = None, retries: int = 3,
-              progress: bool = True) -> SweepResult:
+              progress: bool = True, failures: str = "raise") -> SweepResult:
     """Compute every case of a sweep, locally or on a Dask cluster.
 
     Parameters
@@ -107,6 +116,11 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         scheduler in any case; results already gathered are never lost).
     progress : bool
         Show a progress bar on standard error (tqdm; only on a terminal).
+    failures : str
+        ``"raise"``: the first case that cannot be computed (a value out of range, an
+        amplitude at the macroslip limit) raises before any computing. ``"record"``: such
+        cases get NaN results and their reason in :attr:`SweepResult.failures`; the others
+        are computed (:func:`microslip.sweep.failures.case_failures`).
 
     Returns
     -------
@@ -127,35 +141,71 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         raise ParameterError(f"chunk size must be a whole number >= 1, got {chunk_size!r}")
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise ParameterError(f"retries must be a whole number >= 0, got {retries!r}")
-    spec.validate(int(chunk_size))
+    if failures not in ("raise", "record"):
+        raise ParameterError(f"failures must be 'raise' or 'record', got {failures!r}")
+    chunks = spec.chunks(int(chunk_size))
+    masks: list[BoolArray | None] = [None] * len(chunks)
+    why: dict[int, str] = {}
+    if failures == "raise":
+        spec.validate(int(chunk_size))
+    else:
+        for i, (lo, hi) in enumerate(chunks):
+            ok, reasons = case_failures(spec, lo, hi)
+            if reasons:
+                masks[i] = ok
+                why.update(reasons)
     be = default_backend() if backend is None else backend
     out = [np.empty(spec.size) for _ in range(4)]
-    chunks = spec.chunks(int(chunk_size))
     t0 = time.perf_counter()
     with progress_bar(spec.size, f"{spec.model} sweep", enabled=progress, unit="case") as bar:
         def store(i: int, res: tuple[FloatArray, ...]) -> None:
             lo, hi = chunks[i]
             for o, v in zip(out, res, strict=True):
-                o[lo:hi] = v
+                if masks[i] is None:
+                    o[lo:hi] = v
+                else:
+                    o[lo:hi] = np.nan
+                    o[lo:hi][masks[i]] = v
             bar.update(hi - lo)
 
+        todo = [i for i, ok in enumerate(masks) if ok is None or ok.any()]
+        for i in sorted(set(range(len(chunks))) - set(todo)):  # every case failed
+            store(i, tuple(np.empty(0) for _ in range(4)))
+        inputs = [_chunk_inputs(spec, *chunks[i], masks[i]) for i in todo]
         if scheduler is None:
-            _run_local(spec, chunks, be, threads, store)
+            _run_local(spec, [chunks[i][0] for i in todo], inputs, be, threads,
+                       lambda j, res: store(todo[j], res))
         else:
-            payloads = [(spec.model, *spec.chunk_inputs(lo, hi), spec.increments, spec.options,
-                         spec.strain_energy, be, 1) for lo, hi in chunks]
-            map_on_cluster(_chunk_task, payloads, scheduler, retries=retries, on_result=store)
+            payloads = [(spec.model, *inp, spec.increments, spec.options,
+                         spec.strain_energy, be, 1) for inp in inputs]
+            map_on_cluster(_chunk_task, payloads, scheduler, retries=retries,
+                           on_result=lambda j, res: store(todo[j], res))
     elapsed = time.perf_counter() - t0
     return SweepResult(spec, out[0], out[1], out[2], out[3], backend=be, scheduler=scheduler,
-                       elapsed=elapsed, meta={"chunks": len(chunks), "chunk_size": chunk_size})
+                       elapsed=elapsed, meta={"chunks": len(chunks), "chunk_size": chunk_size},
+                       failures=MappingProxyType(why))
 
 
-def _run_local(spec: SweepSpec, chunks: Sequence[tuple[int, int]], backend: str,
-               threads: int | None, store: Callable[[int, tuple[FloatArray, ...]], None]
-               ) -> None:
-    """Every chunk in this process, in order; each result handed to ``store(index, arrays)``."""
-    for i, (lo, hi) in enumerate(chunks):
-        params, amp = spec.chunk_inputs(lo, hi)
+def _chunk_inputs(spec: SweepSpec, lo: int, hi: int, ok: BoolArray | None
+                  ) -> tuple[dict[str, FloatArray | float], FloatArray | float]:
+    """(params, amplitude) of the cases ``lo:hi``, only those of ``ok`` if given."""
+    params, amp = spec.chunk_inputs(lo, hi)
+    if ok is None:
+        return params, amp
+
+    def pick(v: FloatArray | float) -> FloatArray | float:
+        return v[ok] if isinstance(v, np.ndarray) else v
+
+    return {k: pick(v) for k, v in params.items()}, pick(amp)
+
+
+def _run_local(spec: SweepSpec, starts: Sequence[int],
+               inputs: Sequence[tuple[dict[str, FloatArray | float], FloatArray | float]],
+               backend: str, threads: int | None,
+               store: Callable[[int, tuple[FloatArray, ...]], None]) -> None:
+    """Every chunk in this process, in order; each result handed to ``store(index, arrays)``
+    (``starts``: the index of each chunk's first case, for error messages)."""
+    for i, (lo, (params, amp)) in enumerate(zip(starts, inputs, strict=True)):
         inp = prepare_batch(spec.model, params, amp, spec.increments, spec.options,
                             spec.strain_energy, where=(lo, spec.size))
         r = run_batch(inp, backend=backend, threads=threads)
