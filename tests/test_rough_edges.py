@@ -247,3 +247,123 @@ def test_a_sweep_warns_with_the_cost_of_all_its_cases(capsys, monkeypatch):
     assert code == 0
     assert err == ("warning: --increments 20 for 5 loading(s) takes about 1.5e-05 s; eta is "
                    "within 1e-6 at 1000 increments (its error is 1/n^2)\n")
+
+
+# --- one bad Monte-Carlo draw no longer aborts a sweep ---------------------------------------
+
+def test_bad_draws_are_failed_rows_with_reasons_and_the_rest_is_computed(capsys, tmp_path):
+    import numpy as np
+
+    from microslip import preset
+    from microslip.batch import batch_damping
+    from microslip.sweep import make_sweep, run_sweep
+    from microslip.sweep.parameters import Distribution
+
+    spec = make_sweep("tip", preset("table2-tip"), amplitude=6000.0,
+                      samples=[("friction", Distribution("normal", 0.5, 0.3))], n_samples=300,
+                      seed=1, increments=50, check_draws=False)
+    mu = spec.column("friction")
+    res = run_sweep(spec, progress=False, failures="record", chunk_size=64)
+    negative = mu <= 0
+    beyond = ~negative & (6000.0 >= mu * 20000.0)
+    assert negative.any() and beyond.any() and (~negative & ~beyond).any()
+    assert sorted(res.failures) == np.flatnonzero(negative | beyond).tolist()
+    assert all("friction must be finite" in res.failures[i] for i in np.flatnonzero(negative))
+    assert all("macroslip" in res.failures[i] for i in np.flatnonzero(beyond))
+    assert np.isnan(res.loss_factor[negative | beyond]).all()
+    good = ~negative & ~beyond
+    ref = batch_damping("tip", preset("table2-tip").as_dict() | {"friction": mu[good]}, 6000.0,
+                        50)
+    assert np.array_equal(res.loss_factor[good], ref.loss_factor)  # bit for bit
+    with pytest.raises(ParameterError, match="friction must be finite"):
+        run_sweep(spec, progress=False)  # the library default still stops at the first
+
+
+def test_sweep_cli_summarises_failures_and_writes_nan_rows(capsys, tmp_path):
+    out = tmp_path / "mc.csv"
+    code, text, err = run(capsys, "sweep", "--model", "tip", "--preset", "table2-tip",
+                          "--amplitude", "6000", "--sample", "friction=normal:0.5:0.3",
+                          "--samples", "200", "--seed", "1", "--increments", "50",
+                          "--no-progress", "--out", out, "--plot", tmp_path / "mc.png")
+    assert code == 0, err
+    assert err.startswith("warning: ") and err.count("\n") == 1
+    assert "of 200 cases not computed (results nan)" in err and "e.g. case" in err
+    rows = out.read_text().splitlines()[1:]
+    failed = int(err.split("warning: ")[1].split(" of ")[0])
+    assert len(rows) == 200 and sum(r.endswith(",nan") for r in rows) == failed > 0
+    assert (tmp_path / "mc.png").stat().st_size > 0
+
+
+def test_a_sweep_where_no_case_can_be_computed_is_an_error_and_writes_nothing(capsys, tmp_path):
+    one_line_error(run(capsys, "sweep", "--model", "tip", "--amplitude-range", "1000", "2000",
+                       "--cases", "3", "--no-progress", "--out", tmp_path / "s.csv"),
+                   "no case can be computed", "3 of 3", "macroslip")
+    assert listing(tmp_path) == []
+
+
+# --- figures ---------------------------------------------------------------------------------
+
+def _figure_of(monkeypatch):
+    import microslip.plot.core as core
+
+    saved = []
+    monkeypatch.setattr(core, "save_figure", lambda fig, path: saved.append(fig))
+    for module in ("microslip.plot.sweep",):
+        monkeypatch.setattr(f"{module}.save_figure", lambda fig, path: saved.append(fig))
+    return saved
+
+
+def test_sweep_figure_has_eta_and_wd_panels_without_offsets(monkeypatch, tmp_path):
+    from microslip import preset
+    from microslip.plot.sweep import plot_sweep
+    from microslip.sweep import make_sweep, run_sweep
+
+    saved = _figure_of(monkeypatch)
+    spec = make_sweep("tip", preset("table2-tip"), grid=[("amplitude", [1000.0, 1000.5, 1001.0]),
+                      ("normal_force", [15000.0, 20000.0])], increments=50)
+    plot_sweep(run_sweep(spec, progress=False), tmp_path / "s.png")
+    (fig,) = saved
+    fig.canvas.draw()
+    eta_ax, wd_ax = fig.axes
+    assert "Loss factor" in eta_ax.get_ylabel() and "$W_d$ (N·mm)" in wd_ax.get_ylabel()
+    for ax in fig.axes:
+        assert ax.yaxis.get_major_formatter().get_offset() == ""
+    labels = [t.get_text() for t in eta_ax.get_legend().get_texts()]
+    assert labels == ["normal force = 15000 N", "normal force = 20000 N"]  # the unit once
+
+
+def test_sweep_figure_bands_carry_the_series_colour(monkeypatch, tmp_path):
+    from matplotlib.colors import to_hex
+
+    from microslip import preset
+    from microslip.plot.core import COLOURS
+    from microslip.plot.sweep import plot_sweep
+    from microslip.sweep import make_sweep, run_sweep
+    from microslip.sweep.parameters import Distribution
+
+    saved = _figure_of(monkeypatch)
+    spec = make_sweep("tip", preset("table2-tip"), grid=[("amplitude", [1000.0, 4000.0])],
+                      samples=[("friction", Distribution("uniform", 0.7, 0.9))], n_samples=20,
+                      seed=2, increments=50)
+    plot_sweep(run_sweep(spec, progress=False), tmp_path / "s.png")
+    legend = saved[0].axes[0].get_legend()
+    patches = [h for h in legend.legend_handles if hasattr(h, "get_facecolor")
+               and not hasattr(h, "get_xdata")]
+    assert patches and {to_hex(p.get_facecolor(), keep_alpha=False) for p in patches} == {
+        COLOURS[0].lower()}
+
+
+def test_small_loops_are_drawn_in_micrometres(monkeypatch, tmp_path):
+    import microslip.plot.core as core
+    from microslip import damping, preset
+
+    saved = []
+    monkeypatch.setattr(core, "save_figure", lambda fig, path: saved.append(fig))
+    result = damping("tip", preset("table1"), 267.0, 100)
+    core.plot_damping(result, tmp_path / "x.png")
+    ax = saved[0].axes[0]
+    assert ax.get_xlabel() == "Displacement δ (µm)"
+    x = ax.get_lines()[0].get_xdata()
+    assert max(abs(x)) == pytest.approx(1000 * max(abs(result.loop.displacement)), rel=1e-15)
+    saved[0].canvas.draw()
+    assert ax.xaxis.get_major_formatter().get_offset() == ""
