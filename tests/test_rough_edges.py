@@ -281,7 +281,7 @@ def test_bad_draws_are_failed_rows_with_reasons_and_the_rest_is_computed(capsys,
 
 def test_sweep_cli_summarises_failures_and_writes_nan_rows(capsys, tmp_path):
     out = tmp_path / "mc.csv"
-    code, text, err = run(capsys, "sweep", "--model", "tip", "--preset", "table2-tip",
+    code, _, err = run(capsys, "sweep", "--model", "tip", "--preset", "table2-tip",
                           "--amplitude", "6000", "--sample", "friction=normal:0.5:0.3",
                           "--samples", "200", "--seed", "1", "--increments", "50",
                           "--no-progress", "--out", out, "--plot", tmp_path / "mc.png")
@@ -294,10 +294,19 @@ def test_sweep_cli_summarises_failures_and_writes_nan_rows(capsys, tmp_path):
     assert (tmp_path / "mc.png").stat().st_size > 0
 
 
-def test_a_sweep_where_no_case_can_be_computed_is_an_error_and_writes_nothing(capsys, tmp_path):
-    one_line_error(run(capsys, "sweep", "--model", "tip", "--amplitude-range", "1000", "2000",
-                       "--cases", "3", "--no-progress", "--out", tmp_path / "s.csv"),
-                   "no case can be computed", "3 of 3", "macroslip")
+def test_a_sweep_where_no_draw_can_be_computed_is_an_error_and_writes_nothing(capsys,
+                                                                              tmp_path):
+    one_line_error(run(capsys, "sweep", "--model", "tip", "--sample", "mu=normal:0.1:0.2",
+                       "--samples", "50", "--seed", "1", "--no-progress", "--out",
+                       tmp_path / "s.csv"),
+                   "no case can be computed", "50 of 50", "macroslip", "use lognormal")
+    assert listing(tmp_path) == []
+
+
+def test_a_grid_value_beyond_the_limit_is_still_an_error_before_the_work(capsys, tmp_path):
+    one_line_error(run(capsys, "sweep", "--model", "tip", "--amplitude-range", "100", "400",
+                       "--cases", "4", "--no-progress", "--out", tmp_path / "s.csv"),
+                   "amplitude 400 N is at or beyond the macroslip limit", "(case 3 of 4)")
     assert listing(tmp_path) == []
 
 

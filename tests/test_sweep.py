@@ -216,7 +216,7 @@ def test_parse_grid_and_sample() -> None:
     (["--grid", "colour=1:2:3"], "unknown sweep parameter 'colour'", 1),
     (["--grid", "mu=0.4:0.8"], "expected NAME=START:STOP:COUNT[:log] or NAME=V1,V2,...", 1),
     (["--sample", "mu=gauss:1:2"], "unknown distribution 'gauss'", 1),
-    (["--sample", "mu=normal:0.1:0.2", "--seed", "1"], "a normal distribution can reach", 1),
+    (["--sample", "mu=normal:-1:0.1", "--seed", "1"], "a normal distribution can reach", 1),
     (["--amplitude-range", "100", "400"], "amplitude 357.576 N is at or beyond the macroslip "
      "limit of the tip model (356 N = mu F_N, friction 0.8, normal_force 445 N) (case 85 of "
      "100); microslip needs 0 < amplitude < mu F_N", 1),

@@ -11,7 +11,6 @@ from ..errors import MacroslipError, ParameterError
 from ..params import PRESETS, preset
 from ..planar import (
     LEVEL_SCHEMES,
-    PAPER_STRAIN_ENERGY,
     TIP_SYMMETRY,
     WORK_STRAIN_ENERGY,
     PlanarResult,
@@ -87,7 +86,7 @@ def add_parser(sub: Any) -> None:
         "symmetric parts, so it takes thickness t/K; with --solver fe, the --preset bar)")
     add_clamp_flags(c)
     add_model_options(p)
-    add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22")
+    add_strain_energy(p)
     p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
                    default=DEFAULT_WORK_STRAIN_ENERGY,
                    help="U of the combined motion in the work-based eta: "

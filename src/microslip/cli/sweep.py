@@ -188,12 +188,10 @@ def run(args: argparse.Namespace) -> int:
     warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
-                       progress=not args.no_progress, failures="record")
+                       progress=not args.no_progress,
+                       failures="record" if spec.samples else "raise")
     if len(result.failures) == spec.size:
-        from ..sweep.failures import summarise_failures
-
-        raise ParameterError(f"no case can be computed: "
-                             f"{summarise_failures(result.failures, spec.size)}")
+        raise ParameterError(f"no case can be computed: {_failure_summary(spec, result)}")
     if args.out:
         write_sweep(result, args.out, chunk_size=args.chunk_size)
     if args.plot:
@@ -231,9 +229,20 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
         print(f"  figure                 {args.plot}")
     if result.failures:
         from ..case.options import warn
-        from ..sweep.failures import summarise_failures
 
-        warn(summarise_failures(result.failures, spec.size))
+        warn(_failure_summary(spec, result))
+
+
+def _failure_summary(spec: Any, result: Any) -> str:
+    """The failed cases in one line, with a hint when a normal draw left its range."""
+    from ..sweep.failures import summarise_failures
+
+    text = summarise_failures(result.failures, spec.size)
+    normal = [s.name for s in spec.samples if s.distribution.kind == "normal"]
+    if any(r.startswith(f"{n} must be") for r in result.failures.values() for n in normal):
+        text += ("; a normal distribution can reach non-physical values: use "
+                 "lognormal:MEAN:SD for a positive quantity")
+    return text
 
 
 def _run_planar(args: argparse.Namespace) -> int:
