@@ -115,6 +115,8 @@ def test_case_equals_the_same_options(capsys, ti):
     by_flags = json.loads(run(capsys, "loop", *flags, "--amplitude", "3000", "--model",
                               "centre", "--json", "--increments", "100")[1])
     assert by_case.pop("case_file") == str(ti) and "case_file" not in by_flags
+    assert by_case.pop("amplitude_rule") == ("F0 = 0.5 x the slip limit mu F_N = 0.5 x 0.5 x "
+                                             "12000 N = 3000 N (load.amplitude_fraction)")
     assert by_case == by_flags
 
 

@@ -241,11 +241,11 @@ def test_costly_increments_warn_with_time_and_memory(capsys, monkeypatch):
 def test_a_sweep_warns_with_the_cost_of_all_its_cases(capsys, monkeypatch):
     import microslip.cli.common as common
 
-    monkeypatch.setattr(common, "WARN_SECONDS", 1e-5)  # 5 cases x 20 increments x 1.5e-7 s
+    monkeypatch.setattr(common, "WARN_SECONDS", 1e-7)  # 5 cases x 20 increments x 1e-8 s
     code, _, err = run(capsys, "sweep", "--model", "tip", "--amplitude-range", "100", "200",
                        "--cases", "5", "--increments", "20", "--no-progress")
     assert code == 0
-    assert err == ("warning: --increments 20 for 5 loading(s) takes about 1.5e-05 s; eta is "
+    assert err == ("warning: --increments 20 for 5 loading(s) takes about 1e-06 s; eta is "
                    "within 1e-6 at 1000 increments (its error is 1/n^2)\n")
 
 

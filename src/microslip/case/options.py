@@ -140,6 +140,11 @@ def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str,
                              "friction and normal force of the clamp")
     if amplitude is not None:
         args.amplitude = amplitude
+        if "load.amplitude" not in case.values:
+            fraction = case.get("load.amplitude_fraction")
+            args.amplitude_rule = (f"F0 = {fraction:g} x the slip limit mu F_N = {fraction:g} "
+                                   f"x {mu:g} x {fn:g} N = {amplitude:g} N "
+                                   "(load.amplitude_fraction)")
 
 
 @contextlib.contextmanager
@@ -194,10 +199,14 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
 def case_output(args: argparse.Namespace) -> Iterator[None]:
     """While a command runs: its text output starts with the case file, its JSON names it."""
     case_file = getattr(args, "case", None)
-    notes = {"case_file": case_file, "warnings": list(getattr(args, "input_warnings", []))}
+    rule = getattr(args, "amplitude_rule", None)
+    notes = {"case_file": case_file, "warnings": list(getattr(args, "input_warnings", [])),
+             "amplitude_rule": rule}
     if case_file is not None and not getattr(args, "json", False):
         name = getattr(args, "case_name", "")
         print(f"case file {case_file}" + (f" ({name})" if name else ""))
+        if rule is not None:
+            print(f"  amplitude {rule}")
     token = _ACTIVE.set(notes)
     try:
         yield
@@ -222,6 +231,8 @@ def annotate_json(obj: Any) -> Any:
     out = dict(obj)
     if notes["case_file"] is not None:
         out["case_file"] = notes["case_file"]
+    if notes["amplitude_rule"] is not None:
+        out["amplitude_rule"] = notes["amplitude_rule"]
     if notes["warnings"]:
         out["warnings"] = [*out.get("warnings", []), *notes["warnings"]]
     return out

@@ -200,12 +200,12 @@ def refuse_inapplicable(args: argparse.Namespace, mode: str,
 MIN_INCREMENTS = 10
 
 #: Cost of one increment of one first loading with its loop, measured on the CLI: kept loops
-#: (``loop --increments 1000000``: 2.6 s, 0.3 GB) and the compiled batch of a sweep (1e7
-#: case-increments in 1.5 s, results only). A run estimated above WARN_SECONDS or WARN_BYTES
-#: is announced with its cost.
+#: (``loop --increments 1000000``: 2.6 s, 0.3 GB) and the compiled batch of a sweep (1e9
+#: case-increments in 6.4 s on two cores, results only). A run estimated above WARN_SECONDS
+#: or WARN_BYTES is announced with its cost.
 BYTES_PER_INCREMENT = 250.0
 SECONDS_PER_INCREMENT = 2.5e-6
-BATCH_SECONDS_PER_INCREMENT = 1.5e-7
+BATCH_SECONDS_PER_INCREMENT = 1e-8
 WARN_SECONDS = 10.0
 WARN_BYTES = 1e9
 

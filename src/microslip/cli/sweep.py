@@ -185,6 +185,7 @@ def run(args: argparse.Namespace) -> int:
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
                       increments=n, options=opt, strain_energy=args.strain_energy,
                       check_draws=False)
+    _warn_implausible(spec)
     warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
@@ -231,6 +232,20 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
         from ..case.options import warn
 
         warn(_failure_summary(spec, result))
+
+
+def _warn_implausible(spec: Any) -> None:
+    """The unit plausibility check of the options, for grid values and sample medians."""
+    from ..case.options import warn
+    from ..case.units import plausibility_warnings
+
+    values = [(f"--grid {a.name}: ", a.name, v) for a in spec.grid
+              for v in (float(np.min(a.values)), float(np.max(a.values)))]
+    values += [(f"--sample {s.name} (median): ", s.name, float(np.median(s.values)))
+               for s in spec.samples]
+    for where, name, v in values:
+        for line in plausibility_warnings({name: v}, where):
+            warn(line)
 
 
 def _failure_summary(spec: Any, result: Any) -> str:
