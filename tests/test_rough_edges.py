@@ -376,3 +376,58 @@ def test_small_loops_are_drawn_in_micrometres(monkeypatch, tmp_path):
     assert max(abs(x)) == pytest.approx(1000 * max(abs(result.loop.displacement)), rel=1e-15)
     saved[0].canvas.draw()
     assert ax.xaxis.get_major_formatter().get_offset() == ""
+
+
+# --- implausible units and the stated default amplitude --------------------------------------
+
+def test_sweep_grid_values_in_the_wrong_unit_warn(capsys):
+    code, _, err = run(capsys, "sweep", "--model", "tip", "--amplitude", "100", "--grid",
+                       "E=70000,2.1e11", "--increments", "20", "--no-progress")
+    assert code == 0
+    assert err == ("warning: --grid modulus: modulus 2.1e+11 MPa is above 1e+07 MPa: pascals "
+                   "given as MPa?\n")
+
+
+def test_the_case_default_amplitude_is_stated_as_a_fraction_of_the_slip_limit(capsys,
+                                                                              tmp_path):
+    path = tmp_path / "c.toml"
+    path.write_text('preset = "table1"\n[contact]\nfriction = 0.5\n[clamping]\n'
+                    "normal_force = 12000\n[load]\namplitude_fraction = 0.25\n")
+    code, out, err = run(capsys, "loop", "--case", path, "--model", "tip", "--increments",
+                         "20")
+    assert code == 0, err
+    lines = out.splitlines()
+    assert lines[0] == f"case file {path}"
+    assert lines[1] == ("  amplitude F0 = 0.25 x the slip limit mu F_N = 0.25 x 0.5 x 12000 N "
+                        "= 1500 N (load.amplitude_fraction)")
+    assert "amplitude F0                   1500 N" in out
+
+
+# --- Ctrl-C: prompt, one line, nothing left ---------------------------------------------------
+
+@pytest.mark.parametrize("argv, made", [
+    (["sweep", "--model", "tip", "--amplitude-range", "10", "300", "--cases", "2000000",
+      "--no-progress", "--out", "{d}/big.csv"], "big.csv"),
+    (["reproduce", "--out", "{d}/paper", "--quiet", "--increments", "200000"], "paper"),
+], ids=["sweep", "reproduce"])
+def test_ctrl_c_stops_promptly_and_leaves_nothing(tmp_path, argv, made):
+    """Both runs first warn of their cost: the interrupt comes a second after, in the work."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    args = [a.format(d=tmp_path) for a in argv]
+    proc = subprocess.Popen([sys.executable, "-m", "microslip", *args], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stderr is not None
+    warning = proc.stderr.readline()
+    assert warning.startswith("warning: --increments")
+    time.sleep(1.0)
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert time.perf_counter() - t0 < 5.0
+    assert proc.returncode == 130 and err == "error: interrupted\n"
+    assert not (tmp_path / made).exists() and listing(tmp_path) == []
