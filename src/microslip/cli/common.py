@@ -187,7 +187,7 @@ def refuse_inapplicable(args: argparse.Namespace, mode: str,
     (``args.given_options``, from :func:`microslip.case.options.parse_args`) pass.
     """
     value = getattr(args, mode)
-    given = getattr(args, "given_options", frozenset())
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
     for dest, modes in applies.items():
         if dest in given and value not in modes:
             flag = "--" + dest.replace("_", "-")
