@@ -223,7 +223,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     (4.0, 0.968)
     >>> round(r.paper.loss_factor / r.tip.loss_factor, 12)  # a scaled copy of each loop
     1.0
-    >>> round(r.work_loss_factor * 5 * math.pi / 4, 4)  # 4/(5 pi) to the discretisation error
+    >>> round(r.work_loss_factor * 3 * math.pi / 4, 4)  # secant U: 4/(3 pi), to the
+    ...                                                   # discretisation error
     1.0
     """
     n = check_increments(increments)
