@@ -117,6 +117,8 @@ def test_case_equals_the_same_options(capsys, ti):
     by_flags = json.loads(run(capsys, "loop", *flags, "--amplitude", "3000", "--model",
                               "centre", "--json", "--increments", "100")[1])
     assert by_case.pop("case_file") == str(ti) and "case_file" not in by_flags
+    assert by_case.pop("amplitude_rule") == ("F0 = 0.5 x the slip limit mu F_N = 0.5 x 0.5 x "
+                                             "12000 N = 3000 N (load.amplitude_fraction)")
     assert by_case == by_flags
 
 
@@ -164,10 +166,30 @@ def test_planar_case_equals_the_same_options(capsys, tmp_path):
     assert by_case == by_flags
 
 
-@pytest.mark.parametrize("command", [["planar", "--ratio", "1"], ["validate", "--out", "x"]])
-def test_keys_a_command_does_not_take_are_refused(capsys, ti, command):
-    one_line_error(*run(capsys, *command, "--case", ti), "geometry.length", "--length",
-                   f"microslip {command[0]}", "does not take")
+def test_planar_takes_the_clamp_of_the_case(capsys, ti):
+    data = json.loads(run(capsys, "planar", "--case", ti, "--tip-amplitude", "1000",
+                          "--centre-amplitude", "2000", "--json", "--increments", "100")[1])
+    assert data["centre_params"] == TITANIUM
+    assert data["tip_params"] == TITANIUM | {"width": 6.0}  # one symmetric half of the width
+    by_flags = json.loads(run(capsys, "planar", *(x for k, v in TITANIUM.items() for x in (
+        f"--{k.replace('_', '-')}", str(v))), "--tip-amplitude", "1000", "--centre-amplitude",
+        "2000", "--json", "--increments", "100")[1])
+    assert data.pop("case_file") == str(ti) and data == by_flags
+
+
+def test_validate_takes_the_clamp_and_amplitude_of_the_case(capsys, ti, tmp_path, monkeypatch):
+    import microslip.validate as validate
+
+    seen = {}
+
+    def fake(out, meshes, models, **kwargs):
+        seen.update(kwargs)
+        raise validate.ParameterError("stop here")
+
+    monkeypatch.setattr(validate, "run_validation", fake)
+    code, _, err = run(capsys, "validate", "--case", ti, "--out", tmp_path / "v")
+    assert code == 1 and err == "error: stop here\n"
+    assert seen["params"].as_dict() == TITANIUM and seen["amplitude"] == 3000.0
 
 
 def test_stick_slope_goes_to_loop_and_fe_alike(capsys, tmp_path):

@@ -89,7 +89,7 @@ def test_refusals():
     with pytest.raises(ParameterError, match="stick slope must be > 0"):
         Contact(-1.0)
     with pytest.raises(ParameterError, match="'stored'"):
-        damping("tip", P, 200.0, 100, strain_energy_kind="stored", contact=Contact.layer(1e4))
+        damping("tip", P, 200.0, 100, strain_energy="stored", contact=Contact.layer(1e4))
     with pytest.raises(ParameterError, match="physical centre reading"):
         first_loading("centre", P, 200.0, 100, ModelOptions(centre="paper"), Contact.layer(1e4))
 

@@ -105,7 +105,7 @@ def test_quadratic_backbones_give_the_same_eta_at_every_ratio():
         one_d = sweep.cases[0].result.tip  # same n, same shape
         ref = damping("tip", TIP, 2000.0, 400, UNCORRECTED, kind).loss_factor
         np.testing.assert_allclose(eta, ref, rtol=1e-12)
-        assert one_d.strain_energy_kind == "branch"
+        assert one_d.strain_energy_kind == "secant"  # the one default of loop, planar, sweep
     np.testing.assert_allclose(sweep.normalised_loss_factor("paper"), 1.0, rtol=1e-12)
     # and the quadratic-curve values, to the discretisation error W_d/n^2 of the loop
     assert sweep.loss_factor("paper", "secant")[0] == pytest.approx(4 / (3 * math.pi), rel=1e-5)
@@ -254,7 +254,7 @@ def test_contract_of_planar_damping():
     assert (r.ratio, round(r.eccentricity, 6)) == (2.0, round(math.sqrt(3) / 2, 6))
     for name in ("tip", "centre", "paper"):
         assert getattr(r, name).loss_factor > 0
-    assert r.phase_deg == 0.0 and r.strain_energy_kind == "branch"
+    assert r.phase_deg == 0.0 and r.strain_energy_kind == "secant"
     # the work of the load on decoupled bars: tip_symmetry tip loops plus one centre loop.
     # U adds exactly; W is the loop work of 256 samples of the cycle against the Masing loop
     # of the 200-increment backbones (they differ by 7.5e-5)

@@ -216,7 +216,7 @@ def test_parse_grid_and_sample() -> None:
     (["--grid", "colour=1:2:3"], "unknown sweep parameter 'colour'", 1),
     (["--grid", "mu=0.4:0.8"], "expected NAME=START:STOP:COUNT[:log] or NAME=V1,V2,...", 1),
     (["--sample", "mu=gauss:1:2"], "unknown distribution 'gauss'", 1),
-    (["--sample", "mu=normal:0.1:0.2", "--seed", "1"], "a normal distribution can reach", 1),
+    (["--sample", "mu=normal:-1:0.1", "--seed", "1"], "a normal distribution can reach", 1),
     (["--amplitude-range", "100", "400"], "amplitude 357.576 N is at or beyond the macroslip "
      "limit of the tip model (356 N = mu F_N, friction 0.8, normal_force 445 N) (case 85 of "
      "100); microslip needs 0 < amplitude < mu F_N", 1),
@@ -228,7 +228,7 @@ def test_parse_grid_and_sample() -> None:
     (["--increments", "0"], "increments must be a whole number", 1),
     (["--out", "x.txt"], "output file must end in .csv or .nc", 1),
     (["--plot", "x.gif"], "plot file must end in .png, .pdf or .svg", 1),
-    (["--ratio-range", "1", "2"], "--ratio-range applies to --model planar only", 1),
+    (["--ratio-range", "1", "2"], "--ratio-range does not apply to --model tip", 1),
 ])
 def test_bad_inputs_give_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                   args: list[str], message: str, code: int) -> None:
@@ -250,8 +250,8 @@ def test_bad_inputs_give_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[
      "--grid does not apply to --model planar"),
     (["--model", "planar"], "--model planar needs --ratio-range"),
     (["--model", "planar", "--ratio-range", "0", "2"], "--ratio-range ends must be finite and > 0"),
-    (["--model", "planar", "--ratio-range", "1", "2", "--length", "3"],
-     "--length does not apply to --model planar"),
+    (["--model", "planar", "--ratio-range", "1", "2", "--samples", "3"],
+     "--samples does not apply to --model planar"),
     (["--model", "planar", "--ratio-range", "1", "2", "--levels", "odd"],
      "unknown level scheme 'odd'"),
 ])

@@ -212,15 +212,20 @@ def loss_factor(dissipated: float, strain: float) -> float:
     return dissipated / (2.0 * math.pi * strain)
 
 
+#: The function :func:`strain_energy`, for the functions whose keyword of that name hides it.
+_strain_energy_of = strain_energy
+
+
 def damping_from_loop(loop: HysteresisLoop, backbone: Backbone | None = None,
-                      strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
-    """W_d, U and eta of a loop (from any source)."""
+                      strain_energy: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
+    """W_d, U and eta of a loop (from any source); ``strain_energy`` names U
+    (:data:`STRAIN_ENERGY`)."""
     w = dissipated_energy(loop)
-    u = strain_energy(loop, backbone, strain_energy_kind)
+    u = _strain_energy_of(loop, backbone, strain_energy)
     return DampingResult(
         dissipated_energy=w,
         strain_energy=u,
-        strain_energy_kind=strain_energy_kind,
+        strain_energy_kind=strain_energy,
         loss_factor=loss_factor(w, u),
         amplitude=loop.amplitude,
         peak_displacement=loop.peak_displacement,
@@ -230,7 +235,7 @@ def damping_from_loop(loop: HysteresisLoop, backbone: Backbone | None = None,
 
 
 def damping_from_backbone(backbone: Backbone,
-                          strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
+                          strain_energy: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
     """W_d, U and eta of the Masing loop of a model's backbone (:func:`masing_energies`).
 
     The loop is completed by :func:`microslip.hysteresis.masing_loop` and kept in the result;
@@ -238,7 +243,7 @@ def damping_from_backbone(backbone: Backbone,
     """
     from .hysteresis import masing_loop
 
-    code = STRAIN_ENERGY_CODES[_kind_name(strain_energy_kind)]
+    code = STRAIN_ENERGY_CODES[_kind_name(strain_energy)]
     f = np.ascontiguousarray(backbone.force, dtype=np.float64)
     d = np.ascontiguousarray(backbone.displacement, dtype=np.float64)
     n = f.shape[0] - 1
@@ -255,7 +260,7 @@ def damping_from_backbone(backbone: Backbone,
     return DampingResult(
         dissipated_energy=float(w),
         strain_energy=float(u),
-        strain_energy_kind=strain_energy_kind,
+        strain_energy_kind=strain_energy,
         loss_factor=loss_factor(float(w), float(u)),
         amplitude=loop.amplitude,
         peak_displacement=loop.peak_displacement,
@@ -266,9 +271,11 @@ def damping_from_backbone(backbone: Backbone,
 
 def damping(model: str, params: ClampParams, amplitude: float, increments: int = 1000,
             options: ModelOptions | None = None,
-            strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
+            strain_energy: str = DEFAULT_STRAIN_ENERGY,
             contact: Contact | None = None) -> DampingResult:
-    """Backbone, Masing loop, W_d, U and eta of one model at one amplitude.
+    """Backbone, Masing loop, W_d, U and eta of one model at one amplitude; ``strain_energy``
+    names U (:data:`STRAIN_ENERGY`, default secant: the one keyword and default of loop,
+    planar and sweep, docs/interpretation.md section 5).
 
     ``contact`` (:class:`~microslip.models.contact.Contact`): the interface under the bar;
     default the paper's rigid foundation. On a contact that is not rigid the ``stored``
@@ -283,10 +290,10 @@ def damping(model: str, params: ClampParams, amplitude: float, increments: int =
     """
     from .models import first_loading
 
-    _check_kind(strain_energy_kind)
-    if contact is not None and not contact.is_rigid and _kind_name(strain_energy_kind) == "stored":
+    _check_kind(strain_energy)
+    if contact is not None and not contact.is_rigid and _kind_name(strain_energy) == "stored":
         raise ParameterError(
             "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
             "contact with a stick slope or pressure law use secant, backbone or branch")
     bb = first_loading(model, params, amplitude, increments, options, contact)
-    return damping_from_backbone(bb, strain_energy_kind)
+    return damping_from_backbone(bb, strain_energy)

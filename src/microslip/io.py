@@ -6,6 +6,8 @@ import contextlib
 import csv
 import json
 import os
+import shutil
+import tempfile
 import uuid
 from collections.abc import Iterator
 from pathlib import Path
@@ -14,7 +16,8 @@ from typing import IO, Any
 import numpy as np
 
 __all__ = [
-    "atomic_path", "atomic_write", "read_csv", "to_jsonable", "write_csv", "write_json",
+    "atomic_path", "atomic_write", "check_writable", "read_csv", "staged_directory",
+    "to_jsonable", "write_csv", "write_json",
 ]
 
 #: Permissions asked for a new file; the process umask is applied by the kernel (never read or
@@ -45,6 +48,31 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "w") -> Iterator[IO[A
         yield fh
 
 
+@contextlib.contextmanager
+def staged_directory(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """Yield a new, empty staging directory beside ``path``; on success its entries move into
+    ``path`` (created if missing; an entry of the same name is replaced), on any failure or
+    interrupt the staging directory is removed, so ``path`` is never left half-written."""
+    target = Path(path).absolute()
+    created = [p for p in target.parents if not p.exists()]
+    target.parent.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=target.parent))
+    ok = False
+    try:
+        yield stage
+        target.mkdir(exist_ok=True)  # the usual permissions (mkdtemp's are 0o700)
+        for entry in stage.iterdir():
+            dest = target / entry.name
+            if dest.is_dir() and not dest.is_symlink():
+                shutil.rmtree(dest)
+            os.replace(entry, dest)
+        ok = True
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+        if not ok and created:
+            shutil.rmtree(created[-1], ignore_errors=True)
+
+
 def _new_file(target: Path) -> Path:
     """Create an empty, uniquely named file beside ``target`` with the usual permissions
     (:data:`FILE_MODE` less the umask, as ``open`` gives), and return its path."""
@@ -57,6 +85,41 @@ def _new_file(target: Path) -> Path:
         os.close(fd)
         return tmp
     raise FileExistsError(f"cannot create a temporary file beside {str(target)!r}")
+
+
+def check_writable(path: str | os.PathLike[str], formats: tuple[str, ...] = (),
+                   what: str = "output file", directory: bool = False) -> Path:
+    """Check, before any work, that ``path`` can be written; return it as a Path.
+
+    ``formats`` are the accepted extensions (``(".png", ".pdf")``; empty: any). A file must
+    not be an existing directory, a directory (``directory=True``) not an existing file; the
+    nearest existing ancestor must be a directory in which a file can be created (tried with
+    an empty temporary file, removed at once, so that nothing is left behind). Every failure
+    is one :class:`~microslip.errors.ParameterError` line naming the path and the reason.
+    """
+    from .errors import ParameterError
+
+    target = Path(path)
+    name = os.fspath(path)
+    if formats and target.suffix.lower() not in formats:
+        allowed = " or ".join([", ".join(formats[:-1]), formats[-1]] if len(formats) > 1
+                              else formats)
+        raise ParameterError(f"{what} must end in {allowed}, got {name!r}")
+    if target.exists() and target.is_dir() != directory:
+        want, kind = ("a directory", "file") if directory else ("a file", "directory")
+        raise ParameterError(f"{what} must be {want}, got the {kind} {name!r}")
+    base = target if directory else target.parent
+    for parent in (base, *base.parents):
+        if parent.exists() or parent.is_symlink():
+            break
+    if not parent.is_dir():
+        raise ParameterError(f"cannot write {what} {name}: {parent} is not a directory")
+    try:
+        os.unlink(_new_file(parent / ".microslip-write-test"))
+    except OSError as exc:
+        raise ParameterError(f"cannot write {what} {name}: {exc.strerror or exc} "
+                             f"(in {parent})") from None
+    return target
 
 
 def to_jsonable(obj: Any) -> Any:

@@ -401,11 +401,13 @@ def _run_tasks(tasks: Sequence[_Task], *, scheduler: str | None, show: bool,
                           progress="CalculiX runs" if show else None)
 
 
-def _summary(rows: Sequence[dict[str, Any]], files: Sequence[Path]) -> str:
+def _summary(rows: Sequence[dict[str, Any]], files: Sequence[Path], bar: str = "Table 1",
+             amplitude: float = 267.0) -> str:
     lines = [
         "### Finite-element validation (CalculiX)",
         "",
-        "Table 1 bar on a rigid base, Coulomb friction, F_T = 267 sin(2 pi t) N in 50 substeps; "
+        f"{bar} bar on a rigid base, Coulomb friction, F_T = {amplitude:g} sin(2 pi t) N in 50 "
+        "substeps; "
         "errors relative to the rigid-foundation closed forms (tip: d0 = F0^2/(2EAq), "
         "W_d = 2F0^3/(3EAq); centre: F0^2/(8EAq), F0^3/(6EAq)). Loss factors with the "
         f"{rows[0]['strain_energy_definition'] if rows else DEFAULT_STRAIN_ENERGY} strain energy.",
@@ -437,7 +439,9 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
                    models: Sequence[str] = ("tip", "centre"), *, progress: bool = True,
                    timeout: float | None = None, scheduler: str | None = None,
                    stick_slope: float = DEFAULT_STICK_SLOPE, threads: int = 1,
-                   reuse: bool = False, preset_name: str = "table1") -> ValidationReport:
+                   reuse: bool = False, preset_name: str = "table1",
+                   params: ClampParams | None = None,
+                   amplitude: float | None = None) -> ValidationReport:
     """Run the FE validation and write Fig. 8, Fig. 9 and ``validation.csv`` into ``out_dir``.
 
     Parameters
@@ -468,6 +472,8 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
         identical deck instead of running it again.
     preset_name : str
         Parameter preset with its amplitude (default Table 1, F0 = 267 N).
+    params, amplitude : ClampParams, float, optional
+        A clamp of one's own and its load amplitude F0, N, instead of the preset's.
 
     Returns
     -------
@@ -486,8 +492,8 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
         raise ParameterError("give at least one mesh level")
     if timeout is not None and not (math.isfinite(timeout) and timeout > 0):
         raise ParameterError(f"timeout must be > 0 s, got {timeout!r}")
-    params = preset(preset_name)
-    amplitude = PRESETS[preset_name][1]
+    params = preset(preset_name) if params is None else params
+    amplitude = PRESETS[preset_name][1] if amplitude is None else amplitude
     if amplitude is None:
         raise ParameterError(f"preset {preset_name!r} has no load amplitude")
     out = Path(out_dir)
@@ -517,6 +523,10 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
     plot_fe_vs_model(results, labels, out / FIG09)
     files = (out / FIG08, out / FIG09, out / CSV)
     return ValidationReport(out_dir=out, files=files, rows=tuple(rows),
-                            summary_markdown=_summary(rows, files), results=tuple(results),
+                            summary_markdown=_summary(
+                                rows, files, "Table 1" if params == preset("table1") else
+                                f"{params.length:g} x {params.width:g} x {params.thickness:g} mm",
+                                amplitude),
+                            results=tuple(results),
                             passed=all(r["verdict"] == "pass" for r in rows))
 

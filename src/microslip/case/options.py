@@ -20,7 +20,8 @@ from ..params import preset
 from .model import Case, load_case
 from .units import plausibility_warnings
 
-__all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args"]
+__all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
+           "warn"]
 
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
@@ -139,6 +140,11 @@ def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str,
                              "friction and normal force of the clamp")
     if amplitude is not None:
         args.amplitude = amplitude
+        if "load.amplitude" not in case.values:
+            fraction = case.get("load.amplitude_fraction")
+            args.amplitude_rule = (f"F0 = {fraction:g} x the slip limit mu F_N = {fraction:g} "
+                                   f"x {mu:g} x {fn:g} N = {amplitude:g} N "
+                                   "(load.amplitude_fraction)")
 
 
 @contextlib.contextmanager
@@ -161,23 +167,24 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     """Parse ``argv``; with ``--case`` the file's keys are defaults that options override.
 
     Prints one ``warning:`` line on stderr per implausible unit and keeps the sentences in
-    ``args.input_warnings``.
+    ``args.input_warnings``; the destinations given on the command line are
+    ``args.given_options`` (for options that apply to some modes only).
     """
     argv = None if argv is None else list(argv)
     with _lenient(parser):
         first = parser.parse_args(argv)
+        sub = _subparser(parser, first.command)
+        explicit = _explicit(parser, sub, argv)
     case_path = getattr(first, "case", None)
     if case_path is not None:
         case = load_case(case_path)
-        sub = _subparser(parser, first.command)
-        with _lenient(parser):
-            explicit = _explicit(parser, sub, argv)
         dests = {a.dest: a for a in sub._actions}
         defaults = case_defaults(case, first.command, dests, explicit)
         for dest in defaults:
             dests[dest].required = False
         sub.set_defaults(**defaults)
     args = parser.parse_args(argv)
+    args.given_options = frozenset(explicit)
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
@@ -192,15 +199,28 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
 def case_output(args: argparse.Namespace) -> Iterator[None]:
     """While a command runs: its text output starts with the case file, its JSON names it."""
     case_file = getattr(args, "case", None)
-    notes = {"case_file": case_file, "warnings": list(getattr(args, "input_warnings", []))}
+    rule = getattr(args, "amplitude_rule", None)
+    notes = {"case_file": case_file, "warnings": list(getattr(args, "input_warnings", [])),
+             "amplitude_rule": rule}
     if case_file is not None and not getattr(args, "json", False):
         name = getattr(args, "case_name", "")
         print(f"case file {case_file}" + (f" ({name})" if name else ""))
+        if rule is not None:
+            print(f"  amplitude {rule}")
     token = _ACTIVE.set(notes)
     try:
         yield
     finally:
         _ACTIVE.reset(token)
+
+
+def warn(message: str) -> None:
+    """One ``warning:`` line on standard error, also listed under ``warnings`` in the JSON
+    output of the running command."""
+    print(f"warning: {message}", file=sys.stderr)
+    notes = _ACTIVE.get()
+    if notes is not None:
+        notes["warnings"].append(message)
 
 
 def annotate_json(obj: Any) -> Any:
@@ -211,6 +231,8 @@ def annotate_json(obj: Any) -> Any:
     out = dict(obj)
     if notes["case_file"] is not None:
         out["case_file"] = notes["case_file"]
+    if notes["amplitude_rule"] is not None:
+        out["amplitude_rule"] = notes["amplitude_rule"]
     if notes["warnings"]:
         out["warnings"] = [*out.get("warnings", []), *notes["warnings"]]
     return out

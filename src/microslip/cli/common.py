@@ -9,17 +9,27 @@ import sys
 from typing import Any
 
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
-from ..io import to_jsonable
+from ..errors import ParameterError
+from ..io import check_writable, to_jsonable
+from ..models import check_increments
 from ..options import CENTRE_READINGS, POISSON_MODES, ModelOptions
 from ..params import PRESETS, ClampParams, preset
 
 __all__ = [
+    "add_clamp_flags",
     "add_model_options",
     "add_params",
     "add_strain_energy",
+    "check_output_dir",
+    "check_plot",
+    "clamp_overrides",
+    "increments_option",
     "model_options",
     "params_from_args",
+    "planar_zones",
     "print_json",
+    "refuse_inapplicable",
+    "warn_cost",
 ]
 
 #: Command-line name, ClampParams field, unit.
@@ -46,18 +56,44 @@ def add_params(parser: argparse.ArgumentParser, default_preset: str | None = Non
     g = parser.add_argument_group("clamped zone (override the preset's values)")
     g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
                    help=f"paper parameter set (default {default_preset})")
-    for flag, field, unit in PARAM_FLAGS:
-        g.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
-                       help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+    add_clamp_flags(g)
     g.add_argument("--amplitude", type=number, metavar="N",
                    help="load amplitude F0, N (default: the preset's)")
+
+
+def add_clamp_flags(group: Any) -> None:
+    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude)."""
+    for flag, field, unit in PARAM_FLAGS:
+        group.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
+                           help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+
+
+def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:
+    """The clamp values given by the flags of :func:`add_clamp_flags` (field -> value)."""
+    return {field: float(v) for _, field, _ in PARAM_FLAGS
+            if (v := getattr(args, field, None)) is not None}
+
+
+def planar_zones(tip: ClampParams, centre: ClampParams, overrides: dict[str, float],
+                 tip_symmetry: int = 2) -> tuple[ClampParams, ClampParams]:
+    """The tip and centre zones of the planar case with the clamp flags ``overrides`` applied.
+
+    The flags describe the whole clamp: the centre model is the whole clamp; the tip model is
+    one of ``tip_symmetry`` symmetric parts of the contact width, so it takes width
+    w / ``tip_symmetry`` (as the Table 2 presets in the reading of docs/interpretation.md §6:
+    tip w = 25 mm, centre w = 50 mm) and every other value as given.
+    """
+    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, int) or tip_symmetry < 1:
+        raise ParameterError(f"tip symmetry must be a whole number >= 1, got {tip_symmetry!r}")
+    tip_values = dict(overrides)
+    if "width" in overrides:
+        tip_values["width"] = overrides["width"] / tip_symmetry
+    return tip.replace(**tip_values), centre.replace(**overrides)
 
 
 def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None = None
                      ) -> tuple[ClampParams, float]:
     """ClampParams (preset overridden by explicit flags) and the amplitude, validated."""
-    from ..errors import ParameterError
-
     if args.preset is not None:
         base = preset(args.preset)
         values = base.as_dict()
@@ -119,6 +155,88 @@ def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_ST
         + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
         + f" (default {default}{why})",
     )
+
+
+def check_plot(path: str | None) -> None:
+    """Before the work: a figure file ``path`` (if given) has a known format, can be written,
+    and matplotlib is installed."""
+    if path is None:
+        return
+    from ..plot.core import PLOT_FORMATS, pyplot
+
+    check_writable(path, PLOT_FORMATS, "plot file")
+    pyplot()
+
+
+def check_output_dir(path: str | None) -> None:
+    """Before the work: an output directory ``path`` (if given) can be created or written."""
+    if path is not None:
+        check_writable(path, what="--out", directory=True)
+
+
+#: The flags of :func:`add_model_options` (the analytical models' reading of the paper).
+MODEL_OPTION_DESTS = ("no_corrections", "poisson", "no_length_update", "centre_reading",
+                      "paper_literal")
+
+
+def refuse_inapplicable(args: argparse.Namespace, mode: str,
+                        applies: dict[str, tuple[str, ...]]) -> None:
+    """Refuse an option given on the command line for a mode it does nothing in.
+
+    ``mode`` is the destination that selects the mode (``"solver"``); ``applies`` maps an
+    option's destination to the modes where it applies. Options not given explicitly
+    (``args.given_options``, from :func:`microslip.case.options.parse_args`) pass.
+    """
+    value = getattr(args, mode)
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
+    for dest, modes in applies.items():
+        if dest in given and value not in modes:
+            flag = "--" + dest.replace("_", "-")
+            raise ParameterError(f"{flag} does not apply to --{mode} {value} (only to "
+                                 f"--{mode} {' or '.join(modes)}); remove it")
+
+
+#: Fewest useful force increments: eta of the piecewise-linear loop is low by 1/n^2 (exactly,
+#: for the quadratic backbones), so 1 increment gives eta = 0 and 10 give 1 %.
+MIN_INCREMENTS = 10
+
+#: Cost of one increment of one first loading with its loop, measured on the CLI: kept loops
+#: (``loop --increments 1000000``: 2.6 s, 0.3 GB) and the compiled batch of a sweep (1e9
+#: case-increments in 6.4 s on two cores, results only). A run estimated above WARN_SECONDS
+#: or WARN_BYTES is announced with its cost.
+BYTES_PER_INCREMENT = 250.0
+SECONDS_PER_INCREMENT = 2.5e-6
+BATCH_SECONDS_PER_INCREMENT = 1e-8
+WARN_SECONDS = 10.0
+WARN_BYTES = 1e9
+
+
+def increments_option(n: Any, loops: int = 1, batch: bool = False) -> int:
+    """A checked ``--increments``: at least :data:`MIN_INCREMENTS`, with the cost warning of
+    :func:`warn_cost` for ``loops`` first loadings."""
+    n = check_increments(n)
+    if n < MIN_INCREMENTS:
+        raise ParameterError(
+            f"--increments must be >= {MIN_INCREMENTS}, got {n}: eta of the discretised loop "
+            f"is low by 1/n^2 (n = 1 gives eta = 0, n = {MIN_INCREMENTS} is 1 % low, "
+            "n = 1000 is 1e-6 low)")
+    warn_cost(n, loops, batch)
+    return n
+
+
+def warn_cost(n: int, loops: int, batch: bool = False) -> None:
+    """A warning with the estimated time and memory when ``loops`` first loadings of ``n``
+    increments are costly (``batch``: a compiled sweep, which keeps only each case's results).
+    """
+    total = float(n) * loops
+    seconds = total * (BATCH_SECONDS_PER_INCREMENT if batch else SECONDS_PER_INCREMENT)
+    memory = 0.0 if batch else total * BYTES_PER_INCREMENT
+    if seconds > WARN_SECONDS or memory > WARN_BYTES:
+        from ..case.options import warn
+
+        size = f" and {memory / 1e9:.2g} GB of memory" if memory else ""
+        warn(f"--increments {n} for {loops} loading(s) takes about {seconds:.2g} s{size}; "
+             "eta is within 1e-6 at 1000 increments (its error is 1/n^2)")
 
 
 def print_json(obj: Any) -> None:

@@ -18,7 +18,14 @@ from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
 from ..loading import LOAD_CASES
 from ..solver.mesh import MESHES as BUILTIN_MESHES
-from .common import add_params, add_strain_energy, number, params_from_args, print_json
+from .common import (
+    add_params,
+    add_strain_energy,
+    check_output_dir,
+    number,
+    params_from_args,
+    print_json,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -101,6 +108,7 @@ def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     _check_run_options(args)
+    check_output_dir(args.out)
     params, amplitude = params_from_args(args)
     result, files = run_loop(args.model, params, amplitude, solver=args.solver, out=args.out,
                              vtu=not args.no_vtu, mesh=args.mesh, element=args.element,

@@ -64,9 +64,12 @@ def default_range(structure: Structure) -> tuple[float, float]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import write_csv
-    from .common import print_json
+    from ..io import check_writable, write_csv
+    from .common import check_plot, print_json
 
+    check_plot(args.plot)
+    if args.csv:
+        check_writable(args.csv)
     structure = structure_from_args(args)
     harmonics, samples = balance_from_args(args)
     for f in args.force:

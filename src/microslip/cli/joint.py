@@ -138,8 +138,9 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .common import print_json
+    from .common import check_plot, print_json
 
+    check_plot(args.plot)
     joint = joint_from_args(args)
     result = describing_function(joint, _amplitudes(args, joint), args.samples)
     out = result_json(joint, result)

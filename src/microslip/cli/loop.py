@@ -7,7 +7,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..energy import damping
-from ..models import MODELS, Contact, check_increments, get_model, macroslip_force
+from ..models import MODELS, Contact, get_model, macroslip_force
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..results import DampingResult
@@ -15,6 +15,8 @@ from .common import (
     add_model_options,
     add_params,
     add_strain_energy,
+    check_plot,
+    increments_option,
     model_options,
     params_from_args,
     print_json,
@@ -72,7 +74,8 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
 
 def run(args: argparse.Namespace) -> int:
     params, amplitude = params_from_args(args)
-    n = check_increments(args.increments)
+    n = increments_option(args.increments)
+    check_plot(args.plot)
     opt = model_options(args)
     contact = contact_from_args(args, params)
     result = damping(args.model, params, amplitude, n, opt, args.strain_energy, contact)

@@ -55,7 +55,16 @@ def build_parser() -> Parser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code (0 success, 1 failure, 2 usage)."""
+    """Run the command line; returns the exit code (0 success, 1 failure, 2 usage, 130
+    interrupted: Ctrl-C at any moment is one line, never a traceback)."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     try:
         args = parse_args(parser, argv)  # with --case FILE.toml: the file's keys as defaults
@@ -75,9 +84,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     except BrokenPipeError:  # output piped into head & co.
         return 0
-    except KeyboardInterrupt:
-        print("error: interrupted", file=sys.stderr)
-        return 130
+    except OSError as exc:  # a file system failure the checks before the work could not see
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"error: {where}{_one_line(exc.strerror or str(exc))}", file=sys.stderr)
+        return 1
 
 
 def _one_line(text: str) -> str:

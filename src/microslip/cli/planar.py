@@ -8,11 +8,9 @@ from typing import Any
 from ..case.options import add_case_option
 from ..energy import STRAIN_ENERGY
 from ..errors import MacroslipError, ParameterError
-from ..models import check_increments
 from ..params import PRESETS, preset
 from ..planar import (
     LEVEL_SCHEMES,
-    PAPER_STRAIN_ENERGY,
     TIP_SYMMETRY,
     WORK_STRAIN_ENERGY,
     PlanarResult,
@@ -20,7 +18,20 @@ from ..planar import (
     planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, add_strain_energy, model_options, number, print_json
+from .common import (
+    MODEL_OPTION_DESTS,
+    add_clamp_flags,
+    add_model_options,
+    add_strain_energy,
+    check_plot,
+    clamp_overrides,
+    increments_option,
+    model_options,
+    number,
+    planar_zones,
+    print_json,
+    refuse_inapplicable,
+)
 from .contact import (
     add_contact_options,
     contact_from_args,
@@ -34,6 +45,16 @@ __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 #: Solvers of the planar case: the paper's decoupled analytical models, or the built-in
 #: frictional FE solver with one shared Coulomb circle per contact node (coupled 2-D friction).
 SOLVERS = ("analytical", "fe")
+
+#: Options that apply to one solver only (the others are refused, not silently ignored).
+SOLVER_OPTIONS: dict[str, tuple[str, ...]] = {
+    **{dest: ("analytical",) for dest in (
+        "plot", "levels", "tip_preset", "centre_preset", "tip_symmetry",
+        "strain_energy", "work_energy", "increments", "samples_per_cycle",
+        *MODEL_OPTION_DESTS)},
+    **{dest: ("fe",) for dest in (
+        "preset", "mesh", "cycles", "increments_per_cycle", "cycle_tolerance")},
+}
 
 
 def add_parser(sub: Any) -> None:
@@ -67,9 +88,14 @@ def add_parser(sub: Any) -> None:
     m.add_argument("--tip-symmetry", type=int, default=TIP_SYMMETRY, metavar="K",
                    help="tip models in parallel in the whole clamp (default 2: the paper's "
                         "tip model is one symmetric half)")
+    c = p.add_argument_group(
+        "one's own clamp (overrides the zones' values; the tip zone is one of --tip-symmetry "
+        "symmetric parts of the contact width, so it takes width w/K; with --solver fe, the "
+        "--preset bar)")
+    add_clamp_flags(c)
     add_model_options(p)
     add_contact_options(p)
-    add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22")
+    add_strain_energy(p)
     p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
                    default=DEFAULT_WORK_STRAIN_ENERGY,
                    help="U of the combined motion in the work-based eta: "
@@ -129,6 +155,10 @@ def result_json(result: PlanarResult, args: argparse.Namespace) -> dict[str, Any
         "increments": args.increments,
         "samples_per_cycle": args.samples_per_cycle,
     }
+    if clamp_overrides(args):
+        tip, centre = planar_zones(preset(args.tip_preset), preset(args.centre_preset),
+                                   clamp_overrides(args), args.tip_symmetry)
+        out["tip_params"], out["centre_params"] = tip.as_dict(), centre.as_dict()
     out.update(result.summary())
     return out
 
@@ -137,6 +167,7 @@ def run(args: argparse.Namespace) -> int:
     runners = {"analytical": run_analytical, "fe": run_fe}
     if args.solver not in runners:  # argparse checks choices; a registry guard
         raise ParameterError(f"unknown solver {args.solver!r}; choose one of {', '.join(SOLVERS)}")
+    refuse_inapplicable(args, "solver", SOLVER_OPTIONS)
     return runners[args.solver](args)
 
 
@@ -152,7 +183,7 @@ def run_fe(args: argparse.Namespace) -> int:
                         ("--increments-per-cycle", args.increments_per_cycle)):
         if not 1 <= value <= 100_000:
             raise ParameterError(f"{name} must be a whole number in [1, 100000], got {value}")
-    params = preset(args.preset)
+    params = preset(args.preset).replace(**clamp_overrides(args))
     if args.pressure_law is not None or args.no_shear_lag:
         raise ParameterError("--pressure-law and --no-shear-lag apply to the analytical "
                              "models; the FE body has its own shear field and uniform clamping")
@@ -190,9 +221,12 @@ def result_message(result: Any) -> str:
 
 def run_analytical(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=2)
+    check_plot(args.plot)
     opt = model_options(args)
-    tip_params, centre_params = preset(args.tip_preset), preset(args.centre_preset)
+    tip_params, centre_params = planar_zones(preset(args.tip_preset),
+                                             preset(args.centre_preset),
+                                             clamp_overrides(args), args.tip_symmetry)
     contact = contact_from_args(args, tip_params)
     try:
         result = planar_damping(
@@ -221,6 +255,9 @@ def run_analytical(args: argparse.Namespace) -> int:
           f"tip {at:g} N ({args.tip_preset}, x{result.tip_symmetry} in parallel), "
           f"centre {ac:g} N ({args.centre_preset}), {n} increments, poisson={opt.poisson}, "
           f"length_update={opt.length_update}, centre reading={opt.centre}")
+    if clamp_overrides(args):
+        given = ", ".join(f"{k} {v:g}" for k, v in clamp_overrides(args).items())
+        print(f"  own clamp: {given} (N, mm, MPa; tip zone width / {result.tip_symmetry})")
     print(f"  strain energy U: {args.strain_energy} ({STRAIN_ENERGY[args.strain_energy][1]})")
     print(f"  {'':31s}{'W_d (N·mm)':>14s}{'U (N·mm)':>14s}{'eta (-)':>12s}")
     for name, r in (("tip model", result.tip), ("centre model", result.centre),

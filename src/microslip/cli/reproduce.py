@@ -4,14 +4,24 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Any
 
-from ..models import check_increments
 from ..planar import LEVEL_SCHEMES, PAPER_STRAIN_ENERGY, WORK_STRAIN_ENERGY
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .common import add_model_options, add_strain_energy, model_options
+from .common import (
+    add_model_options,
+    add_strain_energy,
+    check_output_dir,
+    increments_option,
+    model_options,
+)
 
 __all__ = ["add_parser", "run"]
+
+#: First loadings of one reproduce run, roughly (the seven R twice, readings, tables), for the
+#: cost estimate of --increments.
+REPRODUCE_LOADINGS = 40
 
 
 def add_parser(sub: Any) -> None:
@@ -47,19 +57,23 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..io import staged_directory
     from ..reproduce import reproduce
 
     def echo(msg: str) -> None:
         print(msg, file=sys.stderr)
 
-    res = reproduce(args.out, increments=check_increments(args.increments),
-                    options=model_options(args), strain_energy=args.strain_energy,
-                    levels=args.levels, work_energy=args.work_energy, fe=args.fe,
-                    fe_mesh=args.fe_mesh, progress=not args.quiet, echo=echo)
-    print(f"microslip reproduce: {len(res.files)} files in {res.out_dir} "
-          f"({res.elapsed_s:.1f} s)")
+    increments = increments_option(args.increments, loops=REPRODUCE_LOADINGS)
+    check_output_dir(args.out)
+    with staged_directory(args.out) as stage:  # an interrupted run leaves no partial DIR
+        res = reproduce(stage, increments=increments,
+                        options=model_options(args), strain_energy=args.strain_energy,
+                        levels=args.levels, work_energy=args.work_energy, fe=args.fe,
+                        fe_mesh=args.fe_mesh, progress=not args.quiet, echo=echo)
+    out = Path(args.out)
+    print(f"microslip reproduce: {len(res.files)} files in {out} ({res.elapsed_s:.1f} s)")
     for f in res.files:
-        print(f"  {f}")
+        print(f"  {out / f.relative_to(stage)}")
     t = res.table
     print(f"  {'R':>6s} {'eps':>6s} {'paper eta':>11s} {'norm.':>9s} {'work eta':>11s} "
           f"{'norm.':>9s}   (dimensionless, U {res.sweep.strain_energy_kind})")

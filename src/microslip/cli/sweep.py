@@ -4,23 +4,28 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 from typing import Any
 
 import numpy as np
 
 from ..case.options import add_case_option
 from ..errors import ParameterError
-from ..models import MODELS, check_increments
+from ..models import MODELS
 from ..params import preset
 from .common import (
     PARAM_FLAGS,
     add_model_options,
     add_params,
     add_strain_energy,
+    check_plot,
+    clamp_overrides,
+    increments_option,
     model_options,
     number,
     params_from_args,
+    planar_zones,
+    refuse_inapplicable,
+    warn_cost,
 )
 from .contact import add_contact_options, contact_from_args
 
@@ -123,17 +128,22 @@ def add_parser(sub: Any) -> None:
 
 
 def _check_outputs(args: argparse.Namespace) -> None:
+    from ..io import check_writable
     from ..sweep import check_output
 
     if args.out:
         check_output(args.out)
-    if args.plot:
-        ext = os.path.splitext(args.plot)[1].lower()
-        if ext not in (".png", ".pdf", ".svg"):
-            raise ParameterError(f"plot file must end in .png, .pdf or .svg, got {args.plot!r}")
-        from ..plot import pyplot
+        check_writable(args.out)
+    check_plot(args.plot)
 
-        pyplot()
+
+#: Options that apply to some models only (the others are refused, not silently ignored).
+MODEL_OPTIONS: dict[str, tuple[str, ...]] = {
+    **{dest: ("tip", "centre") for dest in (
+        "amplitude_range", "grid", "sample", "samples", "seed", "scheduler", "amplitude",
+        "chunk_size", "threads", "retries", "preset")},
+    **{dest: ("planar",) for dest in ("ratio_range", "levels")},
+}
 
 
 def _cases(args: argparse.Namespace) -> int:
@@ -141,19 +151,18 @@ def _cases(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    refuse_inapplicable(args, "model", MODEL_OPTIONS)
     if args.model == "planar":
         return _run_planar(args)
     from ..plot.sweep import plot_sweep
     from ..sweep import make_sweep, parse_grid, parse_sample, run_sweep, write_sweep
 
-    if args.ratio_range is not None:
-        raise ParameterError("--ratio-range applies to --model planar only")
     if args.cases is not None and args.amplitude_range is None:
         raise ParameterError("--cases sets the number of points of --amplitude-range "
                              "(use --samples for random draws, --grid for other axes)")
     if args.retries < 0:
         raise ParameterError(f"--retries must be >= 0, got {args.retries}")
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=0)  # the cost follows from the spec below
     _check_outputs(args)
     grid = []
     if args.amplitude_range is not None:
@@ -177,10 +186,15 @@ def run(args: argparse.Namespace) -> int:
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
                       increments=n, options=opt, strain_energy=args.strain_energy,
-                      contact=contact_from_args(args, params))
+                      contact=contact_from_args(args, params), check_draws=False)
+    _warn_implausible(spec)
+    warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
-                       progress=not args.no_progress)
+                       progress=not args.no_progress,
+                       failures="record" if spec.samples else "raise")
+    if len(result.failures) == spec.size:
+        raise ParameterError(f"no case can be computed: {_failure_summary(spec, result)}")
     if args.out:
         write_sweep(result, args.out, chunk_size=args.chunk_size)
     if args.plot:
@@ -201,9 +215,11 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
     for line in spec.describe():
         print(f"  {line}")
     eta = result.loss_factor
-    q = np.percentile(eta, [0, 5, 50, 95, 100])
-    print(f"  loss factor eta        min {q[0]:.6g}, 5% {q[1]:.6g}, median {q[2]:.6g}, "
-          f"95% {q[3]:.6g}, max {q[4]:.6g} (dimensionless)")
+    if np.isfinite(eta).any():
+        q = np.nanpercentile(eta, [0, 5, 50, 95, 100])
+        print(f"  loss factor eta        min {q[0]:.6g}, 5% {q[1]:.6g}, median {q[2]:.6g}, "
+              f"95% {q[3]:.6g}, max {q[4]:.6g} (dimensionless"
+              + (", computed cases" if result.failures else "") + ")")
     rate = spec.size * spec.increments / result.elapsed if result.elapsed > 0 else math.inf
     where = f"Dask scheduler {result.scheduler}" if result.scheduler else "this machine"
     print(f"  computed in            {result.elapsed:.3g} s on {where} ({result.backend}), "
@@ -214,6 +230,36 @@ def _print_summary(args: argparse.Namespace, spec: Any, result: Any) -> None:
         print(f"  wrote                  {args.out} ({what})")
     if args.plot:
         print(f"  figure                 {args.plot}")
+    if result.failures:
+        from ..case.options import warn
+
+        warn(_failure_summary(spec, result))
+
+
+def _warn_implausible(spec: Any) -> None:
+    """The unit plausibility check of the options, for grid values and sample medians."""
+    from ..case.options import warn
+    from ..case.units import plausibility_warnings
+
+    values = [(f"--grid {a.name}: ", a.name, v) for a in spec.grid
+              for v in (float(np.min(a.values)), float(np.max(a.values)))]
+    values += [(f"--sample {s.name} (median): ", s.name, float(np.median(s.values)))
+               for s in spec.samples]
+    for where, name, v in values:
+        for line in plausibility_warnings({name: v}, where):
+            warn(line)
+
+
+def _failure_summary(spec: Any, result: Any) -> str:
+    """The failed cases in one line, with a hint when a normal draw left its range."""
+    from ..sweep.failures import summarise_failures
+
+    text = summarise_failures(result.failures, spec.size)
+    normal = [s.name for s in spec.samples if s.distribution.kind == "normal"]
+    if any(r.startswith(f"{n} must be") for r in result.failures.values() for n in normal):
+        text += ("; a normal distribution can reach non-physical values: use "
+                 "lognormal:MEAN:SD for a positive quantity")
+    return text
 
 
 def _run_planar(args: argparse.Namespace) -> int:
@@ -221,14 +267,6 @@ def _run_planar(args: argparse.Namespace) -> int:
     from ..plot.sweep import plot_ratio_sweep
     from ..sweep import ratio_sweep, write_ratio_sweep
 
-    unsupported = [flag for flag, present in (
-        ("--amplitude-range", args.amplitude_range is not None),
-        ("--grid", bool(args.grid)), ("--sample", bool(args.sample)),
-        ("--scheduler", args.scheduler is not None), ("--amplitude", args.amplitude is not None),
-    ) if present]
-    if unsupported:
-        raise ParameterError(f"{unsupported[0]} does not apply to --model planar "
-                             "(sweep the force ratio with --ratio-range A B --cases N)")
     if args.ratio_range is None:
         raise ParameterError("--model planar needs --ratio-range A B (force ratios R > 0)")
     if args.levels not in LEVEL_SCHEMES:
@@ -238,21 +276,10 @@ def _run_planar(args: argparse.Namespace) -> int:
     for v in (a, b):
         if not (math.isfinite(v) and v > 0):
             raise ParameterError(f"--ratio-range ends must be finite and > 0, got {v!r}")
-    n = check_increments(args.increments)
+    n = increments_option(args.increments, loops=2 * _cases(args))
     _check_outputs(args)
-    if args.preset is not None:
-        raise ParameterError("--model planar uses the presets table2-tip and table2-centre; "
-                             "override --friction, --normal-force, --modulus or "
-                             "--poisson-ratio instead of --preset")
-    overrides = {f: getattr(args, f) for f in ("friction", "normal_force", "modulus",
-                                               "poisson_ratio") if getattr(args, f) is not None}
-    geometry = [f"--{flag}" for flag, f, _ in PARAM_FLAGS
-                if f in ("length", "width", "thickness") and getattr(args, f) is not None]
-    if geometry:
-        raise ParameterError(f"{geometry[0]} does not apply to --model planar (the tip and "
-                             "centre models have their own geometry: table2-tip, table2-centre)")
-    tip_p = preset("table2-tip").replace(**overrides)
-    centre_p = preset("table2-centre").replace(**overrides)
+    tip_p, centre_p = planar_zones(preset("table2-tip"), preset("table2-centre"),
+                                   clamp_overrides(args))
     ratios = np.geomspace(a, b, _cases(args)) if a != b else np.array([a])
     opt = model_options(args)
     sweep = ratio_sweep(ratios, tip_params=tip_p, centre_params=centre_p, levels=args.levels,
@@ -265,7 +292,8 @@ def _run_planar(args: argparse.Namespace) -> int:
     failed = [c for c in sweep.cases if c.result is None]
     print(f"planar model, {len(sweep.cases)} force ratios R from {a:g} to {b:g} "
           f"(levels {args.levels}, {n} increments, U: {sweep.strain_energy_kind}; "
-          "tip table2-tip, centre table2-centre)")
+          "tip table2-tip, centre table2-centre"
+          + "".join(f", {k} {v:g}" for k, v in clamp_overrides(args).items()) + ")")
     eta_p = sweep.loss_factor("paper")
     eta_w = sweep.loss_factor("work")
     ok = np.isfinite(eta_p)

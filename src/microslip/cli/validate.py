@@ -10,7 +10,7 @@ from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from ..fe.mesh import MESHES
-from .common import number, print_json
+from .common import add_params, check_output_dir, number, params_from_args, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -18,11 +18,13 @@ __all__ = ["add_parser", "run"]
 def add_parser(sub: Any) -> None:
     p = sub.add_parser(
         "validate", help="run the FE validation (CalculiX) and write Figs 8 and 9",
-        description="Run the tip and centre load cases of Table 1 in CalculiX, compare them "
+        description="Run the tip and centre load cases of Table 1 (or of one's own clamp: "
+        "--length ... or --case) in CalculiX, compare them "
         "with the analytical models and the closed forms, and write fig08_contact_status.png, "
         "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     p.add_argument("--out", metavar="DIR", required=True, help="output directory")
+    add_params(p, default_preset="table1")
     p.add_argument("--mesh", choices=list(MESHES), action="append", metavar="LEVEL",
                    help="mesh level, repeat for several: " + ", ".join(
                        f"{k} ({v.dof} DOF)" for k, v in MESHES.items()) + " (default coarse)")
@@ -52,12 +54,14 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--timeout must be > 0 s, got {args.timeout!r}")
     if not 1 <= args.threads <= 256:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
+    params, amplitude = params_from_args(args)
+    check_output_dir(args.out)
     meshes = tuple(dict.fromkeys(args.mesh or ["coarse"]))
     models = tuple(dict.fromkeys(args.model or list(LOAD_CASES)))
     report = run_validation(args.out, meshes, models, progress=not args.no_progress,
                             timeout=args.timeout, scheduler=args.scheduler,
                             stick_slope=args.stick_slope, threads=args.threads,
-                            reuse=args.reuse)
+                            reuse=args.reuse, params=params, amplitude=amplitude)
     if args.json:
         print_json({"passed": report.passed, "files": [str(f) for f in report.files],
                     "rows": list(report.rows)})

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..energy import STRAIN_ENERGY, damping_from_backbone
+from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, damping_from_backbone
 from ..errors import MicroslipError, ParameterError
 from ..models import Contact, check_increments, first_loading
 from ..named import result
@@ -177,7 +177,7 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
                    centre_amplitude: float, *, increments: int = 1000,
                    options: ModelOptions | None = None,
                    centre_options: ModelOptions | None = None,
-                   strain_energy: str = PAPER_STRAIN_ENERGY, phase_deg: float = 0.0,
+                   strain_energy: str = DEFAULT_STRAIN_ENERGY, phase_deg: float = 0.0,
                    work_energy: str = DEFAULT_WORK_STRAIN_ENERGY,
                    tip_symmetry: int = TIP_SYMMETRY,
                    samples_per_cycle: int = 2048,
@@ -198,7 +198,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     centre_options : ModelOptions, optional
         Reading of the centre model; defaults to ``options``.
     strain_energy : str
-        Definition of U (:data:`microslip.STRAIN_ENERGY`); ``branch`` is the paper's Eq. 22.
+        Definition of U (:data:`microslip.STRAIN_ENERGY`), default secant as for loop and sweep;
+        ``branch`` (:data:`PAPER_STRAIN_ENERGY`) is the paper's Eq. 22.
     phase_deg : float
         Phase phi of the centre force in the work-based cycle, degrees:
         F_tip = A sin(theta), F_centre = A_c sin(theta + phi).
@@ -226,7 +227,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     (4.0, 0.968)
     >>> round(r.paper.loss_factor / r.tip.loss_factor, 12)  # a scaled copy of each loop
     1.0
-    >>> round(r.work_loss_factor * 5 * math.pi / 4, 4)  # 4/(5 pi) to the discretisation error
+    >>> round(r.work_loss_factor * 3 * math.pi / 4, 4)  # secant U: 4/(3 pi), to the
+    ...                                                   # discretisation error
     1.0
     """
     n = check_increments(increments)
@@ -410,7 +412,7 @@ def loss_factor_vs_ratio(ratios: Iterable[float] = PAPER_RATIOS, *,
                          levels: str = "base", increments: int = 1000,
                          options: ModelOptions | None = None,
                          centre_options: ModelOptions | None = None,
-                         strain_energy: str = PAPER_STRAIN_ENERGY, phase_deg: float = 0.0,
+                         strain_energy: str = DEFAULT_STRAIN_ENERGY, phase_deg: float = 0.0,
                          work_energy: str = DEFAULT_WORK_STRAIN_ENERGY,
                          tip_symmetry: int = TIP_SYMMETRY, samples_per_cycle: int = 2048,
                          skip_errors: bool = True, progress: Any = None,

@@ -9,14 +9,32 @@ import os
 from collections.abc import Sequence
 from typing import Any
 
+import numpy as np
+
 from ..errors import MicroslipError
 from ..io import atomic_path
 from ..results import Backbone, DampingResult, HysteresisLoop
 
-__all__ = ["COLOURS", "new_figure", "plot_damping", "plot_loops", "pyplot", "save_figure"]
+__all__ = ["COLOURS", "PLOT_FORMATS", "displacement_scale", "new_figure", "plot_damping",
+           "plot_loops", "pyplot", "save_figure"]
 
 #: One colour per series, the same across the figures of a report.
 COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
+
+#: Figure formats a command writes, by the file's extension.
+PLOT_FORMATS = (".png", ".pdf", ".svg")
+
+#: Displacements are drawn in micrometres when the largest is below this, mm.
+MICROMETRE_BELOW_MM = 0.1
+
+
+def displacement_scale(largest_mm: float) -> tuple[float, str]:
+    """(factor, unit) to draw displacements in: um for small ones, else mm.
+
+    >>> displacement_scale(0.003), displacement_scale(0.5)
+    ((1000.0, 'µm'), (1.0, 'mm'))
+    """
+    return (1000.0, "µm") if largest_mm < MICROMETRE_BELOW_MM else (1.0, "mm")
 
 
 def pyplot() -> Any:
@@ -34,6 +52,7 @@ def pyplot() -> Any:
         "font.size": 8, "axes.labelsize": 8, "legend.fontsize": 7, "xtick.labelsize": 7,
         "ytick.labelsize": 7, "lines.linewidth": 1.2, "axes.grid": True, "grid.alpha": 0.3,
         "savefig.dpi": 200, "figure.constrained_layout.use": True,
+        "axes.formatter.useoffset": False,  # 0.4244 is read as 0.4244, not +4.2e-1 offsets
     })
     return plt
 
@@ -57,14 +76,17 @@ def save_figure(fig: Any, path: str | os.PathLike[str]) -> None:
 def plot_loops(ax: Any, loops: Sequence[HysteresisLoop], labels: Sequence[str],
                backbones: Sequence[Backbone | None] | None = None,
                colours: Sequence[str] = COLOURS) -> None:
-    """Draw loops (solid) and their backbones (dashed) on ``ax``, with units on the axes."""
+    """Draw loops (solid) and their backbones (dashed) on ``ax``, with units on the axes
+    (displacements in um when they are small, :func:`displacement_scale`)."""
+    largest = max((float(np.max(np.abs(lp.displacement))) for lp in loops), default=1.0)
+    scale, unit = displacement_scale(largest)
     for i, (loop, label) in enumerate(zip(loops, labels, strict=True)):
         c = colours[i % len(colours)]
-        ax.plot(loop.displacement, loop.force, color=c, label=label)
+        ax.plot(scale * loop.displacement, loop.force, color=c, label=label)
         bb = backbones[i] if backbones else None
         if bb is not None:
-            ax.plot(bb.displacement, bb.force, color=c, ls="--", lw=0.8)
-    ax.set_xlabel("Displacement δ (mm)")
+            ax.plot(scale * bb.displacement, bb.force, color=c, ls="--", lw=0.8)
+    ax.set_xlabel(f"Displacement δ ({unit})")
     ax.set_ylabel("Force $F_T$ (N)")
     ax.axhline(0.0, color="0.5", lw=0.5)
     ax.axvline(0.0, color="0.5", lw=0.5)

@@ -7,10 +7,11 @@ from __future__ import annotations
 import functools
 from collections.abc import Iterable
 
+from ..energy import DEFAULT_STRAIN_ENERGY
 from ..models import Contact
 from ..options import ModelOptions
 from ..params import ClampParams
-from ..planar import PAPER_STRAIN_ENERGY, RatioSweep, loss_factor_vs_ratio
+from ..planar import RatioSweep, loss_factor_vs_ratio
 from ..progress import progress as progress_iter
 
 __all__ = ["ratio_sweep"]
@@ -31,6 +32,6 @@ def ratio_sweep(ratios: Iterable[float], *, tip_params: ClampParams | None = Non
     return loss_factor_vs_ratio(
         [float(r) for r in ratios], tip_params=tip_params, centre_params=centre_params,
         levels=levels, increments=increments, options=options,
-        strain_energy=strain_energy or PAPER_STRAIN_ENERGY, phase_deg=phase_deg,
+        strain_energy=strain_energy or DEFAULT_STRAIN_ENERGY, phase_deg=phase_deg,
         progress=functools.partial(progress_iter, enabled=progress, unit="case"),
         contact=contact)

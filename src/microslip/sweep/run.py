@@ -6,11 +6,13 @@ which gives the same numbers bit for bit. Units: N, mm, N·mm.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..batch import PARAM_FIELDS, batch_damping, default_backend, prepare_batch
 from ..batch.driver import run_batch
@@ -21,8 +23,11 @@ from ..models import first_loading
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..progress import progress_bar
+from .failures import case_failures
 from .parameters import PARAMETERS, FloatArray
 from .spec import DEFAULT_CHUNK, SweepSpec
+
+BoolArray = NDArray[np.bool_]
 
 __all__ = ["SweepResult", "run_sweep"]
 
@@ -48,6 +53,9 @@ class SweepResult:
         Address of the Dask scheduler, None for a local run.
     elapsed : float
         Wall time of the computation, s.
+    failures : mapping
+        Case index -> why it was not computed (its results are NaN); empty unless
+        :func:`run_sweep` was asked to record failures.
     """
 
     spec: SweepSpec
@@ -59,6 +67,7 @@ class SweepResult:
     scheduler: str | None = None
     elapsed: float = 0.0
     meta: dict[str, Any] = field(default_factory=dict)
+    failures: Mapping[int, str] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
@@ -90,7 +99,7 @@ class SweepResult:
 def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
               scheduler: str | None = None, backend: str | None = None,
               threads: int | None = None, retries: int = 3,
-              progress: bool = True) -> SweepResult:
+              progress: bool = True, failures: str = "raise") -> SweepResult:
     """Compute every case of a sweep, locally or on a Dask cluster.
 
     Parameters
@@ -110,6 +119,11 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         scheduler in any case; results already gathered are never lost).
     progress : bool
         Show a progress bar on standard error (tqdm; only on a terminal).
+    failures : str
+        ``"raise"``: the first case that cannot be computed (a value out of range, an
+        amplitude at the macroslip limit) raises before any computing. ``"record"``: such
+        cases get NaN results and their reason in :attr:`SweepResult.failures`; the others
+        are computed (:func:`microslip.sweep.failures.case_failures`).
 
     Returns
     -------
@@ -130,7 +144,19 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         raise ParameterError(f"chunk size must be a whole number >= 1, got {chunk_size!r}")
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise ParameterError(f"retries must be a whole number >= 0, got {retries!r}")
-    spec.validate(int(chunk_size))
+    if failures not in ("raise", "record"):
+        raise ParameterError(f"failures must be 'raise' or 'record', got {failures!r}")
+    chunks = spec.chunks(int(chunk_size))
+    masks: list[BoolArray | None] = [None] * len(chunks)
+    why: dict[int, str] = {}
+    if failures == "raise":
+        spec.validate(int(chunk_size))
+    else:
+        for i, (lo, hi) in enumerate(chunks):
+            ok, reasons = case_failures(spec, lo, hi)
+            if reasons:
+                masks[i] = ok
+                why.update(reasons)
     be = default_backend() if backend is None else backend
     if spec.contact is not None:
         if scheduler is not None:
@@ -138,49 +164,74 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
                                  "case by case in this process; leave out --scheduler")
         be = "per case (shear-layer model)"
     out = [np.empty(spec.size) for _ in range(4)]
-    chunks = spec.chunks(int(chunk_size))
     t0 = time.perf_counter()
     with progress_bar(spec.size, f"{spec.model} sweep", enabled=progress, unit="case") as bar:
         def store(i: int, res: tuple[FloatArray, ...]) -> None:
             lo, hi = chunks[i]
             for o, v in zip(out, res, strict=True):
-                o[lo:hi] = v
+                if masks[i] is None:
+                    o[lo:hi] = v
+                else:
+                    o[lo:hi] = np.nan
+                    o[lo:hi][masks[i]] = v
             bar.update(hi - lo)
 
+        todo = [i for i, ok in enumerate(masks) if ok is None or ok.any()]
+        for i in sorted(set(range(len(chunks))) - set(todo)):  # every case failed
+            store(i, tuple(np.empty(0) for _ in range(4)))
+        inputs = [_chunk_inputs(spec, *chunks[i], masks[i]) for i in todo]
         if spec.contact is not None:
-            _run_on_contact(spec, chunks, store)
+            _run_on_contact(spec, inputs, lambda j, res: store(todo[j], res))
         elif scheduler is None:
-            _run_local(spec, chunks, be, threads, store)
+            _run_local(spec, [chunks[i][0] for i in todo], inputs, be, threads,
+                       lambda j, res: store(todo[j], res))
         else:
-            payloads = [(spec.model, *spec.chunk_inputs(lo, hi), spec.increments, spec.options,
-                         spec.strain_energy, be, 1) for lo, hi in chunks]
-            map_on_cluster(_chunk_task, payloads, scheduler, retries=retries, on_result=store)
+            payloads = [(spec.model, *inp, spec.increments, spec.options,
+                         spec.strain_energy, be, 1) for inp in inputs]
+            map_on_cluster(_chunk_task, payloads, scheduler, retries=retries,
+                           on_result=lambda j, res: store(todo[j], res))
     elapsed = time.perf_counter() - t0
     return SweepResult(spec, out[0], out[1], out[2], out[3], backend=be, scheduler=scheduler,
-                       elapsed=elapsed, meta={"chunks": len(chunks), "chunk_size": chunk_size})
+                       elapsed=elapsed, meta={"chunks": len(chunks), "chunk_size": chunk_size},
+                       failures=MappingProxyType(why))
 
 
-def _run_local(spec: SweepSpec, chunks: Sequence[tuple[int, int]], backend: str,
-               threads: int | None, store: Callable[[int, tuple[FloatArray, ...]], None]
-               ) -> None:
-    """Every chunk in this process, in order; each result handed to ``store(index, arrays)``."""
-    for i, (lo, hi) in enumerate(chunks):
-        params, amp = spec.chunk_inputs(lo, hi)
+def _chunk_inputs(spec: SweepSpec, lo: int, hi: int, ok: BoolArray | None
+                  ) -> tuple[dict[str, FloatArray | float], FloatArray | float]:
+    """(params, amplitude) of the cases ``lo:hi``, only those of ``ok`` if given."""
+    params, amp = spec.chunk_inputs(lo, hi)
+    if ok is None:
+        return params, amp
+
+    def pick(v: FloatArray | float) -> FloatArray | float:
+        return v[ok] if isinstance(v, np.ndarray) else v
+
+    return {k: pick(v) for k, v in params.items()}, pick(amp)
+
+
+def _run_local(spec: SweepSpec, starts: Sequence[int],
+               inputs: Sequence[tuple[dict[str, FloatArray | float], FloatArray | float]],
+               backend: str, threads: int | None,
+               store: Callable[[int, tuple[FloatArray, ...]], None]) -> None:
+    """Every chunk in this process, in order; each result handed to ``store(index, arrays)``
+    (``starts``: the index of each chunk's first case, for error messages)."""
+    for i, (lo, (params, amp)) in enumerate(zip(starts, inputs, strict=True)):
         inp = prepare_batch(spec.model, params, amp, spec.increments, spec.options,
                             spec.strain_energy, where=(lo, spec.size))
         r = run_batch(inp, backend=backend, threads=threads)
         store(i, (r.peak_displacement, r.dissipated_energy, r.strain_energy, r.loss_factor))
 
 
-def _run_on_contact(spec: SweepSpec, chunks: Sequence[tuple[int, int]],
+def _run_on_contact(spec: SweepSpec,
+                    inputs: Sequence[tuple[dict[str, FloatArray | float], FloatArray | float]],
                     store: Callable[[int, tuple[FloatArray, ...]], None]) -> None:
     """Every case through :func:`microslip.models.first_loading` on the spec's contact (the
     batch engine has the rigid foundation only); same columns as the batch engine."""
-    for i, (lo, hi) in enumerate(chunks):
-        params, amp = spec.chunk_inputs(lo, hi)
-        m = hi - lo
+    for i, (params, amp) in enumerate(inputs):
+        amps = np.atleast_1d(np.asarray(amp, dtype=float))
+        m = max([amps.size] + [np.size(v) for v in params.values()])
+        amps = np.broadcast_to(amps, (m,))
         cols = {k: np.broadcast_to(np.asarray(v, dtype=float), (m,)) for k, v in params.items()}
-        amps = np.broadcast_to(np.asarray(amp, dtype=float), (m,))
         res = [np.empty(m) for _ in range(4)]
         for j in range(m):
             p = ClampParams(**{k: float(cols[k][j]) for k in PARAM_FIELDS})

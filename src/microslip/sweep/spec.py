@@ -181,7 +181,7 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
                seed: int | None = None, increments: int = 1000,
                options: ModelOptions | None = None,
                strain_energy: str = DEFAULT_STRAIN_ENERGY,
-               contact: Contact | None = None) -> SweepSpec:
+               contact: Contact | None = None, check_draws: bool = True) -> SweepSpec:
     """Build and validate a sweep; random samples are drawn here, from ``seed``.
 
     Parameters
@@ -199,6 +199,9 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
         Seed of the draws; a fresh one is chosen (and recorded in the spec) when None.
     increments, options, strain_energy
         As for :func:`microslip.damping`.
+    check_draws : bool
+        A random draw out of its parameter's range raises (default); False leaves such
+        cases to ``run_sweep(..., failures="record")``, which records them as failed rows.
 
     Raises
     ------
@@ -230,7 +233,7 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
     sampled: tuple[SampledParameter, ...] = ()
     if samples:
         seed = _check_draws(n_samples, seed)
-        sampled = _draw_samples(samples, int(n_samples), seed, seen)
+        sampled = _draw_samples(samples, int(n_samples), seed, seen, check_draws)
     else:
         seed = None
     amp = _fixed_amplitude(amplitude, seen)
@@ -279,8 +282,9 @@ def _check_draws(n_samples: int, seed: int | None) -> int:
 
 
 def _draw_samples(samples: Sequence[tuple[str, Distribution]], n_samples: int, seed: int,
-                  seen: dict[str, str]) -> tuple[SampledParameter, ...]:
-    """Draw every sampled parameter from one generator, in the order given."""
+                  seen: dict[str, str], check: bool = True) -> tuple[SampledParameter, ...]:
+    """Draw every sampled parameter from one generator, in the order given; ``check``: a
+    draw out of the parameter's range raises (else it is left to ``run_sweep``)."""
     rng = np.random.default_rng(seed)
     sampled: list[SampledParameter] = []
     for name_in, dist in samples:
@@ -294,7 +298,8 @@ def _draw_samples(samples: Sequence[tuple[str, Distribution]], n_samples: int, s
         hint = (" (a normal distribution can reach non-physical values; "
                 "use lognormal:MEAN:SD for a positive quantity)"
                 if dist.kind == "normal" else "")
-        _check_parameter_values(name, v, f" (sample {{i}} of {name}){hint}")
+        if check:
+            _check_parameter_values(name, v, f" (sample {{i}} of {name}){hint}")
         sampled.append(SampledParameter(name, dist, v))
     return tuple(sampled)
 
