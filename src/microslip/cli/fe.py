@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from typing import Any
 
 from ..case.options import add_case_option
@@ -108,13 +109,25 @@ def run(args: argparse.Namespace) -> int:
                              strain_energy_kind=args.strain_energy, **_solver_options(args))
     out = result.summary()
     out["files"] = [str(f) for f in files]
+    status = 0 if result.converged else 1
+    for warning in out["warnings"]:
+        print(f"warning: {warning}", file=sys.stderr)
     if args.json:
         print_json(out)
-        return 0 if out["converged"] else 1
+        return status
+    _print_text(args, out, files)
+    return status
+
+
+def _print_text(args: argparse.Namespace, out: dict[str, Any], files: list[Any]) -> None:
+    """The text report; a run that did not converge prints why and no damping figure."""
     opts = out["options"]
     print(f"{args.model} load, {args.solver} solver, mesh {args.mesh} ({opts['element']}, "
           f"{out['dof']} DOF), stick slope {opts['stick_slope']:g} N/mm^3, "
           f"{out['increments']} substeps")
+    if not out["converged"]:
+        print(f"  not converged: {out['message']}; no damping figures")
+        return
     print(f"  amplitude F0           {out['amplitude_N']:12.6g} N  (macroslip at "
           f"{out['macroslip_force_N']:.6g} N)")
     print(f"  peak displacement d0   {out['peak_displacement_mm']:12.6g} mm  "
@@ -128,11 +141,11 @@ def run(args: argparse.Namespace) -> int:
     print(f"  loss factor eta        {out['loss_factor']:12.6g} (dimensionless)")
     print(f"  loop closure           {out['loop_closure']:12.3g} (relative)")
     print(f"  iterations             {out['iterations']:12d}")
-    print(f"  wall time              {out['wall_s']:12.3g} s  "
-          f"(converged: {'yes' if out['converged'] else 'no'})")
+    print(f"  wall time              {out['wall_s']:12.3g} s  (converged: yes)")
+    if out["message"] != "converged":
+        print(f"  note                   {out['message']}")
     if args.out:
         print(f"  job directory          {args.out}")
         for f in files:
             if f.suffix in (".pvd", ".json"):
                 print(f"  {'ParaView' if f.suffix == '.pvd' else 'result':<22s} {f}")
-    return 0 if out["converged"] else 1

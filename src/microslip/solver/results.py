@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..fe.result import ContactHistory
+from ..fe.result import ContactHistory, gross_sliding_message, join_message
 from ..named import result
 from ..results import HysteresisLoop
 
@@ -249,6 +249,13 @@ class LoadPathResult:
         return (self.centre_work / self.dissipated_energy if self.dissipated_energy
                 else float("nan"))
 
+    @property
+    def gross_sliding(self) -> bool:
+        """Some increment has no sticking contact point: the body slides as a whole
+        (:func:`~microslip.fe.result.gross_sliding_states`); the W per cycle is then that of
+        gross sliding, not of microslip."""
+        return gross_sliding_message(self.contact) is not None
+
     def last_cycle(self) -> slice:
         """Samples of the last cycle."""
         n = self.samples_per_cycle
@@ -271,7 +278,9 @@ class LoadPathResult:
                 "dissipated_energy_Nmm": self.dissipated_energy,
                 "tip_work_Nmm": self.tip_work, "centre_work_Nmm": self.centre_work,
                 "tip_share": self.tip_share, "centre_share": self.centre_share,
-                "converged": self.converged, "success": self.success, "message": self.message,
+                "converged": self.converged, "success": self.success,
+                "gross_sliding": self.gross_sliding,
+                "message": join_message(self.message, gross_sliding_message(self.contact)),
                 **self.cycle_work.summary(), **self.stats.summary()}
 
 
@@ -336,9 +345,18 @@ class CouplingResult:
         return all(r.success for r in (self.coupled, self.tip_only, self.centre_only))
 
     @property
+    def gross_sliding(self) -> bool:
+        """The coupled run slides as a whole at some increment (not microslip)."""
+        return self.coupled.gross_sliding
+
+    @property
     def message(self) -> str:
         bad = [f"{name}: {r.message}" for name, r in self.runs().items() if not r.success]
-        return "; ".join(bad) if bad else "converged; W per cycle settled in all three runs"
+        sliding = [f"{name}: {gross_sliding_message(r.contact)}"
+                   for name, r in self.runs().items() if r.gross_sliding]
+        return join_message(
+            "; ".join(bad) if bad else "converged; W per cycle settled in all three runs",
+            *sliding)
 
     def runs(self) -> dict[str, LoadPathResult]:
         return {"coupled": self.coupled, "tip_only": self.tip_only,
@@ -364,7 +382,10 @@ class CouplingResult:
             "tip_only_dissipated_energy_Nmm": self.tip_only.dissipated_energy,
             "centre_only_dissipated_energy_Nmm": self.centre_only.dissipated_energy,
             "centre_direction": self.coupled.centre_direction,
-            "converged": self.converged, "success": self.success, "message": self.message,
+            "converged": self.converged, "success": self.success,
+            "gross_sliding": self.gross_sliding, "message": self.message,
+            "warnings": [f"{name}: {gross_sliding_message(r.contact)}"
+                         for name, r in self.runs().items() if r.gross_sliding],
             "dof": self.coupled.stats.dof, "wall_s": self.wall_s,
             "cycles": {name: r.cycle_work.summary() for name, r in self.runs().items()},
         }

@@ -6,10 +6,10 @@ from typing import Any
 
 import numpy as np
 
-from ..energy import DEFAULT_STRAIN_ENERGY, damping_from_loop
+from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import MacroslipError
 from ..fe.constants import DEFAULT_STICK_SLOPE
-from ..fe.result import FELoopResult
+from ..fe.result import FELoopResult, gross_sliding_message, join_message, loop_damping
 from ..loading import PaperSine, load_case
 from ..params import ClampParams
 from ..results import HysteresisLoop
@@ -100,11 +100,12 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
         stats, centre_direction, float(np.sum(hist.friction_work[load.quarter + 1:])),
         None if hist.u is None else fem, hist.u)
     time = load.time[:done]
+    contact = contact_history(fem, time, hist.slipping, hist.slip)
+    damping, idle = loop_damping(loop, contact, strain_energy_kind)
+    message = (join_message(hist.message, idle, gross_sliding_message(contact))
+               if hist.converged else f"{hist.message}; the loop is incomplete")
     return FELoopResult(
         solver="builtin", load_case=case.name, params=params, amplitude=load.amplitude,
         time=time, force=load.force[:done], displacement=d, loop=loop,
-        damping=damping_from_loop(loop, None, strain_energy_kind),
-        contact=contact_history(fem, time, hist.slipping, hist.slip), dof=fem.dof,
-        iterations=hist.iterations, wall_s=stats.wall_s, converged=hist.converged,
-        message=(hist.message if hist.converged else
-                 f"{hist.message}; the loop is incomplete"), details=details)
+        damping=damping, contact=contact, dof=fem.dof, iterations=hist.iterations,
+        wall_s=stats.wall_s, converged=hist.converged, message=message, details=details)
