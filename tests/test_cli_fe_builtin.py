@@ -42,7 +42,9 @@ def test_builtin_default_matches_closed_form(capsys, model, tol):
 def test_keys_are_those_of_loop_and_of_calculix(capsys):
     data = run_json(capsys, "fe", "--model", "centre", "--mesh", "tiny", "--json")
     loop = run_json(capsys, "loop", "--model", "centre", "--json", "--increments", "20")
-    assert set(loop) <= set(data)
+    # the 1-D model's contact and validity warnings are its own: the FE has its stick slope
+    # in "options" and is the reference the warnings point to
+    assert set(loop) - {"contact", "warnings"} <= set(data)
     for key in ("dof", "wall_s", "converged", "iterations", "loop_closure"):
         assert key in data
     assert set(data["slip_length_by_domain_mm"]) == {"tension", "compression"}

@@ -182,8 +182,11 @@ def test_planar_json(capsys, tmp_path):
                  "--increments", "200", "--samples-per-cycle", "256", "--json",
                  "--plot", str(png)])
     out, err = capsys.readouterr()
-    assert code == 0 and err == "" and png.stat().st_size > 0
+    assert code == 0 and png.stat().st_size > 0
     d = json.loads(out)
+    # the paper's Table 2 zones are squat (L/t 2 and 1): said on stderr and in the JSON
+    assert err.splitlines() == [f"warning: {w}" for w in d["warnings"]]
+    assert any("tip model: the clamped zone is squat" in w for w in d["warnings"])
     assert (d["tip_amplitude_N"], d["centre_amplitude_N"], d["ratio"]) == (4000.0, 4000.0, 2.0)
     assert d["eccentricity"] == pytest.approx(math.sqrt(3) / 2)
     for key in ("dissipated_energy_Nmm", "paper_dissipated_energy_Nmm", "paper_loss_factor",

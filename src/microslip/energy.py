@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numba import njit
@@ -30,6 +31,9 @@ from .errors import ParameterError
 from .options import ModelOptions
 from .params import ClampParams
 from .results import Backbone, DampingResult, HysteresisLoop
+
+if TYPE_CHECKING:
+    from .models.contact import Contact
 
 __all__ = [
     "DEFAULT_STRAIN_ENERGY",
@@ -240,6 +244,10 @@ def damping_from_backbone(backbone: Backbone,
     n = f.shape[0] - 1
     if n < 1:
         raise ParameterError("a Masing loop needs a backbone of at least 1 increment")
+    if not (d[-1] > 0.0 and f[-1] > 0.0):
+        raise ParameterError(
+            f"amplitude {f[-1]:g} N gives a peak displacement of {d[-1]:g} mm: too small to form "
+            "a loop in double precision; give a larger amplitude")
     q, q_k0, d_km1, d_k0, k0 = backbone_sums(f, d)
     w, u, _ = masing_energies(f[-1], d[-1], q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n,
                               float(backbone.stored_energy[-1]), code)
@@ -258,8 +266,13 @@ def damping_from_backbone(backbone: Backbone,
 
 def damping(model: str, params: ClampParams, amplitude: float, increments: int = 1000,
             options: ModelOptions | None = None,
-            strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> DampingResult:
+            strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
+            contact: Contact | None = None) -> DampingResult:
     """Backbone, Masing loop, W_d, U and eta of one model at one amplitude.
+
+    ``contact`` (:class:`~microslip.models.contact.Contact`): the interface under the bar;
+    default the paper's rigid foundation. On a contact that is not rigid the ``stored``
+    strain energy (the bar's own elastic energy) is not defined and is refused.
 
     Examples
     --------
@@ -271,5 +284,9 @@ def damping(model: str, params: ClampParams, amplitude: float, increments: int =
     from .models import first_loading
 
     _check_kind(strain_energy_kind)
-    bb = first_loading(model, params, amplitude, increments, options)
+    if contact is not None and not contact.is_rigid and _kind_name(strain_energy_kind) == "stored":
+        raise ParameterError(
+            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
+            "contact with a stick slope or pressure law use secant, backbone or branch")
+    bb = first_loading(model, params, amplitude, increments, options, contact)
     return damping_from_backbone(bb, strain_energy_kind)

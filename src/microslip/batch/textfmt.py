@@ -1,22 +1,26 @@
-"""Fast, exact text formatting of float tables: every number as C's ``%.15g``.
+"""Fast, exact text formatting of float tables: each number in the fewest digits that read back.
 
 Writing a million CSV rows one Python ``%`` at a time takes seconds; this module formats a
 whole block of values in compiled code (numba, parallel) and gives byte for byte the text of
-``"%.15g" % x`` for every double ``x`` (15 significant digits, correctly rounded with ties to
-even, trailing zeros dropped, ``nan``/``inf``). Fifteen digits are what a double always
-carries faithfully (DBL_DIG); the batch results themselves agree with the single-loop API to
-about 1e-13.
+:func:`format_number`: ``"%.{n}g" % x`` with n the fewest of 15, 16 or 17 significant digits
+for which ``float(text) == x`` (correctly rounded with ties to even, trailing zeros dropped,
+``nan``/``inf``). Fifteen digits always survive a round trip from decimal (DBL_DIG), so 0.8
+stays ``0.8``; seventeen always bring a double back bit for bit (DBL_DECIMAL_DIG), so a table
+written and read again is the table computed.
 
-How: x = M 10^(e - 14) with the integer M in [1e14, 1e15). The product y = |x| 10^(14 - e) is
+How: x = M 10^(e - 16) with the integer M in [1e16, 1e17). The product y = |x| 10^(16 - e) is
 formed as a double-double (Dekker's exact product of |x| with a double-double 10^p from a
-table), so M = round(y) is exact unless y lies within 1e-9 of a half-integer; those rare
-values (exact ties included) are decided by Python's correctly rounded ``%.14e``. Without
-numba every value goes through Python's ``%.15g``.
+table); M = round(y) is taken in 64-bit integers (M exceeds 2^53: the high part is an
+integer-valued double and the low part carries the fraction). The 15- and 16-digit roundings
+are taken from y directly (not from M, which would round twice) and kept when they lie within
+half an ulp of x. Values within 1e-9 (relative) of a tie or of that limit, exact ties
+included, are decided by Python. Without numba every value goes through Python.
 """
 
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Sequence
 from fractions import Fraction
 
@@ -26,9 +30,11 @@ from numpy.typing import ArrayLike, NDArray
 
 HAVE_NUMBA = True  # numba is a core dependency; the pure-Python path stays as reference
 
-__all__ = ["format_table", "format_table_python"]
+__all__ = ["fewest_digits", "format_number", "format_table", "format_table_python"]
 
 _P_MIN, _P_MAX = -300, 300  # exponents of the double-double table of powers of ten
+DIGITS = 17  # significant digits of every number written (round-trip exact for doubles)
+_LOW = 10 ** (DIGITS - 1)  # M lies in [_LOW, 10 _LOW)
 #: "00", "01", ..., "99" as bytes, for writing two digits at a time.
 _PAIRS = np.frombuffer("".join(f"{i:02d}" for i in range(100)).encode(), dtype=np.uint8).copy()
 
@@ -54,7 +60,7 @@ def _split(x):
 
 @njit(cache=True, inline="always")
 def _strip(m):
-    nd = 15
+    nd = DIGITS
     while nd > 1:
         q = m // 10
         if m - 10 * q != 0:
@@ -64,17 +70,51 @@ def _strip(m):
     return m, nd
 
 
+@njit(cache=True, inline="always")
+def _fewest_digits(m, fl, t, a, ph, pl):
+    """(n, m_n): the fewest significant digits n (15, 16 or 17) whose correct rounding of
+    y = fl + t = a 10^p reads back as the double a, and that rounding on the 17-digit scale
+    (m, the 17-digit rounding, when n = 17); (-1, m) when too close to a tie or to the
+    round-trip limit to decide in double precision.
+
+    A decimal C reads back as a when |C - y| is less than half an ulp of a (times 10^p); the
+    interval below a power of two is half as wide. 17 digits always read back.
+    """
+    f, ex = math.frexp(a)
+    h = math.ldexp(ph, ex - 54) + math.ldexp(pl, ex - 54)  # half an ulp of a, times 10^p
+    n = 15
+    for q in (100, 10):
+        base = m - m % q
+        below = float(base + q // 2 - np.int64(fl)) - t  # (base + q/2) - y
+        if abs(below) < 1e-9:
+            return -1, m
+        c = base if below > 0 else base + q
+        err = float(c - np.int64(fl)) - t  # c - y
+        lim = 0.5 * h if (f == 0.5 and err < 0) else h
+        if abs(abs(err) - lim) < 1e-9 * lim:
+            return -1, m
+        if abs(err) < lim:
+            return n, c
+        n += 1
+    return DIGITS, m
+
+
 @njit(cache=True, parallel=True)
-def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
-    """|x| = mant 10^(expo - ndig + 1) with ndig digits (trailing zeros stripped).
+def _decompose(x, p_hi, p_lo, mant, ndig, expo, prec, kind):
+    """|x| = mant 10^(expo - ndig + 1) with ndig digits (trailing zeros stripped), the
+    correct rounding of x to prec = 15, 16 or 17 significant digits, the fewest that read
+    back as x.
 
     kind: 0 finite, 1 zero, 2 nan, 3 inf, 4 undecided (Python decides).
     """
+    low = np.int64(_LOW)
+    lowf = float(_LOW)
     for j in prange(x.shape[0]):
         v = x[j]
         mant[j] = 0
         ndig[j] = 1
         expo[j] = 0
+        prec[j] = DIGITS
         if v != v:
             kind[j] = 2
             continue
@@ -91,7 +131,7 @@ def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
         e = int(np.floor(np.log10(a)))
         down = False  # the previous try had e one too large
         for _ in range(4):
-            p = 14 - e
+            p = DIGITS - 1 - e
             if p < -300 or p > 300:
                 break
             ph = p_hi[p + 300]
@@ -102,32 +142,36 @@ def _decompose(x, p_hi, p_lo, mant, ndig, expo, kind):
             yl = (((ah * bh - yh) + ah * bl) + al * bh) + al * bl + a * pl
             # y = yh + yl = |x| 10^p, exact when 10^p is a double (0 <= p <= 22)
             fl = np.floor(yh)
-            t = (yh - fl) + yl
-            if abs(t - 0.5) < 1e-9 or abs(t + 0.5) < 1e-9 or abs(t - 1.5) < 1e-9:
+            t = (yh - fl) + yl  # y - fl, |t| < 9: yh ~ 1e16 has an ulp of up to 16
+            frac = t - np.floor(t)
+            if abs(frac - 0.5) < 1e-9:  # a tie or too close to one to decide here
                 break
-            if yh == 1e14 and pl != 0.0 and abs(yl) < 1e-9:
+            if yh == lowf and pl != 0.0 and abs(yl) < 1e-9:
                 break
-            m = fl + np.floor(t + 0.5)
-            if m >= 1e15:
-                if down:  # y in [1e15 - 0.5, 1e15) one exponent down: 1.00000000000000e(e+1)
-                    m, e = 1e14, e + 1
-                else:
-                    e += 1
-                    continue
-            elif yh < 1e14 or (yh == 1e14 and yl < 0.0):
+            m = np.int64(fl) + np.int64(np.floor(t + 0.5))
+            if m >= 10 * low and not down:
+                e += 1
+                continue
+            if m < 10 * low and (yh < lowf or (yh == lowf and yl < 0.0)):
                 e -= 1
                 down = True
                 continue
-            mj, nd = _strip(np.int64(m))
+            n, m = _fewest_digits(m, fl, t, a, ph, pl)
+            if n < 0:  # too close to a tie or to the round-trip limit: Python decides
+                break
+            if m >= 10 * low:  # rounded up to the next decade: 1.000...e(e+1)
+                m, e = low, e + 1
+            mj, nd = _strip(m)
             mant[j] = mj
             ndig[j] = nd
             expo[j] = e
+            prec[j] = n
             kind[j] = 0
             break
 
 
 @njit(cache=True, inline="always")
-def _field_len(nd, e, kind, neg):
+def _field_len(nd, e, prec, kind, neg):
     s = 1 if neg else 0
     if kind == 1:
         return s + 1
@@ -135,7 +179,7 @@ def _field_len(nd, e, kind, neg):
         return 3
     if kind == 3:
         return s + 3
-    if -4 <= e < 15:
+    if -4 <= e < prec:
         if e >= 0:
             return s + (e + 1 if nd <= e + 1 else nd + 1)
         return s + 2 + (-e - 1) + nd
@@ -160,7 +204,7 @@ def _write_digits(buf, pos, m, nd, pairs):
 
 
 @njit(cache=True, inline="always")
-def _write_field(buf, pos, m, nd, e, kind, neg, pairs):
+def _write_field(buf, pos, m, nd, e, prec, kind, neg, pairs):
     if kind == 2:
         buf[pos] = 110  # n
         buf[pos + 1] = 97  # a
@@ -177,7 +221,7 @@ def _write_field(buf, pos, m, nd, e, kind, neg, pairs):
         buf[pos + 1] = 110  # n
         buf[pos + 2] = 102  # f
         return pos + 3
-    if -4 <= e < 15:
+    if -4 <= e < prec:
         if e >= 0:
             _write_digits(buf, pos, m, nd, pairs)
             if nd <= e + 1:
@@ -214,7 +258,7 @@ def _write_field(buf, pos, m, nd, e, kind, neg, pairs):
 
 
 @njit(cache=True, parallel=True)
-def _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, pairs):
+def _layout(mant, ndig, expo, prec, kind, neg, colmap, const_buf, const_off, pairs):
     """Rows of text: column c is varying column colmap[c] >= 0 of the decomposed values
     (row-major, nvar per row) or, for colmap[c] = -k - 1, the constant text
     const_buf[const_off[k]:const_off[k + 1]] on every row."""
@@ -234,7 +278,7 @@ def _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, pairs):
         total = ncol + const_len  # separators, the newline and the constant fields
         for v in range(nvar):
             j = r * nvar + v
-            total += _field_len(ndig[j], expo[j], kind[j], neg[j])
+            total += _field_len(ndig[j], expo[j], prec[j], kind[j], neg[j])
         lens[r + 1] = total
     for r in range(nrow):
         lens[r + 1] += lens[r]
@@ -244,7 +288,8 @@ def _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, pairs):
         for c in range(ncol):
             if colmap[c] >= 0:
                 j = r * nvar + colmap[c]
-                pos = _write_field(buf, pos, mant[j], ndig[j], expo[j], kind[j], neg[j], pairs)
+                pos = _write_field(buf, pos, mant[j], ndig[j], expo[j], prec[j], kind[j],
+                                   neg[j], pairs)
             else:
                 k = -colmap[c] - 1
                 for b in range(const_off[k], const_off[k + 1]):
@@ -255,17 +300,30 @@ def _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, pairs):
     return buf
 
 
+def fewest_digits(v: float) -> int:
+    """The fewest significant digits, 15 to 17, whose ``%g`` text reads back as ``v``."""
+    for n in (15, 16):
+        if float(f"{v:.{n}g}") == v:
+            return n
+    return DIGITS
+
+
+def format_number(v: float) -> str:
+    """``v`` as ``%.{n}g`` with n = :func:`fewest_digits` (nan and inf as ``%g`` writes them)."""
+    return f"{v:.{fewest_digits(v) if math.isfinite(v) else DIGITS}g}"
+
+
 def format_table_python(columns: Sequence[ArrayLike | float]) -> bytes:
-    """Reference and fallback: rows of ``%.15g`` values joined by commas, one per line."""
+    """Reference and fallback: rows of :func:`format_number` texts joined by commas."""
     arrays = [np.asarray(c, dtype=np.float64) for c in columns]
     nrow = max((a.size for a in arrays if a.ndim), default=1)
     cols = [np.broadcast_to(a.ravel() if a.ndim else a, (nrow,)).tolist() for a in arrays]
-    return "".join(",".join(f"{v:.15g}" for v in row) + "\n"
+    return "".join(",".join(format_number(v) for v in row) + "\n"
                    for row in zip(*cols, strict=True)).encode()
 
 
 def format_table(columns: Sequence[ArrayLike | float]) -> bytes | NDArray[np.uint8]:
-    """CSV text of equal-length float columns, every value as ``"%.15g" % x``.
+    """CSV text of equal-length float columns, every value as ``"%.17g" % x``.
 
     A column given as a single number has that value on every row (it is formatted once).
     Returns a bytes-like object (a uint8 array when compiled) to hand to a binary file.
@@ -293,7 +351,7 @@ def format_table(columns: Sequence[ArrayLike | float]) -> bytes | NDArray[np.uin
             nv += 1
         else:
             colmap[i] = -len(const_text) - 1
-            const_text.append(f"{float(a):.15g}".encode())
+            const_text.append(format_number(float(a)).encode())
     const_off = np.cumsum([0] + [len(t) for t in const_text], dtype=np.int64)
     const_buf = np.frombuffer(b"".join(const_text) or b"\0", dtype=np.uint8)
     x = np.empty((nrow, nv))
@@ -303,15 +361,18 @@ def format_table(columns: Sequence[ArrayLike | float]) -> bytes | NDArray[np.uin
     mant = np.empty(flat.shape[0], dtype=np.int64)
     ndig = np.empty(flat.shape[0], dtype=np.int64)
     expo = np.empty(flat.shape[0], dtype=np.int64)
+    prec = np.empty(flat.shape[0], dtype=np.int64)
     kind = np.empty(flat.shape[0], dtype=np.int8)
     p_hi, p_lo = _pow10_table()
-    _decompose(flat, p_hi, p_lo, mant, ndig, expo, kind)
+    _decompose(flat, p_hi, p_lo, mant, ndig, expo, prec, kind)
     for j in np.flatnonzero(kind == 4):
-        s = f"{abs(float(flat[j])):.14e}"
-        digits = (s[0] + s[2:16]).rstrip("0") or "0"
+        n = fewest_digits(float(flat[j]))
+        s = f"{abs(float(flat[j])):.{n - 1}e}"
+        digits = (s[0] + s[2:n + 1]).rstrip("0") or "0"
         mant[j] = int(digits)
         ndig[j] = len(digits)
-        expo[j] = int(s[17:])
+        expo[j] = int(s[n + 2:])
+        prec[j] = n
         kind[j] = 0
     neg = np.signbit(flat) & ~np.isnan(flat)
-    return _layout(mant, ndig, expo, kind, neg, colmap, const_buf, const_off, _PAIRS)
+    return _layout(mant, ndig, expo, prec, kind, neg, colmap, const_buf, const_off, _PAIRS)

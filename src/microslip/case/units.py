@@ -40,8 +40,8 @@ def plausibility_warnings(values: Mapping[str, float | None], where: str = "") -
     out = []
     for name, (low, high, unit, below, above) in PLAUSIBLE.items():
         x = values.get(name)
-        if x is None or not math.isfinite(x):
-            continue
+        if x is None or not math.isfinite(x) or x <= 0:
+            continue  # out of range altogether: the range check says so, in one line
         u = f" {unit}" if unit else ""
         if x < low:
             out.append(f"{where}{name} {x:g}{u} is below {low:g}{u}: {below}")

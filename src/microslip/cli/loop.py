@@ -7,7 +7,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..energy import damping
-from ..models import MODELS, check_increments, get_model, macroslip_force
+from ..models import MODELS, Contact, check_increments, get_model, macroslip_force
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..results import DampingResult
@@ -18,6 +18,13 @@ from .common import (
     model_options,
     params_from_args,
     print_json,
+)
+from .contact import (
+    add_contact_options,
+    contact_from_args,
+    contact_json,
+    report_warnings,
+    warnings_for,
 )
 
 __all__ = ["add_parser", "result_json"]
@@ -33,6 +40,7 @@ def add_parser(sub: Any) -> None:
                    help="number of force increments of the first loading (default 1000)")
     add_model_options(p)
     add_strain_energy(p)
+    add_contact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="write a figure of loop and backbone")
     add_case_option(p)
@@ -40,7 +48,8 @@ def add_parser(sub: Any) -> None:
 
 
 def result_json(model: str, params: ClampParams, result: DampingResult, increments: int,
-                options: ModelOptions) -> dict[str, Any]:
+                options: ModelOptions, contact: Contact | None = None,
+                warnings: list[str] | None = None) -> dict[str, Any]:
     """The JSON object of a loop result (made by :func:`microslip.damping`, so it carries its
     backbone); keys carry their units."""
     bb = result.backbone
@@ -53,19 +62,23 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
         "params": params.as_dict(),
         "options": {"poisson": options.poisson, "length_update": options.length_update,
                     "centre_reading": options.centre},
+        "contact": contact_json(contact),
         "increments": increments,
         "amplitude_N": result.amplitude,
         "macroslip_force_N": macroslip_force(model, params, options),
     }
-    return out | result.loop_json(slip)
+    return out | result.loop_json(slip) | {"warnings": list(warnings or [])}
 
 
 def run(args: argparse.Namespace) -> int:
     params, amplitude = params_from_args(args)
     n = check_increments(args.increments)
     opt = model_options(args)
-    result = damping(args.model, params, amplitude, n, opt, args.strain_energy)
-    out = result_json(args.model, params, result, n, opt)
+    contact = contact_from_args(args, params)
+    result = damping(args.model, params, amplitude, n, opt, args.strain_energy, contact)
+    warnings = warnings_for(args.model, params, amplitude, contact)
+    out = result_json(args.model, params, result, n, opt, contact, warnings)
+    report_warnings(warnings)
     if args.plot:
         from ..plot import plot_damping
 
@@ -77,6 +90,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"{args.model} model ({MODELS[args.model].equations}), {n} increments, "
           f"poisson={opt.poisson}, length_update={opt.length_update}"
           + (f", centre reading={reading}" if reading else ""))
+    print(f"  contact                {_contact_text(contact)}")
     print(f"  amplitude F0           {amplitude:12.6g} N  (macroslip at "
           f"{out['macroslip_force_N']:.6g} N)")
     print(f"  peak displacement d0   {result.peak_displacement:12.6g} mm")
@@ -88,3 +102,12 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"  figure                 {args.plot}")
     return 0
+
+
+def _contact_text(contact: Contact | None) -> str:
+    if contact is None:
+        return "rigid foundation, uniform pressure (the paper's)"
+    layer = (f"stick slope {contact.stick_slope:g} N/mm^3" if contact.stick_slope < float("inf")
+             else "rigid contact")
+    lag = " + the body's shear lag" if contact.shear_lag else ""
+    return f"{layer}{lag}, {contact.law_name} pressure"

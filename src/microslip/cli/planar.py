@@ -21,6 +21,13 @@ from ..planar import (
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
 from .common import add_model_options, add_strain_energy, model_options, number, print_json
+from .contact import (
+    add_contact_options,
+    contact_from_args,
+    contact_json,
+    report_warnings,
+    warnings_for,
+)
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 
@@ -61,6 +68,7 @@ def add_parser(sub: Any) -> None:
                    help="tip models in parallel in the whole clamp (default 2: the paper's "
                         "tip model is one symmetric half)")
     add_model_options(p)
+    add_contact_options(p)
     add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22")
     p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
                    default=DEFAULT_WORK_STRAIN_ENERGY,
@@ -145,9 +153,14 @@ def run_fe(args: argparse.Namespace) -> int:
         if not 1 <= value <= 100_000:
             raise ParameterError(f"{name} must be a whole number in [1, 100000], got {value}")
     params = preset(args.preset)
+    if args.pressure_law is not None or args.no_shear_lag:
+        raise ParameterError("--pressure-law and --no-shear-lag apply to the analytical "
+                             "models; the FE body has its own shear field and uniform clamping")
+    slope = {} if args.stick_slope is None else {"stick_slope": args.stick_slope}
     result = coupling_study(params, at, ac, args.phase, cycles=args.cycles,
                             increments_per_cycle=args.increments_per_cycle,
-                            mesh=args.mesh or DEFAULT_MESH, cycle_tol=args.cycle_tolerance)
+                            mesh=args.mesh or DEFAULT_MESH, cycle_tol=args.cycle_tolerance,
+                            **slope)
     out = {"preset": args.preset, "mesh": args.mesh or DEFAULT_MESH,
            "units": {"force": "N", "energy": "N·mm", "angle": "degrees", "time": "s"},
            **result.summary()}
@@ -179,12 +192,14 @@ def run_analytical(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     n = check_increments(args.increments)
     opt = model_options(args)
+    tip_params, centre_params = preset(args.tip_preset), preset(args.centre_preset)
+    contact = contact_from_args(args, tip_params)
     try:
         result = planar_damping(
-            preset(args.tip_preset), preset(args.centre_preset), at, ac, increments=n,
+            tip_params, centre_params, at, ac, increments=n,
             options=opt, strain_energy=args.strain_energy, phase_deg=args.phase,
             work_energy=args.work_energy, tip_symmetry=args.tip_symmetry,
-            samples_per_cycle=args.samples_per_cycle)
+            samples_per_cycle=args.samples_per_cycle, contact=contact)
     except MacroslipError as exc:
         if "centre model" in str(exc) and opt.centre == "physical":
             raise MacroslipError(f"{exc}; the paper's reading of Eq. 11 "
@@ -194,8 +209,12 @@ def run_analytical(args: argparse.Namespace) -> int:
         from ..plot.paper import figure_planar
 
         figure_planar(result, args.plot)
+    warnings = [f"tip model: {w}" for w in warnings_for("tip", tip_params, at, contact)]
+    warnings += [f"centre model: {w}" for w in warnings_for("centre", centre_params, ac, contact)]
+    report_warnings(warnings)
     if args.json:
-        print_json(result_json(result, args))
+        print_json(result_json(result, args) | {"contact": contact_json(contact),
+                                                "warnings": warnings})
         return 0
     w = result.work
     print(f"planar case R = {result.ratio:.6g} (eccentricity {result.eccentricity:.4f}), "

@@ -22,6 +22,7 @@ from .common import (
     number,
     params_from_args,
 )
+from .contact import add_contact_options, contact_from_args
 
 __all__ = ["add_parser", "run"]
 
@@ -102,6 +103,7 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="force increments of each first loading (default 1000)")
     add_model_options(p)
+    add_contact_options(p)
     add_strain_energy(p)
     o = p.add_argument_group("output and execution")
     o.add_argument("--out", metavar="FILE", help="write FILE.csv or FILE.nc (NetCDF)")
@@ -174,7 +176,8 @@ def run(args: argparse.Namespace) -> int:
     opt = model_options(args)
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
-                      increments=n, options=opt, strain_energy=args.strain_energy)
+                      increments=n, options=opt, strain_energy=args.strain_energy,
+                      contact=contact_from_args(args, params))
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
                        threads=args.threads, retries=args.retries,
                        progress=not args.no_progress)
@@ -254,7 +257,7 @@ def _run_planar(args: argparse.Namespace) -> int:
     opt = model_options(args)
     sweep = ratio_sweep(ratios, tip_params=tip_p, centre_params=centre_p, levels=args.levels,
                         increments=n, options=opt, strain_energy=args.strain_energy,
-                        progress=not args.no_progress)
+                        progress=not args.no_progress, contact=contact_from_args(args, tip_p))
     if args.out:
         write_ratio_sweep(sweep, args.out)
     if args.plot:

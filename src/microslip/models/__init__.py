@@ -58,11 +58,14 @@ from ..params import ClampParams, check_amplitude
 from ..results import Backbone
 from .batch_kernels import centre_kernel, tip_kernel
 from .centre import centre_backbone, centre_step, centre_stored_energy
+from .contact import DEFAULT_CONTACT, Contact, on_contact
 from .tip import tip_backbone, tip_step, tip_stored_energy
 
 __all__ = [
+    "DEFAULT_CONTACT",
     "MAX_INCREMENTS",
     "MODELS",
+    "Contact",
     "ModelSpec",
     "RigidLimit",
     "centre_step",
@@ -209,7 +212,8 @@ def check_below_macroslip(model: str, params: ClampParams, amplitude: float,
 
 
 def first_loading(model: str, params: ClampParams, amplitude: float, increments: int = 1000,
-                  options: ModelOptions | None = None) -> Backbone:
+                  options: ModelOptions | None = None,
+                  contact: Contact | None = None) -> Backbone:
     """Run an incremental model from rest to ``amplitude`` in equal force increments.
 
     Parameters
@@ -223,6 +227,10 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
         Number n of equal force increments F0/n ("backward finite difference").
     options : ModelOptions, optional
         Reading of the paper's equations; default :class:`ModelOptions()`.
+    contact : Contact, optional
+        The interface under the bar (:class:`~microslip.models.contact.Contact`): its stick
+        slope, the body's shear lag and the clamping-pressure law. Default: the paper's rigid
+        foundation under uniform pressure.
 
     Returns
     -------
@@ -234,7 +242,9 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     -----
     The recurrence is the model's one compiled step function (tip: Eqs 2-10,
     :func:`~microslip.models.tip.tip_step`; centre: Eqs 11-18,
-    :func:`~microslip.models.centre.centre_step`), the same the batch engine runs.
+    :func:`~microslip.models.centre.centre_step`), the same the batch engine runs. On a
+    contact that is not rigid, the exact shear-layer curve with the recurrence's corrections
+    (:func:`~microslip.models.contact.on_contact`).
 
     Raises
     ------
@@ -249,6 +259,17 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     n = check_increments(increments)
     check_below_macroslip(model, params, f0, opt)
 
+    rigid = _rigid_loading(spec, params, f0, n, opt)
+    if contact is None or contact.is_rigid:
+        return rigid
+    plain = ModelOptions(poisson="off", length_update=False, centre=opt.centre)
+    return on_contact(rigid, _rigid_loading(spec, params, f0, n, plain), contact,
+                      spec.load_case)
+
+
+def _rigid_loading(spec: ModelSpec, params: ClampParams, f0: float, n: int,
+                   opt: ModelOptions) -> Backbone:
+    model = spec.name
     p = params
     forces, disp, stored, slip, width, thickness = spec.backbone(
         f0, n, p.length, p.width, p.thickness, p.modulus, p.poisson_ratio, p.friction,

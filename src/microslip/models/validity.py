@@ -60,11 +60,12 @@ class Validity:
                 "shear_lag_effect": self.shear_lag_effect, "warnings": list(self.warnings)}
 
 
-def _fe_hint(loading: str, p: ClampParams, amplitude: float) -> str:
+def _fe_hint(loading: str, p: ClampParams, amplitude: float, stick_slope: float) -> str:
+    slope = f" --stick-slope {stick_slope:g}" if math.isfinite(stick_slope) else ""
     return (f"check with `microslip fe --model {loading} --length {p.length:g} --width "
-            f"{p.width:g} --thickness {p.thickness:g} --modulus {p.modulus:g} --poisson "
+            f"{p.width:g} --thickness {p.thickness:g} --modulus {p.modulus:g} --poisson-ratio "
             f"{p.poisson_ratio:g} --friction {p.friction:g} --normal-force {p.normal_force:g} "
-            f"--amplitude {amplitude:g}`")
+            f"--amplitude {amplitude:g}{slope}`")
 
 
 def validity(loading: str, params: ClampParams, amplitude: float, *,
@@ -75,6 +76,11 @@ def validity(loading: str, params: ClampParams, amplitude: float, *,
     shear-layer model with the body's shear lag.
     """
     slender = params.length / params.thickness
+    if amplitude >= params.macroslip_force:
+        return Validity(slender, 1.0, math.nan, math.nan, (
+            f"the load {amplitude:g} N reaches the slip limit mu F_N = "
+            f"{params.macroslip_force:g} N of a bar pressed on one face: that is gross "
+            "sliding, not microslip (only the paper's reading of Eq. 11 puts it at 2 mu F_N)",))
     slip = virgin_curve(loading, params, [amplitude], stick_slope=stick_slope,
                         shear_lag=math.isfinite(stick_slope), law=law)[0]
     span = params.length if slip.shape[0] == 1 else 0.5 * params.length
@@ -89,19 +95,22 @@ def validity(loading: str, params: ClampParams, amplitude: float, *,
                                 law=law)[0]
         sensitivity = math.inf if lo <= 0.0 else math.log(hi / lo) / math.log(4.0)
     warnings = []
-    hint = _fe_hint(loading, params, amplitude)
+    hint = _fe_hint(loading, params, amplitude, stick_slope)
     if slender < MIN_SLENDERNESS:
         warnings.append(f"the clamped zone is squat (length/thickness {slender:.3g} < "
                         f"{MIN_SLENDERNESS:g}): a bar model misses its 2-D stress field and the "
                         f"pressure shift under load; {hint}")
     if sensitivity > MAX_SENSITIVITY:
-        warnings.append(f"W_d depends strongly on the contact stiffness (d ln W_d / d ln k = "
-                        f"{sensitivity:.2g} > {MAX_SENSITIVITY:g}): the result is only as good "
-                        f"as --stick-slope {stick_slope:g} N/mm^3")
+        how = (f"d ln W_d / d ln k = {sensitivity:.2g} > {MAX_SENSITIVITY:g}"
+               if math.isfinite(sensitivity) else "no slip at all with half the stiffness")
+        warnings.append(f"W_d depends strongly on the contact stiffness ({how}): the result is "
+                        f"only as good as --stick-slope {stick_slope:g} N/mm^3")
     if fraction > MAX_SLIP_FRACTION:
         warnings.append(f"the slip zone covers {100 * fraction:.0f} % of the clamped length "
                         f"(> {100 * MAX_SLIP_FRACTION:.0f} %): close to gross sliding")
     if not math.isfinite(stick_slope) and lag_effect > MAX_SHEAR_LAG_EFFECT:
+        by = (f"{100 * lag_effect:.0f} %" if lag_effect < 9.0
+              else "more than a factor of 10")
         warnings.append(f"the rigid-foundation model ignores the body's shear lag, which "
-                        f"changes W_d by {100 * lag_effect:.0f} % here; give --stick-slope")
+                        f"changes W_d by {by} here; give --stick-slope")
     return Validity(slender, fraction, sensitivity, lag_effect, tuple(warnings))

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from ..energy import STRAIN_ENERGY, damping_from_backbone
 from ..errors import MicroslipError, ParameterError
-from ..models import check_increments, first_loading
+from ..models import Contact, check_increments, first_loading
 from ..named import result
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude, preset
@@ -60,10 +60,10 @@ PAPER_STRAIN_ENERGY = "branch"
 
 @functools.lru_cache(maxsize=32)
 def _backbone(model: str, params: ClampParams, amplitude: float, increments: int,
-              options: ModelOptions) -> Backbone:
+              options: ModelOptions, contact: Contact | None = None) -> Backbone:
     """:func:`~microslip.first_loading`, remembered: sweeps over R reuse the same amplitudes
     (a Backbone's arrays are read-only, so sharing it is safe)."""
-    return first_loading(model, params, amplitude, increments, options)
+    return first_loading(model, params, amplitude, increments, options, contact)
 
 
 @result
@@ -180,7 +180,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
                    strain_energy: str = PAPER_STRAIN_ENERGY, phase_deg: float = 0.0,
                    work_energy: str = DEFAULT_WORK_STRAIN_ENERGY,
                    tip_symmetry: int = TIP_SYMMETRY,
-                   samples_per_cycle: int = 2048) -> PlanarResult:
+                   samples_per_cycle: int = 2048,
+                   contact: Contact | None = None) -> PlanarResult:
     """Damping of a planar load case: the paper's coupling and the work-based result.
 
     Parameters
@@ -208,6 +209,9 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
         share of the work and of U, and R.
     samples_per_cycle : int
         Samples of the work-based cycle.
+    contact : Contact, optional
+        The interface under both models (stick slope, shear lag, pressure law); default the
+        paper's rigid foundation. The ``stored`` strain energy is refused on any other.
 
     Returns
     -------
@@ -241,8 +245,12 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     copt = centre_options if centre_options is not None else opt
     ratio = force_ratio(at, ac, tip_symmetry)
 
-    tip_bb = _backbone("tip", tip_params, at, n, opt)
-    centre_bb = _backbone("centre", centre_params, ac, n, copt)
+    if contact is not None and not contact.is_rigid and kind == "stored":
+        raise ParameterError(
+            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
+            "contact with a stick slope or pressure law use secant, backbone or branch")
+    tip_bb = _backbone("tip", tip_params, at, n, opt, contact)
+    centre_bb = _backbone("centre", centre_params, ac, n, copt, contact)
     tip = damping_from_backbone(tip_bb, kind)
     centre = damping_from_backbone(centre_bb, kind)
     paper = paper_coupling(tip_bb, centre_bb, kind)
@@ -250,7 +258,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     path = LoadPath.harmonic(tip_symmetry * at, ac, phi, samples_per_cycle)
     response = analytical_response(path, tip_bb, centre_bb, tip_symmetry)
     works = {}
-    for k in STRAIN_ENERGY:
+    layered = contact is not None and not contact.is_rigid
+    for k in (k for k in STRAIN_ENERGY if not (layered and k == "stored")):
         works[k] = work_damping(response, ComponentEnergy(tip_bb, k, tip_symmetry),
                                 ComponentEnergy(centre_bb, k, 1), work_energy, k)
     work = works[kind]
@@ -264,7 +273,8 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
         tip=tip,
         centre=centre,
         paper=paper,
-        paper_loss_factors=paper_loss_factors(paper),
+        paper_loss_factors={k: v for k, v in paper_loss_factors(paper).items()
+                            if not (layered and k == "stored")},
         work=work,
         work_dissipated_energy=work.dissipated_energy,
         work_strain_energy=work.strain_energy,
@@ -403,7 +413,8 @@ def loss_factor_vs_ratio(ratios: Iterable[float] = PAPER_RATIOS, *,
                          strain_energy: str = PAPER_STRAIN_ENERGY, phase_deg: float = 0.0,
                          work_energy: str = DEFAULT_WORK_STRAIN_ENERGY,
                          tip_symmetry: int = TIP_SYMMETRY, samples_per_cycle: int = 2048,
-                         skip_errors: bool = True, progress: Any = None) -> RatioSweep:
+                         skip_errors: bool = True, progress: Any = None,
+                         contact: Contact | None = None) -> RatioSweep:
     """The loss factor of each force ratio R at the paper's levels (Fig. 12).
 
     Parameters
@@ -455,7 +466,7 @@ def loss_factor_vs_ratio(ratios: Iterable[float] = PAPER_RATIOS, *,
             res: PlanarResult | None = planar_damping(
                 tp, cp, at, ac, increments=increments, options=opt, centre_options=copt,
                 strain_energy=strain_energy, phase_deg=phase_deg, work_energy=work_energy,
-                tip_symmetry=tip_symmetry, samples_per_cycle=samples_per_cycle)
+                tip_symmetry=tip_symmetry, samples_per_cycle=samples_per_cycle, contact=contact)
             err = ""
         except MicroslipError as exc:
             if not skip_errors:

@@ -125,9 +125,10 @@ def write_sweep(result: SweepResult, path: str | os.PathLike[str],
                 chunk_size: int = DEFAULT_CHUNK) -> None:
     """Write a sweep to ``path`` (``.csv`` or ``.nc``), atomically.
 
-    CSV: a header of :data:`COLUMNS`, then one row per case in row order, every number as
-    ``%.15g``. NetCDF: :meth:`SweepResult.to_dataset` (labelled dimensions, units and the
-    settings in the attributes).
+    CSV: a header of :data:`COLUMNS`, then one row per case in row order, every number in the
+    fewest of 15-17 significant digits that read back exactly (``batch.textfmt``). NetCDF:
+    :meth:`SweepResult.to_dataset` (labelled dimensions, units and the settings in the
+    attributes).
     """
     ext = check_output(path)
     if ext == ".nc":

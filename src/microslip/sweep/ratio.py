@@ -7,6 +7,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Iterable
 
+from ..models import Contact
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..planar import PAPER_STRAIN_ENERGY, RatioSweep, loss_factor_vs_ratio
@@ -19,7 +20,7 @@ def ratio_sweep(ratios: Iterable[float], *, tip_params: ClampParams | None = Non
                 centre_params: ClampParams | None = None, levels: str = "base",
                 increments: int = 1000, options: ModelOptions | None = None,
                 strain_energy: str | None = None, phase_deg: float = 0.0,
-                progress: bool = True) -> RatioSweep:
+                progress: bool = True, contact: Contact | None = None) -> RatioSweep:
     """Planar damping against the force ratio R (paper Fig. 12): one
     :func:`microslip.planar.planar_damping` per R, in a plain loop.
 
@@ -31,4 +32,5 @@ def ratio_sweep(ratios: Iterable[float], *, tip_params: ClampParams | None = Non
         [float(r) for r in ratios], tip_params=tip_params, centre_params=centre_params,
         levels=levels, increments=increments, options=options,
         strain_energy=strain_energy or PAPER_STRAIN_ENERGY, phase_deg=phase_deg,
-        progress=functools.partial(progress_iter, enabled=progress, unit="case"))
+        progress=functools.partial(progress_iter, enabled=progress, unit="case"),
+        contact=contact)

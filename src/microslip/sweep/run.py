@@ -12,11 +12,14 @@ from typing import Any
 
 import numpy as np
 
-from ..batch import batch_damping, default_backend, prepare_batch
+from ..batch import PARAM_FIELDS, batch_damping, default_backend, prepare_batch
 from ..batch.driver import run_batch
 from ..cluster import map_on_cluster
+from ..energy import damping_from_backbone
 from ..errors import ParameterError
+from ..models import first_loading
 from ..options import ModelOptions
+from ..params import ClampParams
 from ..progress import progress_bar
 from .parameters import PARAMETERS, FloatArray
 from .spec import DEFAULT_CHUNK, SweepSpec
@@ -129,6 +132,11 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         raise ParameterError(f"retries must be a whole number >= 0, got {retries!r}")
     spec.validate(int(chunk_size))
     be = default_backend() if backend is None else backend
+    if spec.contact is not None:
+        if scheduler is not None:
+            raise ParameterError("a sweep on a contact with a stick slope or pressure law runs "
+                                 "case by case in this process; leave out --scheduler")
+        be = "per case (shear-layer model)"
     out = [np.empty(spec.size) for _ in range(4)]
     chunks = spec.chunks(int(chunk_size))
     t0 = time.perf_counter()
@@ -139,7 +147,9 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
                 o[lo:hi] = v
             bar.update(hi - lo)
 
-        if scheduler is None:
+        if spec.contact is not None:
+            _run_on_contact(spec, chunks, store)
+        elif scheduler is None:
             _run_local(spec, chunks, be, threads, store)
         else:
             payloads = [(spec.model, *spec.chunk_inputs(lo, hi), spec.increments, spec.options,
@@ -160,6 +170,27 @@ def _run_local(spec: SweepSpec, chunks: Sequence[tuple[int, int]], backend: str,
                             spec.strain_energy, where=(lo, spec.size))
         r = run_batch(inp, backend=backend, threads=threads)
         store(i, (r.peak_displacement, r.dissipated_energy, r.strain_energy, r.loss_factor))
+
+
+def _run_on_contact(spec: SweepSpec, chunks: Sequence[tuple[int, int]],
+                    store: Callable[[int, tuple[FloatArray, ...]], None]) -> None:
+    """Every case through :func:`microslip.models.first_loading` on the spec's contact (the
+    batch engine has the rigid foundation only); same columns as the batch engine."""
+    for i, (lo, hi) in enumerate(chunks):
+        params, amp = spec.chunk_inputs(lo, hi)
+        m = hi - lo
+        cols = {k: np.broadcast_to(np.asarray(v, dtype=float), (m,)) for k, v in params.items()}
+        amps = np.broadcast_to(np.asarray(amp, dtype=float), (m,))
+        res = [np.empty(m) for _ in range(4)]
+        for j in range(m):
+            p = ClampParams(**{k: float(cols[k][j]) for k in PARAM_FIELDS})
+            bb = first_loading(spec.model, p, float(amps[j]), spec.increments, spec.options,
+                               spec.contact)
+            r = damping_from_backbone(bb, spec.strain_energy)
+            for o, v in zip(res, (r.peak_displacement, r.dissipated_energy, r.strain_energy,
+                                  r.loss_factor), strict=True):
+                o[j] = v
+        store(i, tuple(res))
 
 
 def _chunk_task(model: str, params: dict[str, Any], amplitude: Any, increments: int,

@@ -17,7 +17,7 @@ import numpy as np
 from ..batch import PARAM_FIELDS, check_range, prepare_batch
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
-from ..models import MODELS, check_increments, get_model
+from ..models import MODELS, Contact, check_increments, get_model
 from ..options import ModelOptions
 from ..params import ClampParams
 from .parameters import MAX_CASES, PARAMETERS, Distribution, FloatArray, parse_parameter
@@ -73,6 +73,10 @@ class SweepSpec:
     increments : int
     options : ModelOptions
     strain_energy : str
+    contact : Contact or None
+        The interface under the bar (stick slope, shear lag, pressure law); None: the
+        paper's rigid foundation, computed by the batch engine. Any other contact is
+        computed case by case (:func:`microslip.models.first_loading`).
     """
 
     model: str
@@ -85,6 +89,7 @@ class SweepSpec:
     increments: int
     options: ModelOptions
     strain_energy: str
+    contact: Contact | None = None
 
     @property
     def dims(self) -> tuple[str, ...]:
@@ -161,6 +166,12 @@ class SweepSpec:
             u = f" {unit}" if unit else ""
             lines.append(f"{s.column}: {self.n_samples} draws, {s.distribution}{u}, "
                          f"seed {self.seed}")
+        if self.contact is not None:
+            c = self.contact
+            slope = (f"stick slope {c.stick_slope:g} N/mm^3" if np.isfinite(c.stick_slope)
+                     else "rigid contact")
+            lines.append(f"contact: {slope}{' + shear lag' if c.shear_lag else ''}, "
+                         f"{c.law_name} pressure")
         return lines
 
 
@@ -169,7 +180,8 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
                samples: Sequence[tuple[str, Distribution]] = (), n_samples: int = 1000,
                seed: int | None = None, increments: int = 1000,
                options: ModelOptions | None = None,
-               strain_energy: str = DEFAULT_STRAIN_ENERGY) -> SweepSpec:
+               strain_energy: str = DEFAULT_STRAIN_ENERGY,
+               contact: Contact | None = None) -> SweepSpec:
     """Build and validate a sweep; random samples are drawn here, from ``seed``.
 
     Parameters
@@ -224,7 +236,12 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
     amp = _fixed_amplitude(amplitude, seen)
     spec = SweepSpec(spec_model, base, amp, axes, sampled,
                      int(n_samples) if sampled else 0, None if seed is None else int(seed),
-                     n, opt, strain_energy)
+                     n, opt, strain_energy,
+                     None if contact is None or contact.is_rigid else contact)
+    if spec.contact is not None and _kind(strain_energy) == "stored":
+        raise ParameterError(
+            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
+            "contact with a stick slope or pressure law use secant, backbone or branch")
     if spec.size > MAX_CASES:
         raise ParameterError(f"the sweep has {spec.size} cases; at most {MAX_CASES} are allowed")
     return spec
@@ -312,3 +329,7 @@ def _check_parameter_values(name: str, v: FloatArray, where: str) -> None:
         raise ParameterError(f"{name} must be finite and in {rng}{u}, got {float(v[i])!r}"
                              + where.format(i=i))
 
+
+
+def _kind(name: str) -> str:
+    return name.strip().lower()

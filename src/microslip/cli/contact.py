@@ -1,0 +1,94 @@
+"""The contact options of the 1-D commands and the validity warnings they print.
+
+``--stick-slope N/MM3`` (the contact's tangential stiffness per area, as ``fe`` takes it),
+``--pressure-law`` and ``--no-shear-lag`` choose the :class:`~microslip.models.Contact` under
+the tip and centre models; without them the paper's rigid foundation. Every 1-D result is
+checked by :func:`microslip.models.validity.validity`; its warnings go to standard error
+(one line each) and into the JSON as ``warnings``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from typing import Any
+
+from ..errors import ParameterError
+from ..models import Contact, get_model
+from ..models.interface import PRESSURE_LAWS, PressureLaw, power_law, read_pressure_table
+from ..models.validity import validity
+from ..params import ClampParams
+
+__all__ = ["add_contact_options", "contact_from_args", "contact_json", "report_warnings",
+           "warnings_for"]
+
+_LAW_HELP = (f"clamping pressure along the length: {', '.join(PRESSURE_LAWS)}, "
+             "power:N[:EDGE] (p ~ 1 + (EDGE-1)|2x/L-1|^N, edges EDGE x the middle, default 2) "
+             "or table:FILE.csv (columns x_mm,pressure); default uniform (the paper's)")
+
+
+def add_contact_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("contact (docs/interpretation.md §6)")
+    g.add_argument("--stick-slope", type=float, metavar="N/MM3", default=None,
+                   help="tangential contact stiffness per area before slip, as the FE's stick "
+                        "slope: machined metal about 1e3-1e5 N/mm^3; puts the bar on an "
+                        "elastic shear layer (this stiffness in series with the body's shear "
+                        "lag); inf or omitted: the paper's rigid foundation")
+    g.add_argument("--pressure-law", metavar="LAW", default=None, help=_LAW_HELP)
+    g.add_argument("--no-shear-lag", action="store_true",
+                   help="leave out the body's through-thickness shear compliance (then a very "
+                        "large --stick-slope gives the rigid foundation exactly)")
+
+
+def _law(text: str | None, params: ClampParams) -> PressureLaw | None:
+    if text is None or text == "uniform":
+        return None
+    if text in PRESSURE_LAWS:
+        return PRESSURE_LAWS[text]()
+    kind, _, rest = text.partition(":")
+    if kind == "table" and rest:
+        return read_pressure_table(rest, params.length)
+    if kind == "power" and rest:
+        try:
+            numbers = [float(x) for x in rest.split(":")]
+        except ValueError:
+            numbers = []
+        if len(numbers) in (1, 2):
+            return power_law(*numbers)
+    raise ParameterError(f"--pressure-law {text!r}: use one of {', '.join(PRESSURE_LAWS)}, "
+                         "power:N[:EDGE] or table:FILE.csv")
+
+
+def contact_from_args(args: argparse.Namespace, params: ClampParams) -> Contact | None:
+    """The contact the options ask for; None when they leave the paper's foundation."""
+    slope = args.stick_slope
+    law = _law(args.pressure_law, params)
+    if args.no_shear_lag and slope is None:
+        raise ParameterError("--no-shear-lag needs --stick-slope (the rigid foundation has no "
+                             "shear layer to leave out)")
+    if slope is None and law is None:
+        return None
+    slope = math.inf if slope is None else slope
+    contact = Contact(slope, shear_lag=not args.no_shear_lag and math.isfinite(slope), law=law)
+    return None if contact.is_rigid else contact
+
+
+def warnings_for(model: str, params: ClampParams, amplitude: float,
+                 contact: Contact | None) -> list[str]:
+    """The validity warnings of a 1-D result (sentences; empty within the model's range)."""
+    c = contact or Contact()
+    return list(validity(get_model(model).load_case, params, amplitude,
+                         stick_slope=c.stick_slope, law=c.law).warnings)
+
+
+def report_warnings(warnings: list[str], *, quiet: bool = False) -> None:
+    """One line per warning on standard error."""
+    if quiet:
+        return
+    for w in warnings:
+        print(f"warning: {w}", file=sys.stderr)
+
+
+def contact_json(contact: Contact | None) -> dict[str, Any]:
+    return (contact or Contact()).summary()

@@ -1,0 +1,132 @@
+"""The contact under a 1-D model: its stiffness and clamping pressure, applied to a backbone.
+
+The paper's tip and centre models sit on a rigid Coulomb foundation under uniform pressure.
+A :class:`Contact` replaces that foundation by the elastic shear layer of
+:mod:`microslip.models.interface` (the contact's stick slope in series with the body's shear
+lag) and lets the pressure follow a law q(x). :func:`on_contact` turns a model's rigid
+backbone into the backbone on that contact, keeping the model's Poisson and length
+corrections (ModelOptions) exactly as the paper's recurrence applies them.
+
+How the corrections are kept: both updates change the rigid-foundation displacement by a
+factor c(F) = d_corrected(F) / d_uncorrected(F) = 1 + O(nu F / (E A), d / L), a few 1e-5 for
+real clamps (and the slip length by its own such factor). The backbone on the contact is the
+exact shear-layer curve d_layer(F) times the same factor. In the rigid limit d_layer is the
+closed form d_uncorrected, so the paper's corrected recurrence is recovered exactly (to
+rounding); with a finite layer the factor's dependence on the layer is of second order in
+quantities of 1e-5.
+
+This module may import ``interface``, ``options``, ``params``, ``results`` and ``errors``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..results import Backbone
+from .interface import PRESSURE_LAWS, PressureLaw, pressure_law, virgin_curve
+
+__all__ = ["DEFAULT_CONTACT", "Contact", "on_contact"]
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The interface under a 1-D clamp model.
+
+    Parameters
+    ----------
+    stick_slope : float
+        Tangential contact stiffness per unit area before slip, N/mm^3 (the FE's stick slope
+        lambda). ``math.inf``: a rigid contact. Machined metal contacts: about 1e3 (rough,
+        light pressure) to 1e5 (ground, high pressure); FE default 1e5 (docs/interpretation.md).
+    shear_lag : bool
+        Add the body's own through-thickness shear compliance t / (3 G w) in series with the
+        contact (what the FE includes whatever the stick slope).
+    law : PressureLaw, optional
+        Clamping-pressure shape along the length; None: uniform (the paper's).
+
+    The paper's rigid foundation is ``Contact()``: infinite stick slope, no shear lag,
+    uniform pressure (:attr:`is_rigid`).
+    """
+
+    stick_slope: float = math.inf
+    shear_lag: bool = False
+    law: PressureLaw | None = None
+
+    def __post_init__(self) -> None:
+        k = self.stick_slope
+        if isinstance(k, bool) or not isinstance(k, (int, float)) or math.isnan(k) or k <= 0:
+            raise ParameterError(f"stick slope must be > 0 N/mm^3 (inf: rigid), got {k!r}")
+
+    @classmethod
+    def layer(cls, stick_slope: float, law: str | PressureLaw | None = None) -> Contact:
+        """The physical contact: ``stick_slope`` in series with the body's shear lag."""
+        return cls(float(stick_slope), True, pressure_law(law) if isinstance(law, str) else law)
+
+    @property
+    def is_rigid(self) -> bool:
+        """The paper's foundation: nothing of this contact changes the model's recurrence."""
+        uniform = self.law is None or self.law.name == "uniform"
+        return math.isinf(self.stick_slope) and not self.shear_lag and uniform
+
+    @property
+    def law_name(self) -> str:
+        return "uniform" if self.law is None else self.law.name
+
+    def summary(self) -> dict[str, object]:
+        """JSON form; the stick slope as a number in N/mm^3 (None when rigid)."""
+        return {"stick_slope_N_per_mm3": None if math.isinf(self.stick_slope)
+                else self.stick_slope, "shear_lag": self.shear_lag,
+                "pressure_law": self.law_name}
+
+
+#: The paper's rigid, uniformly pressed foundation.
+DEFAULT_CONTACT = Contact()
+
+
+def on_contact(rigid: Backbone, uncorrected: Backbone, contact: Contact,
+               load_case: str) -> Backbone:
+    """The backbone of ``rigid``'s model on ``contact`` (see the module notes).
+
+    ``rigid`` is the model's backbone with its options' corrections, ``uncorrected`` the same
+    model with both updates off at the same forces; ``load_case`` names the loading of
+    :mod:`~microslip.models.interface` (``tip`` or ``centre``). The stored energy (the bar's
+    elastic energy) has no counterpart computed here: it is NaN, and the ``stored``
+    strain-energy definition is refused for such a backbone.
+    """
+    if rigid.options is not None and rigid.options.centre != "physical" \
+            and len(rigid.domains) > 1:
+        raise ParameterError(
+            "a contact stiffness or pressure law needs the physical centre reading (each half "
+            "carries F/2); the paper reading of Eq. 11 has no shear-layer counterpart")
+    if rigid.params is None:
+        raise ParameterError("on_contact needs a model's backbone (one that carries its params)")
+    f = np.asarray(rigid.force, dtype=float)
+    slip, d = virgin_curve(load_case, rigid.params, f, stick_slope=contact.stick_slope,
+                           shear_lag=contact.shear_lag, law=contact.law)
+    return Backbone(
+        model=rigid.model,
+        force=f,
+        displacement=d * _factor(rigid.displacement, uncorrected.displacement),
+        domains=rigid.domains,
+        slip_length=slip.T * _factor(rigid.slip_length, uncorrected.slip_length),
+        width=rigid.width,
+        thickness=rigid.thickness,
+        stored_energy=np.full(f.shape, np.nan),
+        params=rigid.params,
+        options=rigid.options,
+    )
+
+
+def _factor(corrected: np.ndarray, plain: np.ndarray) -> np.ndarray:
+    """corrected / plain where plain > 0, else 1: what the paper's updates change."""
+    base = np.asarray(plain, dtype=float)
+    return np.divide(corrected, base, out=np.ones_like(base), where=base > 0.0)
+
+
+def pressure_law_names() -> tuple[str, ...]:
+    """Names a command line accepts for ``--pressure-law`` (besides ``table:FILE.csv``)."""
+    return tuple(PRESSURE_LAWS)

@@ -1,0 +1,111 @@
+"""Every ``microslip`` command shown in README.md and docs/*.md runs and exits 0.
+
+The commands are read from the fenced code blocks (continuation lines joined, comments
+dropped) and run in-process in an empty directory; examples that differ only in their output
+paths or ``--json`` run once. Full-size runs are shrunk so that the
+suite stays fast, by the rules of :data:`SHRINK` (fewer cases and samples, the smallest mesh
+of the solver); the options and their combination are those of the documentation, which is
+what this test guards: an example that no longer parses, refers to a removed option or fails
+on its own inputs fails here. Lines with a literal ``...`` are elisions, not commands.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from microslip import ModelOptions, first_loading, masing_loop
+from microslip.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+#: option -> function of its value giving the value the test uses (None: keep)
+SHRINK = {
+    "--cases": lambda v: str(min(int(float(v)), 2000)),
+    "--samples": lambda v: str(min(int(float(v)), 50)),
+    "--amplitudes": lambda v: str(min(int(v), 12)),
+}
+
+
+def _commands() -> list[tuple[str, str]]:
+    found = []
+    for path in DOCS:
+        for block in re.findall(r"```[a-z]*\n(.*?)```", path.read_text(encoding="utf-8"), re.S):
+            for line in block.replace("\\\n", " ").splitlines():
+                line = line.strip()
+                if line.startswith("microslip ") and "..." not in line:
+                    found.append((path.name, line))
+    return found
+
+
+def _shrink(argv: list[str]) -> list[str]:
+    out = list(argv)
+    for i, arg in enumerate(out[:-1]):
+        if arg in SHRINK:
+            out[i + 1] = SHRINK[arg](out[i + 1])
+    if out[0] in ("fe", "validate", "planar") and "--mesh" in out:
+        calculix = out[0] == "validate" or "calculix" in out
+        small = "coarse" if calculix else "tiny"
+        meshes = [i for i, a in enumerate(out) if a == "--mesh"]
+        for i in reversed(meshes[1:]):
+            del out[i:i + 2]
+        out[meshes[0] + 1] = small
+    if out[0] == "validate" and "--model" not in out:
+        out += ["--model", "tip"]
+    if out[0] == "reproduce":  # the FE parts have their own tests (test_reproduce*.py)
+        out += [a for a in ("--no-fe", "--increments", "100") if a not in out]
+    return out
+
+
+COMMANDS = _commands()
+
+
+def _key(line: str) -> frozenset[str]:
+    """A command as run, output paths and ``--json`` aside: examples that differ only there
+    run once."""
+    argv = _shrink(shlex.split(line, comments=True)[1:])
+    return frozenset("OUT" if prev in ("--out", "--plot") else a
+                     for prev, a in zip(["", *argv[:-1]], argv, strict=True) if a != "--json")
+
+
+RUN = list({_key(line): (doc, line) for doc, line in reversed(COMMANDS)}.values())[::-1]
+
+
+def _measured_loops(directory: Path, argv: list[str]) -> None:
+    """The loop CSVs a ``fit`` example reads (``loop_2kN.csv``: 2 kN; ``loop_3k6N.csv``:
+    3.6 kN): model loops of the clamp its options give."""
+    from microslip.cli.common import params_from_args
+    from microslip.cli.main import build_parser
+
+    args = build_parser().parse_args(argv)
+    params, _ = params_from_args(args, fallback_amplitude=1.0)
+    for name in (a for a in argv if a.endswith(".csv")):
+        kilo, frac = re.fullmatch(r"loop_(\d+)k(\d*)N\.csv", name).groups()
+        amplitude = float(f"{kilo}.{frac or 0}") * 1e3
+        loop = masing_loop(first_loading(args.model, params, amplitude, 400, ModelOptions()))
+        np.savetxt(directory / name, np.column_stack([loop.force, loop.displacement]),
+                   delimiter=",", header="force_N,displacement_mm", comments="")
+
+
+def test_the_documents_show_commands():
+    assert len(COMMANDS) >= 15
+    names = {line.split()[1] for _, line in COMMANDS}
+    assert {"loop", "planar", "fe", "sweep", "fit", "joint"} <= names
+
+
+@pytest.mark.parametrize(("doc", "line"), RUN, ids=[f"{d}:{c[:60]}" for d, c in RUN])
+def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    argv = _shrink(shlex.split(line, comments=True)[1:])
+    if argv[0] == "fit":
+        _measured_loops(tmp_path, argv)
+    code = main(argv)
+    out, err = capsys.readouterr()
+    assert code == 0, f"{doc}: `{line}` exited {code}: {err.strip()[-400:]}"
+    assert "Traceback" not in err
+    assert out.strip() or any(tmp_path.iterdir()), "the example printed and wrote nothing"
