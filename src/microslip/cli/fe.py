@@ -18,8 +18,11 @@ from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
 from ..loading import LOAD_CASES
+from ..models.interface import PRESSURE_LAWS
+from ..params import ClampParams
 from ..solver.mesh import MESHES as BUILTIN_MESHES
 from .common import add_params, add_strain_energy, number, params_from_args, print_json
+from .contact import law_from_text
 
 __all__ = ["add_parser", "run"]
 
@@ -49,6 +52,15 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
                    f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g})")
+    g.add_argument("--pressure-law", metavar="LAW", default=None,
+                   help="builtin: clamping pressure on the top face along the length: "
+                        f"{', '.join(PRESSURE_LAWS)}, power:N[:EDGE] or table:FILE.csv "
+                        "(columns x_mm,pressure), as the 1-D commands take it; default "
+                        "uniform (the paper's)")
+    g.add_argument("--clamping-csv", metavar="FILE",
+                   help="builtin: write the interface pressure after clamping (x_mm,pressure "
+                        "in MPa, the mean over the width per section), ready for "
+                        "--pressure-law table:FILE of loop, planar and sweep")
     g.add_argument("--element", choices=[e for s in SOLVERS.values() for e in s.elements],
                    default=None,
                    help="calculix: 20-node brick, reduced (C3D20R, default) or full "
@@ -84,14 +96,17 @@ def _check_run_options(args: argparse.Namespace) -> None:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
 
 
-def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
+def _solver_options(args: argparse.Namespace, params: ClampParams) -> dict[str, Any]:
     """The solver's own options given on the command line; one line for one it does not take."""
     entry = SOLVERS[args.solver]
     given = {"timeout": args.timeout, "threads": args.threads if args.threads != 1 else None,
              "reuse": args.reuse or None,
+             "pressure_law": law_from_text(args.pressure_law, params),
              "normal_slope": (args.normal_slope if args.normal_slope != DEFAULT_NORMAL_SLOPE
                               else None)}
     given = {k: v for k, v in given.items() if v is not None}
+    if args.clamping_csv is not None and args.solver != "builtin":
+        given["clamping_csv"] = args.clamping_csv
     bad = [f"--{k.replace('_', '-')}" for k in given if k not in entry.options]
     if bad:
         raise ParameterError(f"{', '.join(bad)} do(es) not apply to --solver {args.solver}")
@@ -106,7 +121,11 @@ def run(args: argparse.Namespace) -> int:
     result, files = run_loop(args.model, params, amplitude, solver=args.solver, out=args.out,
                              vtu=not args.no_vtu, mesh=args.mesh, element=args.element,
                              stick_slope=args.stick_slope, substeps=args.substeps,
-                             strain_energy_kind=args.strain_energy, **_solver_options(args))
+                             strain_energy_kind=args.strain_energy,
+                             **_solver_options(args, params))
+    clamping = getattr(result.details, "clamping", None)
+    if args.clamping_csv is not None and clamping is not None:
+        files.append(clamping.write_csv(args.clamping_csv))
     out = result.summary()
     out["files"] = [str(f) for f in files]
     status = 0 if result.converged else 1

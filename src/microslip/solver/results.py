@@ -18,6 +18,7 @@ from ..named import result
 from ..results import HysteresisLoop
 
 if TYPE_CHECKING:
+    from .clamping import ClampingPressure
     from .solve import FrictionModel
 
 __all__ = [
@@ -104,6 +105,10 @@ class BuiltinDetails:
         The assembled model, kept with ``u`` (``record=True``) for the VTU export.
     u : ndarray, shape (n + 1, dof) or None
         Free-dof displacements after every increment, mm (``record=True``).
+    pressure_law : str
+        Name of the clamping pressure law (``uniform``: the paper's).
+    clamping : ClampingPressure or None
+        The interface pressure after the clamping step (:mod:`~microslip.solver.clamping`).
     """
 
     stats: SolverStats
@@ -111,11 +116,14 @@ class BuiltinDetails:
     friction_dissipation: float
     model: FrictionModel | None = None
     u: FloatArray | None = None
+    pressure_law: str = "uniform"
+    clamping: ClampingPressure | None = None
 
     def options(self) -> dict[str, Any]:
         s = self.stats
         return {"mesh": dict(s.mesh), "element": s.element, "stick_slope": s.stick_slope,
-                "linear_solver": s.linear_solver, "centre_direction": self.centre_direction}
+                "linear_solver": s.linear_solver, "centre_direction": self.centre_direction,
+                "pressure_law": self.pressure_law}
 
     def summary(self) -> dict[str, Any]:
         return {"friction_dissipation_Nmm": self.friction_dissipation}

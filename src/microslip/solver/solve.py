@@ -35,7 +35,9 @@ from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..models.interface import PressureLaw
 from ..params import ClampParams, check_positive
+from .clamping import clamp_forces
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import assemble_stiffness
 from .linalg import Backend, make_backend
@@ -119,6 +121,8 @@ class FrictionModel:
         Element formulation (:data:`~microslip.solver.element.ELEMENTS`).
     stick_slope : float
         lambda, N/mm^3.
+    pressure_law : PressureLaw or None
+        Shape of the clamping traction on the top face (None: uniform, the paper's).
     free : ndarray of int
         Global dof numbers (3 node + component) of the unknowns, in increasing order.
     stiffness : scipy.sparse.csr_matrix
@@ -154,6 +158,7 @@ class FrictionModel:
     mesh: BoxMesh
     element: str
     stick_slope: float
+    pressure_law: PressureLaw | None
     free: IntArray = field(repr=False)
     stiffness: sp.csr_matrix = field(repr=False)
     contact_nodes: IntArray = field(repr=False)
@@ -207,7 +212,8 @@ def _unit_load(mesh: BoxMesh, face: str, component: int, index: IntArray, n_free
 
 def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float =
                 DEFAULT_STICK_SLOPE, element: str = "C3D8I", linear_solver: str = "banded",
-                newton: NewtonOptions | None = None) -> FrictionModel:
+                newton: NewtonOptions | None = None,
+                pressure_law: PressureLaw | None = None) -> FrictionModel:
     """Assemble the clamped zone and solve the clamping step.
 
     Parameters
@@ -223,6 +229,10 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     linear_solver : str
         ``banded`` (default), ``splu`` or ``cholmod``.
     newton : NewtonOptions, optional
+    pressure_law : PressureLaw, optional
+        Shape of the clamping traction along the length
+        (:mod:`microslip.models.interface`; default uniform, the paper's; see
+        :func:`~microslip.solver.clamping.clamp_forces`).
 
     Returns
     -------
@@ -258,11 +268,12 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     kc = lam * area
     backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc)
 
-    # Clamping pressure on the top face: consistent nodal forces of a uniform traction.
+    # Clamping pressure on the top face: consistent nodal forces of the traction.
+    if pressure_law is not None and pressure_law.name == "uniform":
+        pressure_law = None
     top = box.face_nodes("top")
     clamp = np.zeros(free.size)
-    clamp[index[3 * top + 2]] = -params.normal_force * box.face_weights("top") / (
-        params.length * params.width)
+    clamp[index[3 * top + 2]] = -clamp_forces(box, params, pressure_law)
     loads = {
         "tip": _unit_load(box, "end", 0, index, free.size),
         "centre-axial": _unit_load(box, "mid", 0, index, free.size),
@@ -298,7 +309,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
         raise MacroslipError("the normal forces of the clamping step did not settle")
     slip = resp.slip
     return FrictionModel(
-        params=params, mesh=box, element=element, stick_slope=lam, free=free,
+        params=params, mesh=box, element=element, stick_slope=lam,
+        pressure_law=pressure_law, free=free,
         stiffness=k_ff, contact_nodes=bottom, contact_dofs=cdofs, contact_area=area,
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, loads=loads,
         clamp_load=clamp, u0=u, slip0=slip, clamp_iterations=iters, backend=backend,

@@ -28,6 +28,7 @@ from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..fe.result import SLIP, STICK, ContactHistory
 from ..loading import LoadPath
+from ..models.interface import PressureLaw
 from ..params import ClampParams, check_amplitude, check_positive
 from ..results import HysteresisLoop
 from .results import (
@@ -64,13 +65,14 @@ FloatArray = NDArray[np.float64]
 DEFAULT_MESH = "coarse"
 
 def model_for(params: ClampParams, mesh: Any, stick_slope: float, element: str,
-           linear_solver: str, newton: NewtonOptions | None) -> FrictionModel:
+              linear_solver: str, newton: NewtonOptions | None, *,
+              pressure_law: PressureLaw | None = None) -> FrictionModel:
     if isinstance(mesh, FrictionModel):
         if mesh.params != params:
             raise ParameterError("the given FrictionModel was built for other parameters")
         return mesh
     return build_model(params, mesh, stick_slope=stick_slope, element=element,
-                       linear_solver=linear_solver, newton=newton)
+                       linear_solver=linear_solver, newton=newton, pressure_law=pressure_law)
 
 
 def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:

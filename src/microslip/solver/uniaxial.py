@@ -11,8 +11,10 @@ from ..errors import MacroslipError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..fe.result import FELoopResult, gross_sliding_message, join_message, loop_damping
 from ..loading import PaperSine, load_case
+from ..models.interface import PressureLaw
 from ..params import ClampParams
 from ..results import HysteresisLoop
+from .clamping import clamping_pressure
 from .results import BuiltinDetails
 from .solve import FrictionModel, NewtonOptions, Simulation
 from .study import DEFAULT_MESH, check_body, contact_history, model_for, solver_stats
@@ -26,7 +28,8 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
                    centre_direction: str = "axial", linear_solver: str = "banded",
                    newton: NewtonOptions | None = None,
                    strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
-                   record: bool = False) -> FELoopResult:
+                   record: bool = False,
+                   pressure_law: PressureLaw | None = None) -> FELoopResult:
     """The paper's 1-D FE loading of the clamped zone with the built-in solver.
 
     F = F0 sin(2 pi t), t = 0 .. 1.25 s in ``increments`` equal steps
@@ -57,6 +60,8 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     record : bool
         Keep the displacement and slip fields of every increment (``details.fields``) for
         a VTU export.
+    pressure_law : PressureLaw, optional
+        Shape of the clamping traction along the length (default uniform, the paper's).
 
     Returns
     -------
@@ -78,7 +83,8 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     if load.amplitude >= params.macroslip_force:
         raise MacroslipError(f"amplitude {load.amplitude:g} N reaches the macroslip force "
                              f"mu F_N = {params.macroslip_force:g} N")
-    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
+    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton,
+                    pressure_law=pressure_law)
     sim = Simulation(fem, centre_direction)
     forces = {"tip": np.zeros_like(load.force), "centre": np.zeros_like(load.force)}
     forces[case.name] = load.force
@@ -98,7 +104,9 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     stats = solver_stats(fem, [hist], setup)
     details = BuiltinDetails(
         stats, centre_direction, float(np.sum(hist.friction_work[load.quarter + 1:])),
-        None if hist.u is None else fem, hist.u)
+        None if hist.u is None else fem, hist.u,
+        "uniform" if fem.pressure_law is None else fem.pressure_law.name,
+        clamping_pressure(fem))
     time = load.time[:done]
     contact = contact_history(fem, time, hist.slipping, hist.slip)
     damping, idle = loop_damping(loop, contact, strain_energy_kind)
