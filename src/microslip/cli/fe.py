@@ -21,6 +21,7 @@ from ..loading import LOAD_CASES
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
 from ..solver.mesh import MESHES as BUILTIN_MESHES
+from ..solver.normal import NORMAL_CONTACTS
 from .common import add_params, add_strain_energy, number, params_from_args, print_json
 from .contact import law_from_text
 
@@ -51,7 +52,11 @@ def add_parser(sub: Any) -> None:
                    f"(default {DEFAULT_STICK_SLOPE:g})")
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
-                   f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g})")
+                   f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g}); calculix, and builtin with "
+                   "--normal-contact penalty")
+    g.add_argument("--normal-contact", choices=list(NORMAL_CONTACTS), default=None,
+                   help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items())
+                   + " (default fixed; docs/solver.md)")
     g.add_argument("--pressure-law", metavar="LAW", default=None,
                    help="builtin: clamping pressure on the top face along the length: "
                         f"{', '.join(PRESSURE_LAWS)}, power:N[:EDGE] or table:FILE.csv "
@@ -102,9 +107,14 @@ def _solver_options(args: argparse.Namespace, params: ClampParams) -> dict[str, 
     given = {"timeout": args.timeout, "threads": args.threads if args.threads != 1 else None,
              "reuse": args.reuse or None,
              "pressure_law": law_from_text(args.pressure_law, params),
+             "normal_contact": args.normal_contact,
              "normal_slope": (args.normal_slope if args.normal_slope != DEFAULT_NORMAL_SLOPE
                               else None)}
     given = {k: v for k, v in given.items() if v is not None}
+    if (args.solver == "builtin" and "normal_slope" in given
+            and args.normal_contact != "penalty"):
+        raise ParameterError("--normal-slope with --solver builtin needs --normal-contact "
+                             "penalty (the fixed normal contact has no normal stiffness)")
     if args.clamping_csv is not None and args.solver != "builtin":
         given["clamping_csv"] = args.clamping_csv
     bad = [f"--{k.replace('_', '-')}" for k in given if k not in entry.options]

@@ -109,6 +109,12 @@ class BuiltinDetails:
         Name of the clamping pressure law (``uniform``: the paper's).
     clamping : ClampingPressure or None
         The interface pressure after the clamping step (:mod:`~microslip.solver.clamping`).
+    normal_contact : str
+        ``fixed`` (the paper's reading) or ``penalty`` (:mod:`~microslip.solver.normal`).
+    normal_slope : float or None
+        k_n of the penalty, N/mm^3 (None when fixed).
+    normal_force : ndarray, shape (n + 1, n_c) or None
+        Normal forces N_i after every increment, N (penalty only).
     """
 
     stats: SolverStats
@@ -118,12 +124,16 @@ class BuiltinDetails:
     u: FloatArray | None = None
     pressure_law: str = "uniform"
     clamping: ClampingPressure | None = None
+    normal_contact: str = "fixed"
+    normal_slope: float | None = None
+    normal_force: FloatArray | None = None
 
     def options(self) -> dict[str, Any]:
         s = self.stats
         return {"mesh": dict(s.mesh), "element": s.element, "stick_slope": s.stick_slope,
                 "linear_solver": s.linear_solver, "centre_direction": self.centre_direction,
-                "pressure_law": self.pressure_law}
+                "pressure_law": self.pressure_law, "normal_contact": self.normal_contact,
+                "normal_slope": self.normal_slope}
 
     def summary(self) -> dict[str, Any]:
         return {"friction_dissipation_Nmm": self.friction_dissipation}

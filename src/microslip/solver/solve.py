@@ -34,7 +34,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..models.interface import PressureLaw
 from ..params import ClampParams, check_positive
 from .clamping import clamp_forces
@@ -42,6 +42,7 @@ from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import assemble_stiffness
 from .linalg import Backend, make_backend
 from .mesh import BoxMesh, mesh_from_spec
+from .normal import PenaltyNormal, check_normal_contact
 
 __all__ = [
     "CENTRE_DIRECTIONS",
@@ -123,6 +124,9 @@ class FrictionModel:
         lambda, N/mm^3.
     pressure_law : PressureLaw or None
         Shape of the clamping traction on the top face (None: uniform, the paper's).
+    normal : PenaltyNormal or None
+        The unilateral penalty of ``normal_contact="penalty"``; None: u_z = 0 held at the
+        interface and the normal forces fixed after clamping (the paper's reading).
     free : ndarray of int
         Global dof numbers (3 node + component) of the unknowns, in increasing order.
     stiffness : scipy.sparse.csr_matrix
@@ -159,6 +163,7 @@ class FrictionModel:
     element: str
     stick_slope: float
     pressure_law: PressureLaw | None
+    normal: PenaltyNormal | None
     free: IntArray = field(repr=False)
     stiffness: sp.csr_matrix = field(repr=False)
     contact_nodes: IntArray = field(repr=False)
@@ -187,6 +192,11 @@ class FrictionModel:
         return 3 * self.mesh.n_nodes
 
     @property
+    def normal_contact(self) -> str:
+        """``fixed`` or ``penalty`` (:data:`~microslip.solver.normal.NORMAL_CONTACTS`)."""
+        return "fixed" if self.normal is None else "penalty"
+
+    @property
     def force_scale(self) -> float:
         """mu F_N, N: the scale of the residual tolerance."""
         return self.params.macroslip_force
@@ -213,7 +223,8 @@ def _unit_load(mesh: BoxMesh, face: str, component: int, index: IntArray, n_free
 def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float =
                 DEFAULT_STICK_SLOPE, element: str = "C3D8I", linear_solver: str = "banded",
                 newton: NewtonOptions | None = None,
-                pressure_law: PressureLaw | None = None) -> FrictionModel:
+                pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
+                normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FrictionModel:
     """Assemble the clamped zone and solve the clamping step.
 
     Parameters
@@ -233,6 +244,10 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
         Shape of the clamping traction along the length
         (:mod:`microslip.models.interface`; default uniform, the paper's; see
         :func:`~microslip.solver.clamping.clamp_forces`).
+    normal_contact : {"fixed", "penalty"}
+        :data:`~microslip.solver.normal.NORMAL_CONTACTS` (default ``fixed``, the paper's).
+    normal_slope : float
+        k_n of the penalty, N/mm^3 (``penalty`` only; default 1e5, as the CalculiX model's).
 
     Returns
     -------
@@ -249,6 +264,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     if not isinstance(params, ClampParams):
         raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
     lam = check_positive("stick_slope", stick_slope, "N/mm^3")
+    penalty = check_normal_contact(normal_contact) == "penalty"
+    k_n = check_positive("normal_slope", normal_slope, "N/mm^3")
     newton = NewtonOptions() if newton is None else newton
     box = mesh_from_spec(params, mesh)
     box.face_nodes("mid")  # even nx required
@@ -257,7 +274,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     bottom = box.face_nodes("bottom")
     fixed = 3 * bottom + 2
     mask = np.ones(n_all, dtype=bool)
-    mask[fixed] = False
+    if not penalty:
+        mask[fixed] = False
     free = np.flatnonzero(mask).astype(np.int64)
     index = np.full(n_all, -1, dtype=np.int64)
     index[free] = np.arange(free.size)
@@ -266,7 +284,9 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     cdofs = np.stack([index[3 * bottom], index[3 * bottom + 1]], axis=1)
     area = box.face_weights("bottom")
     kc = lam * area
-    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc)
+    springs = PenaltyNormal(k_n * area, index[fixed], k_n) if penalty else None
+    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc,
+                           None if springs is None else springs.stiffness)
 
     # Clamping pressure on the top face: consistent nodal forces of the traction.
     if pressure_law is not None and pressure_law.name == "uniform":
@@ -289,12 +309,12 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     for attempt in range(20):
         with single_threaded_blas():
             ok, it, u, resp = _Stepper(k_ff, backend, cdofs, kc, limit, newton,
-                                       params.macroslip_force).solve(
+                                       params.macroslip_force, springs).solve(
                 np.zeros(free.size), np.zeros((bottom.size, 2)), clamp)
         iters += it
         if not ok:
             raise MacroslipError("the clamping step did not converge")
-        new_normal = np.asarray(k_rf @ u)
+        new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
         if np.any(new_normal <= 0.0):
             raise ParameterError("the clamping step gave a non-positive normal force at a "
                                  "contact node; refine the mesh through the thickness")
@@ -310,7 +330,7 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     slip = resp.slip
     return FrictionModel(
         params=params, mesh=box, element=element, stick_slope=lam,
-        pressure_law=pressure_law, free=free,
+        pressure_law=pressure_law, normal=springs, free=free,
         stiffness=k_ff, contact_nodes=bottom, contact_dofs=cdofs, contact_area=area,
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, loads=loads,
         clamp_load=clamp, u0=u, slip0=slip, clamp_iterations=iters, backend=backend,
@@ -330,9 +350,13 @@ class _Stepper:
     """
 
     def __init__(self, k: sp.csr_matrix, backend: Backend, cdofs: IntArray, kc: FloatArray,
-                 limit: FloatArray, newton: NewtonOptions, force_scale: float) -> None:
+                 limit: FloatArray, newton: NewtonOptions, force_scale: float,
+                 normal: PenaltyNormal | None = None, friction: float | None = None) -> None:
         self.k, self.backend, self.cdofs, self.kc, self.limit = k, backend, cdofs, kc, limit
         self.newton = newton
+        self.normal = normal
+        #: mu, when the limits follow the normal forces (lagged, see :mod:`.normal`)
+        self.friction = friction
         self.tol = newton.rtol * force_scale
         self.factorisations = 0
         self.fac: Any = None
@@ -346,19 +370,39 @@ class _Stepper:
         r = f - ku
         r[self.cdofs[:, 0]] -= resp.force[:, 0]
         r[self.cdofs[:, 1]] -= resp.force[:, 1]
+        if self.normal is not None:
+            r[self.normal.dofs] += self.normal.forces(u)
         return r, resp
 
-    def _factor(self, resp: FrictionResponse) -> None:
+    def _state(self, resp: FrictionResponse, u: FloatArray) -> BoolArray:
+        """What a factorisation depends on: the slipping nodes (and the closed ones)."""
+        if self.normal is None:
+            return resp.slipping
+        return np.concatenate([resp.slipping, self.normal.closed(u)])
+
+    def _relimit(self, u: FloatArray) -> bool:
+        """Set the limits to mu N_i(u) (penalty normal contact); True if they changed by more
+        than the tolerance."""
+        if self.normal is None or self.friction is None:
+            return False
+        new = self.friction * self.normal.forces(u)
+        changed = bool(np.max(np.abs(new - self.limit)) > self.tol)
+        self.limit = new
+        return changed
+
+    def _factor(self, resp: FrictionResponse, u: FloatArray) -> None:
+        tangent = (resp.tangent if self.normal is None else
+                   np.column_stack([resp.tangent, self.normal.tangent(u)]))
         try:
-            self.fac = self.backend.factor(resp.tangent)
+            self.fac = self.backend.factor(tangent)
         except np.linalg.LinAlgError:
             # Singular tangent (every slipping node free along its slip): stiffen the null
             # directions a little; the residual test keeps the answer exact.
-            d = resp.tangent.copy()
+            d = tangent.copy()
             d[:, 0] += 1e-6 * self.kc
             d[:, 2] += 1e-6 * self.kc
             self.fac = self.backend.factor(d)
-        self.fac_set = resp.slipping
+        self.fac_set = self._state(resp, u)
         self.factorisations += 1
 
     def solve(self, u: FloatArray, slip: FloatArray, f: FloatArray
@@ -373,15 +417,18 @@ class _Stepper:
         fresh = False
         ratio = 0.0
         for it in range(1, nw.max_iterations + 1):
+            if rn <= self.tol and self._relimit(u):
+                r, resp = self._residual(f, ku, u, slip)
+                rn = float(np.max(np.abs(r)))
             if rn <= self.tol:
                 self._u, self._ku = u, ku
                 return True, it - 1, u, resp
             reuse = (nw.reuse and self.fac is not None and ratio <= nw.reuse_ratio
                      and (it == 1 or not nw.same_set or (
                          self.fac_set is not None
-                         and bool(np.array_equal(resp.slipping, self.fac_set)))))
+                         and bool(np.array_equal(self._state(resp, u), self.fac_set)))))
             if not reuse:
-                self._factor(resp)
+                self._factor(resp, u)
             fresh = not reuse
             du = self.fac.solve(r)
             kdu = np.asarray(self.k @ du)
@@ -429,6 +476,9 @@ class History:
         Free-dof displacements after each increment, mm (with ``record=True``).
     slip : ndarray, shape (n, n_c, 2) or None
         Slips of the contact nodes after each increment, mm (with ``record=True``).
+    normal_force : ndarray, shape (n, n_c) or None
+        Normal forces N_i after each increment, N (penalty normal contact; None when they
+        are fixed: :attr:`FrictionModel.normal_force`).
     """
 
     f_tip: FloatArray
@@ -445,6 +495,7 @@ class History:
     factorisations: int
     u: FloatArray | None = None
     slip: FloatArray | None = None
+    normal_force: FloatArray | None = None
 
     def displacement(self, component: str) -> FloatArray:
         """Work-conjugate displacement of the ``tip`` or ``centre`` load, mm."""
@@ -481,7 +532,8 @@ class Simulation:
         self.p_cen = model.loads[model.centre_load(centre_direction)]
         self.stepper = _Stepper(model.stiffness, model.backend, model.contact_dofs,
                                 model.contact_stiffness, model.friction_limit, model.newton,
-                                model.force_scale)
+                                model.force_scale, model.normal,
+                                None if model.normal is None else model.params.friction)
         self.u, self.slip = model.u0.copy(), model.slip0.copy()
         self.base_tip = float(self.p_tip @ self.u)
         self.base_cen = float(self.p_cen @ self.u)
@@ -555,6 +607,8 @@ class Simulation:
         slipping = np.zeros((n, model.contact_nodes.size), dtype=bool)
         u_rec = np.zeros((n, model.dof)) if record else None
         s_rec = np.zeros((n, model.contact_nodes.size, 2)) if record else None
+        springs = model.normal
+        n_rec = None if springs is None else np.zeros((n, model.contact_nodes.size))
         f0 = self.stepper.factorisations
         t0 = time.perf_counter()
         converged, message, done = True, "converged", n
@@ -573,6 +627,8 @@ class Simulation:
                 d_tip[i] = float(self.p_tip @ self.u) - self.base_tip
                 d_cen[i] = float(self.p_cen @ self.u) - self.base_cen
                 slipping[i] = resp.slipping
+                if springs is not None and n_rec is not None:
+                    n_rec[i] = springs.forces(self.u)
                 if u_rec is not None and s_rec is not None:
                     u_rec[i], s_rec[i] = self.u, self.slip
         self.increments += done
@@ -582,7 +638,8 @@ class Simulation:
             converged=converged, completed=done, message=message,
             wall_s=time.perf_counter() - t0, factorisations=self.stepper.factorisations - f0,
             u=None if u_rec is None else u_rec[:done],
-            slip=None if s_rec is None else s_rec[:done])
+            slip=None if s_rec is None else s_rec[:done],
+            normal_force=None if n_rec is None else n_rec[:done])
 
 
 def run_history(model: FrictionModel, f_tip: Any, f_centre: Any, *,

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import MacroslipError
-from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.result import FELoopResult, gross_sliding_message, join_message, loop_damping
 from ..loading import PaperSine, load_case
 from ..models.interface import PressureLaw
@@ -29,7 +29,8 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
                    newton: NewtonOptions | None = None,
                    strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
                    record: bool = False,
-                   pressure_law: PressureLaw | None = None) -> FELoopResult:
+                   pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
+                   normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FELoopResult:
     """The paper's 1-D FE loading of the clamped zone with the built-in solver.
 
     F = F0 sin(2 pi t), t = 0 .. 1.25 s in ``increments`` equal steps
@@ -62,6 +63,10 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
         a VTU export.
     pressure_law : PressureLaw, optional
         Shape of the clamping traction along the length (default uniform, the paper's).
+    normal_contact : {"fixed", "penalty"}
+        Normal forces fixed after clamping (the paper's reading) or a unilateral penalty
+        of slope ``normal_slope`` (N/mm^3) that follows the load
+        (:mod:`~microslip.solver.normal`).
 
     Returns
     -------
@@ -84,7 +89,8 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
         raise MacroslipError(f"amplitude {load.amplitude:g} N reaches the macroslip force "
                              f"mu F_N = {params.macroslip_force:g} N")
     fem = model_for(params, mesh, stick_slope, element, linear_solver, newton,
-                    pressure_law=pressure_law)
+                    pressure_law=pressure_law, normal_contact=normal_contact,
+                    normal_slope=normal_slope)
     sim = Simulation(fem, centre_direction)
     forces = {"tip": np.zeros_like(load.force), "centre": np.zeros_like(load.force)}
     forces[case.name] = load.force
@@ -106,9 +112,10 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
         stats, centre_direction, float(np.sum(hist.friction_work[load.quarter + 1:])),
         None if hist.u is None else fem, hist.u,
         "uniform" if fem.pressure_law is None else fem.pressure_law.name,
-        clamping_pressure(fem))
+        clamping_pressure(fem), fem.normal_contact,
+        None if fem.normal is None else fem.normal.slope, hist.normal_force)
     time = load.time[:done]
-    contact = contact_history(fem, time, hist.slipping, hist.slip)
+    contact = contact_history(fem, time, hist.slipping, hist.slip, hist.normal_force)
     damping, idle = loop_damping(loop, contact, strain_energy_kind)
     message = (join_message(hist.message, idle, gross_sliding_message(contact))
                if hist.converged else f"{hist.message}; the loop is incomplete")
