@@ -570,6 +570,17 @@ class Simulation:
                 assert resp is not None
                 return False, total_its, 0.0, resp
 
+    def _runaway(self) -> str | None:
+        """Why the state just reached is no static equilibrium, or None. With unilateral
+        normal contact a block whose load moment exceeds the clamping's tips over: the
+        displacements then run away (here: beyond 1 % of the body's largest size)."""
+        p = self.model.params
+        size = max(p.length, p.width, p.thickness)
+        if self.model.normal is None or float(np.max(np.abs(self.u))) <= 0.01 * size:
+            return None
+        return ("has no static equilibrium: the displacements exceed 1 % of the body's size "
+                "(the block tips over on its unilateral contact)")
+
     def advance(self, f_tip: Any, f_centre: Any, *, record: bool = False) -> History:
         """Apply the next samples of the force history (one increment each).
 
@@ -616,12 +627,14 @@ class Simulation:
             for i in range(n):
                 ok, it, fw, resp = self._increment(ft[i], fc[i])
                 its[i] = it
-                if not ok:
+                runaway = self._runaway() if ok else None
+                if not ok or runaway:
                     converged, done, self.failed = False, i, True
                     message = (f"increment {self.increments + i} (F_tip {ft[i]:g} N, F_centre "
-                               f"{fc[i]:g} N) did not converge in "
-                               f"{model.newton.max_iterations} Newton iterations, even cut "
-                               f"into {model.newton.max_cuts} sub-increments")
+                               f"{fc[i]:g} N) " + (runaway or
+                               f"did not converge in {model.newton.max_iterations} Newton "
+                               f"iterations, even cut into {model.newton.max_cuts} "
+                               "sub-increments"))
                     break
                 fwork[i] = fw
                 d_tip[i] = float(self.p_tip @ self.u) - self.base_tip
