@@ -97,3 +97,19 @@ def test_cli_tipping_block_exits_1_without_damping(capsys):
                  "--amplitude", "4500", "--mesh", "tiny", "--normal-contact", "penalty"]) == 1
     out = capsys.readouterr().out
     assert "tips over" in out and "W_d" not in out
+
+
+def test_friction_limits_follow_the_normal_forces():
+    """In every converged increment the friction force of each node, k_i (g_i - s_i), lies in
+    its circle mu N_i(u) of the *current* normal force, on it where the node slips."""
+    model = build_model(TITANIUM, (8, 2, 4), stick_slope=1e5, normal_contact="penalty")
+    r = solve_uniaxial(TITANIUM, "tip", 3600.0, mesh=model, record=True)
+    u, slip = r.details.u, r.contact.slip
+    g = u[:, model.contact_dofs]                       # (states, n_c, 2)
+    tau = np.hypot(*np.moveaxis(model.contact_stiffness[:, None] * (g - slip), -1, 0))
+    limit = TITANIUM.friction * r.details.normal_force
+    tol = 1e-6 * TITANIUM.macroslip_force
+    assert np.all(tau <= limit + tol)
+    slipping = r.contact.status == 2
+    assert slipping.sum() > 10
+    assert np.allclose(tau[slipping], limit[slipping], rtol=0.0, atol=tol)
