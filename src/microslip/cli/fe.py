@@ -46,7 +46,9 @@ def add_parser(sub: Any) -> None:
                        f"{k} {v.label()} ({v.dof} DOF)" for k, v in MESHES.items())
                    + "; builtin: " + ", ".join(
                        f"{k} {'x'.join(map(str, v))}" for k, v in BUILTIN_MESHES.items())
-                   + " elements (default coarse)")
+                   + " elements on the Table 1 bar (coarse, medium and fine are accuracy "
+                     "levels: other bodies get counts from their geometry, with layers "
+                     "through the thickness; default coarse)")
     g.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
                    help=f"stick slope lambda of the friction law, N/mm^3 "
                    f"(default {DEFAULT_STICK_SLOPE:g})")
