@@ -20,8 +20,8 @@ from ..models.interface import PRESSURE_LAWS, PressureLaw, power_law, read_press
 from ..models.validity import validity
 from ..params import ClampParams
 
-__all__ = ["add_contact_options", "contact_from_args", "contact_json", "report_warnings",
-           "warnings_for"]
+__all__ = ["add_contact_options", "contact_from_args", "contact_json", "law_from_text",
+           "report_warnings", "warnings_for"]
 
 _LAW_HELP = (f"clamping pressure along the length: {', '.join(PRESSURE_LAWS)}, "
              "power:N[:EDGE] (p ~ 1 + (EDGE-1)|2x/L-1|^N, edges EDGE x the middle, default 2) "
@@ -41,7 +41,8 @@ def add_contact_options(p: argparse.ArgumentParser) -> None:
                         "large --stick-slope gives the rigid foundation exactly)")
 
 
-def _law(text: str | None, params: ClampParams) -> PressureLaw | None:
+def law_from_text(text: str | None, params: ClampParams) -> PressureLaw | None:
+    """The pressure law of a ``--pressure-law`` value; None for the uniform (paper's) law."""
     if text is None or text == "uniform":
         return None
     if text in PRESSURE_LAWS:
@@ -63,7 +64,7 @@ def _law(text: str | None, params: ClampParams) -> PressureLaw | None:
 def contact_from_args(args: argparse.Namespace, params: ClampParams) -> Contact | None:
     """The contact the options ask for; None when they leave the paper's foundation."""
     slope = args.stick_slope
-    law = _law(args.pressure_law, params)
+    law = law_from_text(args.pressure_law, params)
     if args.no_shear_lag and slope is None:
         raise ParameterError("--no-shear-lag needs --stick-slope (the rigid foundation has no "
                              "shear layer to leave out)")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from typing import Any
 
 from ..case.options import add_case_option
@@ -17,7 +18,10 @@ from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
 from ..loading import LOAD_CASES
+from ..models.interface import PRESSURE_LAWS
+from ..params import ClampParams
 from ..solver.mesh import MESHES as BUILTIN_MESHES
+from ..solver.normal import NORMAL_CONTACTS
 from .common import (
     add_params,
     add_strain_energy,
@@ -26,6 +30,7 @@ from .common import (
     params_from_args,
     print_json,
 )
+from .contact import law_from_text
 
 __all__ = ["add_parser", "run"]
 
@@ -48,13 +53,28 @@ def add_parser(sub: Any) -> None:
                        f"{k} {v.label()} ({v.dof} DOF)" for k, v in MESHES.items())
                    + "; builtin: " + ", ".join(
                        f"{k} {'x'.join(map(str, v))}" for k, v in BUILTIN_MESHES.items())
-                   + " elements (default coarse)")
+                   + " elements on the Table 1 bar (coarse, medium and fine are accuracy "
+                     "levels: other bodies get counts from their geometry, with layers "
+                     "through the thickness; default coarse)")
     g.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
                    help=f"stick slope lambda of the friction law, N/mm^3 "
                    f"(default {DEFAULT_STICK_SLOPE:g})")
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
-                   f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g})")
+                   f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g}); calculix, and builtin with "
+                   "--normal-contact penalty")
+    g.add_argument("--normal-contact", choices=list(NORMAL_CONTACTS), default=None,
+                   help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items())
+                   + " (default fixed; docs/solver.md)")
+    g.add_argument("--pressure-law", metavar="LAW", default=None,
+                   help="builtin: clamping pressure on the top face along the length: "
+                        f"{', '.join(PRESSURE_LAWS)}, power:N[:EDGE] or table:FILE.csv "
+                        "(columns x_mm,pressure), as the 1-D commands take it; default "
+                        "uniform (the paper's)")
+    g.add_argument("--clamping-csv", metavar="FILE",
+                   help="builtin: write the interface pressure after clamping (x_mm,pressure "
+                        "in MPa, the mean over the width per section), ready for "
+                        "--pressure-law table:FILE of loop, planar and sweep")
     g.add_argument("--element", choices=[e for s in SOLVERS.values() for e in s.elements],
                    default=None,
                    help="calculix: 20-node brick, reduced (C3D20R, default) or full "
@@ -90,14 +110,22 @@ def _check_run_options(args: argparse.Namespace) -> None:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
 
 
-def _solver_options(args: argparse.Namespace) -> dict[str, Any]:
+def _solver_options(args: argparse.Namespace, params: ClampParams) -> dict[str, Any]:
     """The solver's own options given on the command line; one line for one it does not take."""
     entry = SOLVERS[args.solver]
     given = {"timeout": args.timeout, "threads": args.threads if args.threads != 1 else None,
              "reuse": args.reuse or None,
+             "pressure_law": law_from_text(args.pressure_law, params),
+             "normal_contact": args.normal_contact,
              "normal_slope": (args.normal_slope if args.normal_slope != DEFAULT_NORMAL_SLOPE
                               else None)}
     given = {k: v for k, v in given.items() if v is not None}
+    if (args.solver == "builtin" and "normal_slope" in given
+            and args.normal_contact != "penalty"):
+        raise ParameterError("--normal-slope with --solver builtin needs --normal-contact "
+                             "penalty (the fixed normal contact has no normal stiffness)")
+    if args.clamping_csv is not None and args.solver != "builtin":
+        given["clamping_csv"] = args.clamping_csv
     bad = [f"--{k.replace('_', '-')}" for k in given if k not in entry.options]
     if bad:
         raise ParameterError(f"{', '.join(bad)} do(es) not apply to --solver {args.solver}")
@@ -113,16 +141,32 @@ def run(args: argparse.Namespace) -> int:
     result, files = run_loop(args.model, params, amplitude, solver=args.solver, out=args.out,
                              vtu=not args.no_vtu, mesh=args.mesh, element=args.element,
                              stick_slope=args.stick_slope, substeps=args.substeps,
-                             strain_energy_kind=args.strain_energy, **_solver_options(args))
+                             strain_energy_kind=args.strain_energy,
+                             **_solver_options(args, params))
+    clamping = getattr(result.details, "clamping", None)
+    if args.clamping_csv is not None and clamping is not None:
+        files.append(clamping.write_csv(args.clamping_csv))
     out = result.summary()
     out["files"] = [str(f) for f in files]
+    status = 0 if result.converged else 1
+    for warning in out["warnings"]:
+        print(f"warning: {warning}", file=sys.stderr)
     if args.json:
         print_json(out)
-        return 0 if out["converged"] else 1
+        return status
+    _print_text(args, out, files)
+    return status
+
+
+def _print_text(args: argparse.Namespace, out: dict[str, Any], files: list[Any]) -> None:
+    """The text report; a run that did not converge prints why and no damping figure."""
     opts = out["options"]
     print(f"{args.model} load, {args.solver} solver, mesh {args.mesh} ({opts['element']}, "
           f"{out['dof']} DOF), stick slope {opts['stick_slope']:g} N/mm^3, "
           f"{out['increments']} substeps")
+    if not out["converged"]:
+        print(f"  not converged: {out['message']}; no damping figures")
+        return
     print(f"  amplitude F0           {out['amplitude_N']:12.6g} N  (macroslip at "
           f"{out['macroslip_force_N']:.6g} N)")
     print(f"  peak displacement d0   {out['peak_displacement_mm']:12.6g} mm  "
@@ -136,11 +180,11 @@ def run(args: argparse.Namespace) -> int:
     print(f"  loss factor eta        {out['loss_factor']:12.6g} (dimensionless)")
     print(f"  loop closure           {out['loop_closure']:12.3g} (relative)")
     print(f"  iterations             {out['iterations']:12d}")
-    print(f"  wall time              {out['wall_s']:12.3g} s  "
-          f"(converged: {'yes' if out['converged'] else 'no'})")
+    print(f"  wall time              {out['wall_s']:12.3g} s  (converged: yes)")
+    if out["message"] != "converged":
+        print(f"  note                   {out['message']}")
     if args.out:
         print(f"  job directory          {args.out}")
         for f in files:
             if f.suffix in (".pvd", ".json"):
                 print(f"  {'ParaView' if f.suffix == '.pvd' else 'result':<22s} {f}")
-    return 0 if out["converged"] else 1

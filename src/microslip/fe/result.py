@@ -14,6 +14,11 @@ Conventions (docs/validation.md, docs/solver.md):
 - Slip length of a domain: the slipping length along x, each contact point standing for its
   share ``length`` of the column of points it belongs to; a column exactly on a domain
   boundary (the loaded section of the centre case) counts half to each side.
+- A loop during which no contact point slips encloses no area: W_d and eta are then exactly 0
+  (not the rounding noise of the trapezoidal area) and ``message`` says why
+  (:func:`loop_damping`: stick throughout, or shakedown after the first loading).
+- Gross sliding: a state in which no contact point sticks (:func:`gross_sliding_states`). No
+  stuck region anchors the body, so the joint slides as a whole: not microslip.
 """
 
 from __future__ import annotations
@@ -33,7 +38,8 @@ from ..params import ClampParams
 from ..results import DampingResult, HysteresisLoop
 
 __all__ = ["OPEN", "SLIP", "STATUS", "STICK", "ContactHistory", "FELoopResult",
-           "SolverDetails", "column_lengths"]
+           "SolverDetails", "column_lengths", "gross_sliding_message", "gross_sliding_states",
+           "idle_loop_reason", "join_message", "loop_damping"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -105,6 +111,61 @@ class ContactHistory:
     def slip_area_fraction(self) -> FloatArray:
         """Share of the contact length slipping at every state (dimensionless)."""
         return self.slip_length() / float(np.sum(self.length))
+
+
+def idle_loop_reason(contact: ContactHistory, loop_states: int) -> str | None:
+    """Why a loop of the last ``loop_states`` states encloses no area, or None if it may not.
+
+    The loop dissipates only if some contact point slips in one of its increments (the states
+    after its first). None of them slipping: ``stick throughout`` if no point slipped at any
+    state, ``shakedown`` if points slipped only before the loop (the first loading).
+    """
+    status = contact.status
+    inside = status[max(status.shape[0] - loop_states + 1, 0):]
+    if np.any(inside == SLIP):
+        return None
+    if np.any(status == SLIP):
+        return ("shakedown: contact points slipped only during the first loading, none during "
+                "the loop, so it encloses no area and W_d = 0")
+    return ("stick throughout: no contact point slipped at any increment, so the loop "
+            "encloses no area and W_d = 0")
+
+
+def gross_sliding_states(contact: ContactHistory) -> IntArray:
+    """Indices of the states in which no contact point sticks and some slip (gross sliding)."""
+    status = contact.status
+    sliding = ~np.any(status == STICK, axis=1) & np.any(status == SLIP, axis=1)
+    return np.flatnonzero(sliding).astype(np.int64)
+
+
+def loop_damping(loop: HysteresisLoop, contact: ContactHistory, strain_energy_kind: str
+                 ) -> tuple[DampingResult, str | None]:
+    """W_d, U and eta of an FE loop (:func:`~microslip.energy.damping_from_loop`), with W_d and
+    eta exactly 0 when no contact point slips during the loop; the reason, or None. A loop cut
+    short before it began (fewer than 2 points: the run failed) has NaN figures."""
+    if loop.force.size < 2:
+        nan = math.nan
+        return DampingResult(nan, nan, strain_energy_kind, nan, nan, nan, loop), None
+    damping = damping_from_loop(loop, None, strain_energy_kind)
+    reason = idle_loop_reason(contact, loop.force.size)
+    if reason is None:
+        return damping, None
+    return dataclasses.replace(damping, dissipated_energy=0.0, loss_factor=0.0), reason
+
+
+def gross_sliding_message(contact: ContactHistory) -> str | None:
+    """One sentence if some state is gross sliding (see :func:`gross_sliding_states`)."""
+    k = gross_sliding_states(contact)
+    if k.size == 0:
+        return None
+    return (f"gross sliding (full slip), not microslip: no contact point sticks in {k.size} "
+            f"of {contact.status.shape[0]} states (the first is state {int(k[0])}), so no stuck "
+            "region anchors the joint and the 1-D microslip models do not apply")
+
+
+def join_message(*parts: str | None) -> str:
+    """The sentences given (None skipped), joined by semicolons."""
+    return "; ".join(p for p in parts if p)
 
 
 class SolverDetails(Protocol):
@@ -203,22 +264,48 @@ class FELoopResult:
         return {name: float(self.contact.slip_length(lo * length, hi * length)[k])
                 for name, lo, hi in load_case(self.load_case).domains}
 
+    @property
+    def gross_sliding(self) -> bool:
+        """Some state has no sticking contact point (:func:`gross_sliding_states`)."""
+        return bool(gross_sliding_states(self.contact).size)
+
+    @property
+    def warnings(self) -> list[str]:
+        """Sentences on what the figures do not mean (gross sliding); empty if none."""
+        message = gross_sliding_message(self.contact)
+        return [] if message is None else [message]
+
     def with_strain_energy(self, kind: str) -> FELoopResult:
         """The same result with U (and eta) by another definition."""
-        return dataclasses.replace(self, damping=damping_from_loop(self.loop, None, kind))
+        return dataclasses.replace(self, damping=loop_damping(self.loop, self.contact, kind)[0])
 
     def summary(self) -> dict[str, Any]:
         """The JSON object of ``microslip fe``: the keys of ``microslip loop --json`` plus the
-        FE set-up and figures (units in the keys)."""
+        FE set-up and figures (units in the keys). A run that did not converge has no figures
+        of its loop (None: displacement, energies, loss factor, slip lengths, closure)."""
+        if self.converged:
+            loop = self.damping.loop_json(self.slip_lengths())
+            closure: float | None = self.closure
+            offset: float | None = self.offset
+        else:
+            loop = {key: None for key in ("peak_displacement_mm", "dissipated_energy_Nmm",
+                                          "strain_energy_Nmm", "strain_energy_definition",
+                                          "loss_factor", "slip_length_mm")}
+            loop.update(strain_energy_definition=self.damping.strain_energy_kind,
+                        slip_length_by_domain_mm={},
+                        loop={"force_N": self.loop.force,
+                              "displacement_mm": self.loop.displacement})
+            closure = offset = None
         return {
             "model": self.load_case, "solver": self.solver, "units": dict(UNITS),
             "params": self.params.as_dict(), "options": self.details.options(),
             "increments": int(self.time.size - 1), "amplitude_N": self.amplitude,
             "macroslip_force_N": self.params.macroslip_force,
-            **self.damping.loop_json(self.slip_lengths()),
+            **loop,
             "dof": self.dof, "wall_s": self.wall_s, "converged": self.converged,
-            "iterations": self.total_iterations, "loop_closure": self.closure,
-            "loop_offset_mm": self.offset, "message": self.message, **self.details.summary(),
+            "iterations": self.total_iterations, "loop_closure": closure,
+            "loop_offset_mm": offset, "message": self.message, **self.details.summary(),
             "job_dir": None if self.job_dir is None else str(self.job_dir),
+            "gross_sliding": self.gross_sliding, "warnings": self.warnings,
         }
 

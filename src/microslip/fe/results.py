@@ -33,14 +33,25 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..energy import DEFAULT_STRAIN_ENERGY, damping_from_loop
+from ..energy import DEFAULT_STRAIN_ENERGY
 from ..named import result
 from ..results import HysteresisLoop
 from .case import FECase
 from .errors import ResultsError
 from .mesh import BarMesh
 from .readers import read_dat, read_frd, read_sta
-from .result import OPEN, SLIP, STATUS, STICK, ContactHistory, FELoopResult, column_lengths
+from .result import (
+    OPEN,
+    SLIP,
+    STATUS,
+    STICK,
+    ContactHistory,
+    FELoopResult,
+    column_lengths,
+    gross_sliding_message,
+    join_message,
+    loop_damping,
+)
 
 __all__ = [
     "STATUS",
@@ -213,10 +224,12 @@ def read_results(case: FECase, mesh: BarMesh, job_dir: str | Path, jobname: str 
               "stick_slope": case.stick_slope, "dof": case.spec.dof,
               "time_s": case.times[q:].copy()})
     details = CalculixDetails(case, float(absolute[0]), pressure, shear)
+    damping, idle = loop_damping(loop, contact, strain_energy_kind)
+    message = (join_message("converged", idle, gross_sliding_message(contact)) if converged
+               else "cut back")
     return FELoopResult(
         solver="calculix", load_case=case.model, params=case.params, amplitude=case.amplitude,
         time=case.times.copy(), force=force, displacement=displacement, loop=loop,
-        damping=damping_from_loop(loop, None, strain_energy_kind), contact=contact,
-        dof=case.spec.dof, iterations=sta.iterations.copy(), wall_s=float(wall_s),
-        converged=converged, message="converged" if converged else "cut back", details=details,
+        damping=damping, contact=contact, dof=case.spec.dof, iterations=sta.iterations.copy(),
+        wall_s=float(wall_s), converged=converged, message=message, details=details,
         job_dir=job_dir)

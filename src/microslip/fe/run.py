@@ -147,7 +147,8 @@ def _registry() -> Mapping[str, SolverEntry]:
         "builtin": SolverEntry(
             "builtin", "built-in frictional solver (docs/solver.md)", tuple(BUILTIN_MESHES),
             ("C3D8I", *(e for e in ELEMENTS if e != "C3D8I")),
-            ("linear_solver", "centre_direction", "newton"), _run_builtin, _builtin_fields),
+            ("linear_solver", "centre_direction", "newton", "pressure_law", "normal_contact",
+             "normal_slope"), _run_builtin, _builtin_fields),
         "calculix": SolverEntry(
             "calculix", "CalculiX ccx (docs/validation.md)", tuple(MESHES), ELEMENT_TYPES,
             ("timeout", "threads", "reuse", "normal_slope", "executable"), _run_calculix,

@@ -3,8 +3,10 @@
 A purpose-made solver for the clamped zone of the paper (Section 4's FE model): trilinear
 hexahedra numbered slice by slice along the bar (a band matrix), the bottom face held at
 u_z = 0, nodal Coulomb friction with a circular limit mu N_i and a penalty stick slope
-lambda A_i, normal forces N_i from the clamping step, radial return with its consistent
-tangent, semi-smooth Newton with a backtracking line search and LAPACK banded Cholesky.
+lambda A_i, normal forces N_i from the clamping step (or a unilateral penalty that follows
+the load: :mod:`.normal`), a clamping pressure law (:mod:`.clamping`), radial return with its
+consistent tangent, semi-smooth Newton with a backtracking line search and LAPACK banded
+Cholesky. Mesh levels take their element counts from the geometry (:func:`level_counts`).
 See ``docs/solver.md`` for the formulation, the verification and the coupled-versus-
 decoupled study. Units: N, mm, MPa, N·mm, s.
 
@@ -17,10 +19,12 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 
 from __future__ import annotations
 
+from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pressure_law
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .mesh import MESHES, BoxMesh, box_mesh, mesh_from_spec
+from .mesh import MESH_LEVELS, MESHES, BoxMesh, box_mesh, level_counts, mesh_from_spec
+from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .results import (
     BuiltinDetails,
     CouplingResult,
@@ -54,8 +58,11 @@ __all__ = [
     "ELEMENTS",
     "LINEAR_SOLVERS",
     "MESHES",
+    "MESH_LEVELS",
+    "NORMAL_CONTACTS",
     "BoxMesh",
     "BuiltinDetails",
+    "ClampingPressure",
     "CouplingResult",
     "CouplingSweep",
     "CycleWork",
@@ -64,6 +71,7 @@ __all__ = [
     "History",
     "LoadPathResult",
     "NewtonOptions",
+    "PenaltyNormal",
     "Simulation",
     "SolverStats",
     "amplitudes_for_ratio",
@@ -72,10 +80,14 @@ __all__ = [
     "available_linear_solvers",
     "box_mesh",
     "build_model",
+    "clamp_forces",
+    "clamping_pressure",
     "coupling_study",
     "coupling_sweep",
     "element_stiffness",
+    "fe_pressure_law",
     "friction_dissipation",
+    "level_counts",
     "mesh_from_spec",
     "return_map",
     "run_history",

@@ -3,7 +3,9 @@
 The elastic stiffness K of the free dofs is constant; only the 2 x 2 friction tangents D_i of
 the contact nodes change from one Newton iteration to the next, and they sit on the diagonal
 and the first off-diagonal (the x and y dofs of a contact node are neighbours in the
-numbering). A backend therefore keeps K once and adds D for every factorisation.
+numbering). A backend therefore keeps K once and adds D for every factorisation. With
+penalty normal contact (:mod:`~microslip.solver.normal`) the contact tangent has a fourth
+column, the normal stiffness of each node on the diagonal of its u_z (the dof after u_y).
 
 Backends (:data:`LINEAR_SOLVERS`):
 
@@ -104,7 +106,7 @@ class BandedBackend:
     name = "banded"
 
     def __init__(self, k: sp.csr_matrix, cx: IntArray, cy: IntArray,
-                 kc: FloatArray | None = None) -> None:
+                 kc: FloatArray | None = None, kn: FloatArray | None = None) -> None:
         if np.any(cy != cx + 1) or np.any(np.diff(cx) <= 0):
             raise ValueError("contact x and y dofs must be neighbours, in increasing order")
         coo = sp.tril(k, format="coo")
@@ -117,7 +119,8 @@ class BandedBackend:
         self.partial_factorisations = 0
         self.factorised_columns = 0
         if kc is not None and kd > 0:
-            self.ref_d = np.stack([kc, np.zeros_like(kc), kc], axis=1)
+            ref = [kc, np.zeros_like(kc), kc] + ([] if kn is None else [kn])
+            self.ref_d = np.stack(ref, axis=1)
             self.ref = np.asfortranarray(self._full(self.ref_d))
             ii, jj = np.tril_indices(kd)
             self._tril = (ii - jj, jj, ii)
@@ -131,6 +134,8 @@ class BandedBackend:
         cx = self.cx[node0:] - first
         ab[0, cx] += d[node0:, 0]
         ab[0, cx + 1] += d[node0:, 2]
+        if d.shape[1] > 3:
+            ab[0, cx + 2] += d[node0:, 3]
         if self.kd > 0:
             ab[1, cx] += d[node0:, 1]
         return ab
@@ -176,6 +181,7 @@ class _SparseContactSum:
         kc.sort_indices()
         self.k = kc
         self.pos = [self._position(kc, r, c) for r, c in ((cx, cx), (cx, cy), (cy, cx), (cy, cy))]
+        self.pos_z = self._position(kc, cy + 1, cy + 1) if cy[-1] + 1 < k.shape[0] else None
 
     @staticmethod
     def _position(m: sp.csc_matrix, rows: IntArray, cols: IntArray) -> IntArray:
@@ -193,6 +199,10 @@ class _SparseContactSum:
         m.data[self.pos[1]] += d[:, 1]
         m.data[self.pos[2]] += d[:, 1]
         m.data[self.pos[3]] += d[:, 2]
+        if d.shape[1] > 3:
+            if self.pos_z is None:
+                raise ValueError("no u_z dofs after the contact y dofs")
+            m.data[self.pos_z] += d[:, 3]
         return m
 
 
@@ -264,9 +274,10 @@ def available_linear_solvers() -> tuple[str, ...]:
 
 
 def make_backend(name: str, k: sp.csr_matrix, cx: IntArray, cy: IntArray,
-                 kc: FloatArray | None = None) -> Backend:
+                 kc: FloatArray | None = None, kn: FloatArray | None = None) -> Backend:
     """Build the named backend for the free-dof stiffness ``k`` and contact dofs ``cx, cy``;
-    ``kc`` (the stick stiffnesses) lets the banded backend reuse the all-stick factor."""
+    ``kc`` (the stick stiffnesses) lets the banded backend reuse the all-stick factor, with
+    ``kn`` (penalty normal contact) that of the all-closed one."""
     try:
         cls = LINEAR_SOLVERS[name][0]
     except (KeyError, TypeError):
@@ -274,5 +285,5 @@ def make_backend(name: str, k: sp.csr_matrix, cx: IntArray, cy: IntArray,
             f"unknown linear solver {name!r}; choose one of {', '.join(LINEAR_SOLVERS)}"
         ) from None
     if name == "banded":
-        return BandedBackend(k, cx, cy, kc)
+        return BandedBackend(k, cx, cy, kc, kn)
     return cls(k, cx, cy)

@@ -27,8 +27,11 @@ from ..params import ClampParams
 __all__ = [
     "MAX_NODES",
     "MESHES",
+    "MESH_LEVELS",
     "BoxMesh",
+    "MeshLevel",
     "box_mesh",
+    "level_counts",
     "mesh_from_spec",
 ]
 
@@ -38,11 +41,13 @@ FloatArray = NDArray[np.float64]
 #: Upper bound on the number of nodes of one mesh (memory guard: ~1e6 DOF).
 MAX_NODES = 350_000
 
-#: Named element counts ``(nx, ny, nz)`` along the length, width and thickness (Table 1 bar:
-#: element lengths 10.6, 5.3, 2.6 and 1.6 mm). ``coarse`` (625 DOF) is mesh-converged for the
-#: Table 1 tip loop to 0.2 %; ``medium`` (1 225 DOF) also for the centre loads to about 1 %;
-#: ``paper`` (9 016 DOF) is the size of the paper's ANSYS model (~10 500 DOF) and of the
-#: CalculiX ``paper`` mesh (9 090 DOF); see docs/solver.md.
+#: Named element counts ``(nx, ny, nz)`` along the length, width and thickness on the Table 1
+#: bar (element lengths 10.6, 5.3, 2.6 and 1.6 mm). ``coarse`` (625 DOF) is mesh-converged for
+#: the Table 1 tip loop to 0.2 %; ``medium`` (1 225 DOF) also for the centre loads to about
+#: 1 %; ``paper`` (9 016 DOF) is the size of the paper's ANSYS model (~10 500 DOF) and of the
+#: CalculiX ``paper`` mesh (9 090 DOF); see docs/solver.md. ``tiny`` and ``paper`` are these
+#: counts on any body; the accuracy levels ``coarse``, ``medium`` and ``fine`` take their
+#: counts from the geometry (:data:`MESH_LEVELS`, :func:`level_counts`), which gives these.
 MESHES: dict[str, tuple[int, int, int]] = {
     "tiny": (8, 2, 1),
     "coarse": (24, 4, 1),
@@ -50,6 +55,56 @@ MESHES: dict[str, tuple[int, int, int]] = {
     "fine": (96, 8, 2),
     "paper": (160, 6, 2),
 }
+
+
+@dataclass(frozen=True)
+class MeshLevel:
+    """An accuracy level: element sizes from the geometry of the clamped zone.
+
+    ``across`` elements over the width set the size h = w / across; the thickness gets
+    ceil(t / h) layers (at least one, at most ``max_layers``: the banded factorisation costs
+    the square of the layers), the length ceil(L / (aspect h)) elements (at least
+    ``min_along``, the Table 1 count, made even for the mid-length section). On the Table 1
+    bar this gives the counts of :data:`MESHES`; a thick block gets layers through its
+    thickness, and no body gets fewer elements than before the levels took the geometry.
+    """
+
+    across: int
+    aspect: float
+    min_along: int
+    max_layers: int
+
+    def counts(self, length: float, width: float, thickness: float) -> tuple[int, int, int]:
+        h = width / self.across
+        nz = min(self.max_layers, max(1, math.ceil(thickness / h - 1e-9)))
+        nx = max(self.min_along, math.ceil(length / (self.aspect * h) - 1e-9))
+        return nx + nx % 2, self.across, nz
+
+
+#: Accuracy levels of the built-in solver (element aspect dx / dy as on the Table 1 bar).
+MESH_LEVELS: dict[str, MeshLevel] = {
+    "coarse": MeshLevel(4, 5.0 / 3.0, 24, 4),
+    "medium": MeshLevel(4, 5.0 / 6.0, 48, 6),
+    "fine": MeshLevel(8, 5.0 / 6.0, 96, 8),
+}
+
+
+def level_counts(params: ClampParams, level: str) -> tuple[int, int, int]:
+    """Element counts (nx, ny, nz) of a mesh name for this clamped zone: an accuracy level of
+    :data:`MESH_LEVELS` from the geometry, or the fixed counts of ``tiny`` and ``paper``.
+
+    >>> from microslip import preset
+    >>> level_counts(preset("table1"), "fine"), level_counts(preset("table2-tip"), "coarse")
+    ((96, 8, 2), (24, 4, 4))
+    """
+    if level in MESH_LEVELS:
+        return MESH_LEVELS[level].counts(params.length, params.width, params.thickness)
+    try:
+        return MESHES[level]
+    except KeyError:
+        raise ParameterError(
+            f"unknown mesh {level!r}; choose one of {', '.join(MESHES)} or give (nx, ny, nz)"
+        ) from None
 
 
 def _count(name: str, value: Any, lower: int) -> int:
@@ -204,7 +259,8 @@ def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz
 
 
 def mesh_from_spec(params: ClampParams, spec: Any) -> BoxMesh:
-    """A mesh of the clamped zone from a name in :data:`MESHES`, ``(nx, ny, nz)`` or a mesh.
+    """A mesh of the clamped zone from a name in :data:`MESHES` (:func:`level_counts`),
+    ``(nx, ny, nz)`` or a mesh.
 
     A given :class:`BoxMesh` must have the size of the clamped zone (L, w, t of ``params``).
 
@@ -221,12 +277,7 @@ def mesh_from_spec(params: ClampParams, spec: Any) -> BoxMesh:
                 f"match the clamped zone {dims[0]:g} x {dims[1]:g} x {dims[2]:g} mm")
         return spec
     if isinstance(spec, str):
-        try:
-            counts = MESHES[spec]
-        except KeyError:
-            raise ParameterError(
-                f"unknown mesh {spec!r}; choose one of {', '.join(MESHES)} or give (nx, ny, nz)"
-            ) from None
+        counts = level_counts(params, spec)
     else:
         try:
             counts = tuple(spec)

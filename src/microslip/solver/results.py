@@ -13,11 +13,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..fe.result import ContactHistory
+from ..fe.result import ContactHistory, gross_sliding_message, join_message
 from ..named import result
 from ..results import HysteresisLoop
 
 if TYPE_CHECKING:
+    from .clamping import ClampingPressure
     from .solve import FrictionModel
 
 __all__ = [
@@ -104,6 +105,16 @@ class BuiltinDetails:
         The assembled model, kept with ``u`` (``record=True``) for the VTU export.
     u : ndarray, shape (n + 1, dof) or None
         Free-dof displacements after every increment, mm (``record=True``).
+    pressure_law : str
+        Name of the clamping pressure law (``uniform``: the paper's).
+    clamping : ClampingPressure or None
+        The interface pressure after the clamping step (:mod:`~microslip.solver.clamping`).
+    normal_contact : str
+        ``fixed`` (the paper's reading) or ``penalty`` (:mod:`~microslip.solver.normal`).
+    normal_slope : float or None
+        k_n of the penalty, N/mm^3 (None when fixed).
+    normal_force : ndarray, shape (n + 1, n_c) or None
+        Normal forces N_i after every increment, N (penalty only).
     """
 
     stats: SolverStats
@@ -111,11 +122,18 @@ class BuiltinDetails:
     friction_dissipation: float
     model: FrictionModel | None = None
     u: FloatArray | None = None
+    pressure_law: str = "uniform"
+    clamping: ClampingPressure | None = None
+    normal_contact: str = "fixed"
+    normal_slope: float | None = None
+    normal_force: FloatArray | None = None
 
     def options(self) -> dict[str, Any]:
         s = self.stats
         return {"mesh": dict(s.mesh), "element": s.element, "stick_slope": s.stick_slope,
-                "linear_solver": s.linear_solver, "centre_direction": self.centre_direction}
+                "linear_solver": s.linear_solver, "centre_direction": self.centre_direction,
+                "pressure_law": self.pressure_law, "normal_contact": self.normal_contact,
+                "normal_slope": self.normal_slope}
 
     def summary(self) -> dict[str, Any]:
         return {"friction_dissipation_Nmm": self.friction_dissipation}
@@ -249,6 +267,13 @@ class LoadPathResult:
         return (self.centre_work / self.dissipated_energy if self.dissipated_energy
                 else float("nan"))
 
+    @property
+    def gross_sliding(self) -> bool:
+        """Some increment has no sticking contact point: the body slides as a whole
+        (:func:`~microslip.fe.result.gross_sliding_states`); the W per cycle is then that of
+        gross sliding, not of microslip."""
+        return gross_sliding_message(self.contact) is not None
+
     def last_cycle(self) -> slice:
         """Samples of the last cycle."""
         n = self.samples_per_cycle
@@ -271,7 +296,9 @@ class LoadPathResult:
                 "dissipated_energy_Nmm": self.dissipated_energy,
                 "tip_work_Nmm": self.tip_work, "centre_work_Nmm": self.centre_work,
                 "tip_share": self.tip_share, "centre_share": self.centre_share,
-                "converged": self.converged, "success": self.success, "message": self.message,
+                "converged": self.converged, "success": self.success,
+                "gross_sliding": self.gross_sliding,
+                "message": join_message(self.message, gross_sliding_message(self.contact)),
                 **self.cycle_work.summary(), **self.stats.summary()}
 
 
@@ -336,9 +363,18 @@ class CouplingResult:
         return all(r.success for r in (self.coupled, self.tip_only, self.centre_only))
 
     @property
+    def gross_sliding(self) -> bool:
+        """The coupled run slides as a whole at some increment (not microslip)."""
+        return self.coupled.gross_sliding
+
+    @property
     def message(self) -> str:
         bad = [f"{name}: {r.message}" for name, r in self.runs().items() if not r.success]
-        return "; ".join(bad) if bad else "converged; W per cycle settled in all three runs"
+        sliding = [f"{name}: {gross_sliding_message(r.contact)}"
+                   for name, r in self.runs().items() if r.gross_sliding]
+        return join_message(
+            "; ".join(bad) if bad else "converged; W per cycle settled in all three runs",
+            *sliding)
 
     def runs(self) -> dict[str, LoadPathResult]:
         return {"coupled": self.coupled, "tip_only": self.tip_only,
@@ -364,7 +400,10 @@ class CouplingResult:
             "tip_only_dissipated_energy_Nmm": self.tip_only.dissipated_energy,
             "centre_only_dissipated_energy_Nmm": self.centre_only.dissipated_energy,
             "centre_direction": self.coupled.centre_direction,
-            "converged": self.converged, "success": self.success, "message": self.message,
+            "converged": self.converged, "success": self.success,
+            "gross_sliding": self.gross_sliding, "message": self.message,
+            "warnings": [f"{name}: {gross_sliding_message(r.contact)}"
+                         for name, r in self.runs().items() if r.gross_sliding],
             "dof": self.coupled.stats.dof, "wall_s": self.wall_s,
             "cycles": {name: r.cycle_work.summary() for name, r in self.runs().items()},
         }

@@ -34,12 +34,15 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..models.interface import PressureLaw
 from ..params import ClampParams, check_positive
+from .clamping import clamp_forces
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import assemble_stiffness
 from .linalg import Backend, make_backend
 from .mesh import BoxMesh, mesh_from_spec
+from .normal import PenaltyNormal, check_normal_contact
 
 __all__ = [
     "CENTRE_DIRECTIONS",
@@ -119,6 +122,11 @@ class FrictionModel:
         Element formulation (:data:`~microslip.solver.element.ELEMENTS`).
     stick_slope : float
         lambda, N/mm^3.
+    pressure_law : PressureLaw or None
+        Shape of the clamping traction on the top face (None: uniform, the paper's).
+    normal : PenaltyNormal or None
+        The unilateral penalty of ``normal_contact="penalty"``; None: u_z = 0 held at the
+        interface and the normal forces fixed after clamping (the paper's reading).
     free : ndarray of int
         Global dof numbers (3 node + component) of the unknowns, in increasing order.
     stiffness : scipy.sparse.csr_matrix
@@ -154,6 +162,8 @@ class FrictionModel:
     mesh: BoxMesh
     element: str
     stick_slope: float
+    pressure_law: PressureLaw | None
+    normal: PenaltyNormal | None
     free: IntArray = field(repr=False)
     stiffness: sp.csr_matrix = field(repr=False)
     contact_nodes: IntArray = field(repr=False)
@@ -182,6 +192,11 @@ class FrictionModel:
         return 3 * self.mesh.n_nodes
 
     @property
+    def normal_contact(self) -> str:
+        """``fixed`` or ``penalty`` (:data:`~microslip.solver.normal.NORMAL_CONTACTS`)."""
+        return "fixed" if self.normal is None else "penalty"
+
+    @property
     def force_scale(self) -> float:
         """mu F_N, N: the scale of the residual tolerance."""
         return self.params.macroslip_force
@@ -207,7 +222,9 @@ def _unit_load(mesh: BoxMesh, face: str, component: int, index: IntArray, n_free
 
 def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float =
                 DEFAULT_STICK_SLOPE, element: str = "C3D8I", linear_solver: str = "banded",
-                newton: NewtonOptions | None = None) -> FrictionModel:
+                newton: NewtonOptions | None = None,
+                pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
+                normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FrictionModel:
     """Assemble the clamped zone and solve the clamping step.
 
     Parameters
@@ -223,6 +240,14 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     linear_solver : str
         ``banded`` (default), ``splu`` or ``cholmod``.
     newton : NewtonOptions, optional
+    pressure_law : PressureLaw, optional
+        Shape of the clamping traction along the length
+        (:mod:`microslip.models.interface`; default uniform, the paper's; see
+        :func:`~microslip.solver.clamping.clamp_forces`).
+    normal_contact : {"fixed", "penalty"}
+        :data:`~microslip.solver.normal.NORMAL_CONTACTS` (default ``fixed``, the paper's).
+    normal_slope : float
+        k_n of the penalty, N/mm^3 (``penalty`` only; default 1e5, as the CalculiX model's).
 
     Returns
     -------
@@ -239,6 +264,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     if not isinstance(params, ClampParams):
         raise ParameterError(f"params must be a ClampParams, got {type(params).__name__}")
     lam = check_positive("stick_slope", stick_slope, "N/mm^3")
+    penalty = check_normal_contact(normal_contact) == "penalty"
+    k_n = check_positive("normal_slope", normal_slope, "N/mm^3")
     newton = NewtonOptions() if newton is None else newton
     box = mesh_from_spec(params, mesh)
     box.face_nodes("mid")  # even nx required
@@ -247,7 +274,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     bottom = box.face_nodes("bottom")
     fixed = 3 * bottom + 2
     mask = np.ones(n_all, dtype=bool)
-    mask[fixed] = False
+    if not penalty:
+        mask[fixed] = False
     free = np.flatnonzero(mask).astype(np.int64)
     index = np.full(n_all, -1, dtype=np.int64)
     index[free] = np.arange(free.size)
@@ -256,13 +284,16 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     cdofs = np.stack([index[3 * bottom], index[3 * bottom + 1]], axis=1)
     area = box.face_weights("bottom")
     kc = lam * area
-    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc)
+    springs = PenaltyNormal(k_n * area, index[fixed], k_n) if penalty else None
+    backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc,
+                           None if springs is None else springs.stiffness)
 
-    # Clamping pressure on the top face: consistent nodal forces of a uniform traction.
+    # Clamping pressure on the top face: consistent nodal forces of the traction.
+    if pressure_law is not None and pressure_law.name == "uniform":
+        pressure_law = None
     top = box.face_nodes("top")
     clamp = np.zeros(free.size)
-    clamp[index[3 * top + 2]] = -params.normal_force * box.face_weights("top") / (
-        params.length * params.width)
+    clamp[index[3 * top + 2]] = -clamp_forces(box, params, pressure_law)
     loads = {
         "tip": _unit_load(box, "end", 0, index, free.size),
         "centre-axial": _unit_load(box, "mid", 0, index, free.size),
@@ -278,12 +309,12 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     for attempt in range(20):
         with single_threaded_blas():
             ok, it, u, resp = _Stepper(k_ff, backend, cdofs, kc, limit, newton,
-                                       params.macroslip_force).solve(
+                                       params.macroslip_force, springs).solve(
                 np.zeros(free.size), np.zeros((bottom.size, 2)), clamp)
         iters += it
         if not ok:
             raise MacroslipError("the clamping step did not converge")
-        new_normal = np.asarray(k_rf @ u)
+        new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
         if np.any(new_normal <= 0.0):
             raise ParameterError("the clamping step gave a non-positive normal force at a "
                                  "contact node; refine the mesh through the thickness")
@@ -298,7 +329,8 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
         raise MacroslipError("the normal forces of the clamping step did not settle")
     slip = resp.slip
     return FrictionModel(
-        params=params, mesh=box, element=element, stick_slope=lam, free=free,
+        params=params, mesh=box, element=element, stick_slope=lam,
+        pressure_law=pressure_law, normal=springs, free=free,
         stiffness=k_ff, contact_nodes=bottom, contact_dofs=cdofs, contact_area=area,
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, loads=loads,
         clamp_load=clamp, u0=u, slip0=slip, clamp_iterations=iters, backend=backend,
@@ -318,9 +350,13 @@ class _Stepper:
     """
 
     def __init__(self, k: sp.csr_matrix, backend: Backend, cdofs: IntArray, kc: FloatArray,
-                 limit: FloatArray, newton: NewtonOptions, force_scale: float) -> None:
+                 limit: FloatArray, newton: NewtonOptions, force_scale: float,
+                 normal: PenaltyNormal | None = None, friction: float | None = None) -> None:
         self.k, self.backend, self.cdofs, self.kc, self.limit = k, backend, cdofs, kc, limit
         self.newton = newton
+        self.normal = normal
+        #: mu, when the limits follow the normal forces (lagged, see :mod:`.normal`)
+        self.friction = friction
         self.tol = newton.rtol * force_scale
         self.factorisations = 0
         self.fac: Any = None
@@ -334,19 +370,39 @@ class _Stepper:
         r = f - ku
         r[self.cdofs[:, 0]] -= resp.force[:, 0]
         r[self.cdofs[:, 1]] -= resp.force[:, 1]
+        if self.normal is not None:
+            r[self.normal.dofs] += self.normal.forces(u)
         return r, resp
 
-    def _factor(self, resp: FrictionResponse) -> None:
+    def _state(self, resp: FrictionResponse, u: FloatArray) -> BoolArray:
+        """What a factorisation depends on: the slipping nodes (and the closed ones)."""
+        if self.normal is None:
+            return resp.slipping
+        return np.concatenate([resp.slipping, self.normal.closed(u)])
+
+    def _relimit(self, u: FloatArray) -> bool:
+        """Set the limits to mu N_i(u) (penalty normal contact); True if they changed by more
+        than the tolerance."""
+        if self.normal is None or self.friction is None:
+            return False
+        new = self.friction * self.normal.forces(u)
+        changed = bool(np.max(np.abs(new - self.limit)) > self.tol)
+        self.limit = new
+        return changed
+
+    def _factor(self, resp: FrictionResponse, u: FloatArray) -> None:
+        tangent = (resp.tangent if self.normal is None else
+                   np.column_stack([resp.tangent, self.normal.tangent(u)]))
         try:
-            self.fac = self.backend.factor(resp.tangent)
+            self.fac = self.backend.factor(tangent)
         except np.linalg.LinAlgError:
             # Singular tangent (every slipping node free along its slip): stiffen the null
             # directions a little; the residual test keeps the answer exact.
-            d = resp.tangent.copy()
+            d = tangent.copy()
             d[:, 0] += 1e-6 * self.kc
             d[:, 2] += 1e-6 * self.kc
             self.fac = self.backend.factor(d)
-        self.fac_set = resp.slipping
+        self.fac_set = self._state(resp, u)
         self.factorisations += 1
 
     def solve(self, u: FloatArray, slip: FloatArray, f: FloatArray
@@ -361,15 +417,18 @@ class _Stepper:
         fresh = False
         ratio = 0.0
         for it in range(1, nw.max_iterations + 1):
+            if rn <= self.tol and self._relimit(u):
+                r, resp = self._residual(f, ku, u, slip)
+                rn = float(np.max(np.abs(r)))
             if rn <= self.tol:
                 self._u, self._ku = u, ku
                 return True, it - 1, u, resp
             reuse = (nw.reuse and self.fac is not None and ratio <= nw.reuse_ratio
                      and (it == 1 or not nw.same_set or (
                          self.fac_set is not None
-                         and bool(np.array_equal(resp.slipping, self.fac_set)))))
+                         and bool(np.array_equal(self._state(resp, u), self.fac_set)))))
             if not reuse:
-                self._factor(resp)
+                self._factor(resp, u)
             fresh = not reuse
             du = self.fac.solve(r)
             kdu = np.asarray(self.k @ du)
@@ -417,6 +476,9 @@ class History:
         Free-dof displacements after each increment, mm (with ``record=True``).
     slip : ndarray, shape (n, n_c, 2) or None
         Slips of the contact nodes after each increment, mm (with ``record=True``).
+    normal_force : ndarray, shape (n, n_c) or None
+        Normal forces N_i after each increment, N (penalty normal contact; None when they
+        are fixed: :attr:`FrictionModel.normal_force`).
     """
 
     f_tip: FloatArray
@@ -433,6 +495,7 @@ class History:
     factorisations: int
     u: FloatArray | None = None
     slip: FloatArray | None = None
+    normal_force: FloatArray | None = None
 
     def displacement(self, component: str) -> FloatArray:
         """Work-conjugate displacement of the ``tip`` or ``centre`` load, mm."""
@@ -469,7 +532,8 @@ class Simulation:
         self.p_cen = model.loads[model.centre_load(centre_direction)]
         self.stepper = _Stepper(model.stiffness, model.backend, model.contact_dofs,
                                 model.contact_stiffness, model.friction_limit, model.newton,
-                                model.force_scale)
+                                model.force_scale, model.normal,
+                                None if model.normal is None else model.params.friction)
         self.u, self.slip = model.u0.copy(), model.slip0.copy()
         self.base_tip = float(self.p_tip @ self.u)
         self.base_cen = float(self.p_cen @ self.u)
@@ -505,6 +569,17 @@ class Simulation:
             if cuts > model.newton.max_cuts:
                 assert resp is not None
                 return False, total_its, 0.0, resp
+
+    def _runaway(self) -> str | None:
+        """Why the state just reached is no static equilibrium, or None. With unilateral
+        normal contact a block whose load moment exceeds the clamping's tips over: the
+        displacements then run away (here: beyond 1 % of the body's largest size)."""
+        p = self.model.params
+        size = max(p.length, p.width, p.thickness)
+        if self.model.normal is None or float(np.max(np.abs(self.u))) <= 0.01 * size:
+            return None
+        return ("has no static equilibrium: the displacements exceed 1 % of the body's size "
+                "(the block tips over on its unilateral contact)")
 
     def advance(self, f_tip: Any, f_centre: Any, *, record: bool = False) -> History:
         """Apply the next samples of the force history (one increment each).
@@ -543,6 +618,8 @@ class Simulation:
         slipping = np.zeros((n, model.contact_nodes.size), dtype=bool)
         u_rec = np.zeros((n, model.dof)) if record else None
         s_rec = np.zeros((n, model.contact_nodes.size, 2)) if record else None
+        springs = model.normal
+        n_rec = None if springs is None else np.zeros((n, model.contact_nodes.size))
         f0 = self.stepper.factorisations
         t0 = time.perf_counter()
         converged, message, done = True, "converged", n
@@ -550,17 +627,21 @@ class Simulation:
             for i in range(n):
                 ok, it, fw, resp = self._increment(ft[i], fc[i])
                 its[i] = it
-                if not ok:
+                runaway = self._runaway() if ok else None
+                if not ok or runaway:
                     converged, done, self.failed = False, i, True
                     message = (f"increment {self.increments + i} (F_tip {ft[i]:g} N, F_centre "
-                               f"{fc[i]:g} N) did not converge in "
-                               f"{model.newton.max_iterations} Newton iterations, even cut "
-                               f"into {model.newton.max_cuts} sub-increments")
+                               f"{fc[i]:g} N) " + (runaway or
+                               f"did not converge in {model.newton.max_iterations} Newton "
+                               f"iterations, even cut into {model.newton.max_cuts} "
+                               "sub-increments"))
                     break
                 fwork[i] = fw
                 d_tip[i] = float(self.p_tip @ self.u) - self.base_tip
                 d_cen[i] = float(self.p_cen @ self.u) - self.base_cen
                 slipping[i] = resp.slipping
+                if springs is not None and n_rec is not None:
+                    n_rec[i] = springs.forces(self.u)
                 if u_rec is not None and s_rec is not None:
                     u_rec[i], s_rec[i] = self.u, self.slip
         self.increments += done
@@ -570,7 +651,8 @@ class Simulation:
             converged=converged, completed=done, message=message,
             wall_s=time.perf_counter() - t0, factorisations=self.stepper.factorisations - f0,
             u=None if u_rec is None else u_rec[:done],
-            slip=None if s_rec is None else s_rec[:done])
+            slip=None if s_rec is None else s_rec[:done],
+            normal_force=None if n_rec is None else n_rec[:done])
 
 
 def run_history(model: FrictionModel, f_tip: Any, f_centre: Any, *,

@@ -25,9 +25,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..energy import loop_work
 from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_STICK_SLOPE
-from ..fe.result import SLIP, STICK, ContactHistory
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..fe.result import OPEN, SLIP, STICK, ContactHistory
 from ..loading import LoadPath
+from ..models.interface import PressureLaw
 from ..params import ClampParams, check_amplitude, check_positive
 from ..results import HysteresisLoop
 from .results import (
@@ -64,13 +65,16 @@ FloatArray = NDArray[np.float64]
 DEFAULT_MESH = "coarse"
 
 def model_for(params: ClampParams, mesh: Any, stick_slope: float, element: str,
-           linear_solver: str, newton: NewtonOptions | None) -> FrictionModel:
+              linear_solver: str, newton: NewtonOptions | None, *,
+              pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
+              normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FrictionModel:
     if isinstance(mesh, FrictionModel):
         if mesh.params != params:
             raise ParameterError("the given FrictionModel was built for other parameters")
         return mesh
     return build_model(params, mesh, stick_slope=stick_slope, element=element,
-                       linear_solver=linear_solver, newton=newton)
+                       linear_solver=linear_solver, newton=newton, pressure_law=pressure_law,
+                       normal_contact=normal_contact, normal_slope=normal_slope)
 
 
 def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:
@@ -88,13 +92,17 @@ def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) 
 
 
 def contact_history(model: FrictionModel, time: FloatArray, slipping: NDArray[np.bool_],
-                    slip: FloatArray | None = None) -> ContactHistory:
+                    slip: FloatArray | None = None, normal_force: FloatArray | None = None
+                    ) -> ContactHistory:
     """The :class:`~microslip.fe.result.ContactHistory` of a run: stick or slip after every
-    increment (the built-in solver holds the contact closed), each node standing for its
-    tributary area over the width in slip lengths."""
+    increment, or open where a penalty normal force is 0 (``normal_force``; the fixed normal
+    contact stays closed), each node standing for its tributary area over the width in slip
+    lengths."""
     nodes = model.contact_nodes
-    return ContactHistory(nodes, model.mesh.nodes[nodes].copy(), time,
-                          np.where(slipping, SLIP, STICK).astype(np.int8),
+    status = np.where(slipping, SLIP, STICK).astype(np.int8)
+    if normal_force is not None:
+        status[normal_force <= 0.0] = OPEN
+    return ContactHistory(nodes, model.mesh.nodes[nodes].copy(), time, status,
                           model.contact_area / model.params.width, slip)
 
 
@@ -188,6 +196,8 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
     dc = np.concatenate([x.d_centre for x in hists])
     fw = np.concatenate([x.friction_work for x in hists])
     slipping = np.concatenate([x.slipping for x in hists])
+    normal = (None if fem.normal is None else
+              np.concatenate([x.normal_force for x in hists if x.normal_force is not None]))
     theta = theta_all[:ft.size]
     ncyc = done_cycles
     tip, cen, fri = _cycle_works(path, ft, fc, dt, dc, fw, ncyc)
@@ -211,7 +221,8 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
     return LoadPathResult(
         theta=theta, f_tip=ft, f_centre=fc, d_tip=dt, d_centre=dc, cycle_start=k0,
         samples_per_cycle=n, centre_direction=centre_direction, cycle_work=cw, loops=loops,
-        contact=contact_history(fem, theta, slipping), stats=solver_stats(fem, hists, setup_s),
+        contact=contact_history(fem, theta, slipping, None, normal),
+        stats=solver_stats(fem, hists, setup_s),
         converged=converged, success=converged and settled, message=message,
         meta=dict(path.meta))
 

@@ -6,13 +6,15 @@ from typing import Any
 
 import numpy as np
 
-from ..energy import DEFAULT_STRAIN_ENERGY, damping_from_loop
+from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import MacroslipError
-from ..fe.constants import DEFAULT_STICK_SLOPE
-from ..fe.result import FELoopResult
+from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..fe.result import FELoopResult, gross_sliding_message, join_message, loop_damping
 from ..loading import PaperSine, load_case
+from ..models.interface import PressureLaw
 from ..params import ClampParams
 from ..results import HysteresisLoop
+from .clamping import clamping_pressure
 from .results import BuiltinDetails
 from .solve import FrictionModel, NewtonOptions, Simulation
 from .study import DEFAULT_MESH, check_body, contact_history, model_for, solver_stats
@@ -26,7 +28,9 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
                    centre_direction: str = "axial", linear_solver: str = "banded",
                    newton: NewtonOptions | None = None,
                    strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
-                   record: bool = False) -> FELoopResult:
+                   record: bool = False,
+                   pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
+                   normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FELoopResult:
     """The paper's 1-D FE loading of the clamped zone with the built-in solver.
 
     F = F0 sin(2 pi t), t = 0 .. 1.25 s in ``increments`` equal steps
@@ -57,6 +61,12 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     record : bool
         Keep the displacement and slip fields of every increment (``details.fields``) for
         a VTU export.
+    pressure_law : PressureLaw, optional
+        Shape of the clamping traction along the length (default uniform, the paper's).
+    normal_contact : {"fixed", "penalty"}
+        Normal forces fixed after clamping (the paper's reading) or a unilateral penalty
+        of slope ``normal_slope`` (N/mm^3) that follows the load
+        (:mod:`~microslip.solver.normal`).
 
     Returns
     -------
@@ -78,7 +88,9 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     if load.amplitude >= params.macroslip_force:
         raise MacroslipError(f"amplitude {load.amplitude:g} N reaches the macroslip force "
                              f"mu F_N = {params.macroslip_force:g} N")
-    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
+    fem = model_for(params, mesh, stick_slope, element, linear_solver, newton,
+                    pressure_law=pressure_law, normal_contact=normal_contact,
+                    normal_slope=normal_slope)
     sim = Simulation(fem, centre_direction)
     forces = {"tip": np.zeros_like(load.force), "centre": np.zeros_like(load.force)}
     forces[case.name] = load.force
@@ -98,13 +110,17 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     stats = solver_stats(fem, [hist], setup)
     details = BuiltinDetails(
         stats, centre_direction, float(np.sum(hist.friction_work[load.quarter + 1:])),
-        None if hist.u is None else fem, hist.u)
+        None if hist.u is None else fem, hist.u,
+        "uniform" if fem.pressure_law is None else fem.pressure_law.name,
+        clamping_pressure(fem), fem.normal_contact,
+        None if fem.normal is None else fem.normal.slope, hist.normal_force)
     time = load.time[:done]
+    contact = contact_history(fem, time, hist.slipping, hist.slip, hist.normal_force)
+    damping, idle = loop_damping(loop, contact, strain_energy_kind)
+    message = (join_message(hist.message, idle, gross_sliding_message(contact))
+               if hist.converged else f"{hist.message}; the loop is incomplete")
     return FELoopResult(
         solver="builtin", load_case=case.name, params=params, amplitude=load.amplitude,
         time=time, force=load.force[:done], displacement=d, loop=loop,
-        damping=damping_from_loop(loop, None, strain_energy_kind),
-        contact=contact_history(fem, time, hist.slipping, hist.slip), dof=fem.dof,
-        iterations=hist.iterations, wall_s=stats.wall_s, converged=hist.converged,
-        message=(hist.message if hist.converged else
-                 f"{hist.message}; the loop is incomplete"), details=details)
+        damping=damping, contact=contact, dof=fem.dof, iterations=hist.iterations,
+        wall_s=stats.wall_s, converged=hist.converged, message=message, details=details)
