@@ -20,6 +20,7 @@ from ..planar import (
     planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
+from .displacement import PLANAR_HELP, add_displacement_option, planar_displacement_forces
 from .common import add_model_options, add_strain_energy, model_options, number, print_json
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
@@ -45,6 +46,7 @@ def add_parser(sub: Any) -> None:
                    help="force ratio R = F_T(tip)/F_T(centre) of normalised forces; the "
                         "amplitudes follow from the paper's levels (2000 N tip, 4000 N centre "
                         "per level)")
+    add_displacement_option(g, PLANAR_HELP, nargs=2, metavar=("TIP_MM", "CENTRE_MM"))
     g.add_argument("--levels", choices=list(LEVEL_SCHEMES), default="base",
                    help="level pairs for --ratio: "
                         + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
@@ -136,6 +138,7 @@ def run_fe(args: argparse.Namespace) -> int:
     """Coupled 2-D friction (built-in FE solver) against the sum of its uni-axial runs."""
     from ..solver import DEFAULT_MESH, coupling_study
 
+    planar_displacement_forces(args, 0, None)  # refused with --solver fe
     if args.ratio is not None:
         raise ParameterError("--ratio maps onto the paper's Table 2 levels; with --solver fe "
                              "give --tip-amplitude N and --centre-amplitude N")
@@ -176,9 +179,9 @@ def result_message(result: Any) -> str:
 
 
 def run_analytical(args: argparse.Namespace) -> int:
-    at, ac = amplitudes(args)
     n = check_increments(args.increments)
     opt = model_options(args)
+    at, ac = planar_displacement_forces(args, n, opt) or amplitudes(args)
     try:
         result = planar_damping(
             preset(args.tip_preset), preset(args.centre_preset), at, ac, increments=n,

@@ -13,6 +13,7 @@ from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..models import MODELS, check_increments
 from ..params import preset
+from .displacement import DISPLACEMENT_HELP, add_displacement_option, sweep_displacement_force
 from .common import (
     PARAM_FLAGS,
     add_model_options,
@@ -99,6 +100,8 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--levels", default="base", metavar="SCHEME",
                    help="planar: how R maps to the amplitudes (microslip.planar."
                         "LEVEL_SCHEMES; default base)")
+    add_displacement_option(g, DISPLACEMENT_HELP + ", for the base clamp (no swept clamp "
+                            "parameters)")
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="force increments of each first loading (default 1000)")
     add_model_options(p)
@@ -170,8 +173,12 @@ def run(args: argparse.Namespace) -> int:
         if args.amplitude is not None:
             raise ParameterError("--amplitude conflicts with sweeping or sampling the amplitude")
         fallback = 1.0  # only to satisfy params_from_args: the amplitude varies
+    if args.displacement_amplitude is not None:
+        fallback = 1.0  # replaced by the force of the displacement amplitude
     params, amplitude = params_from_args(args, fallback_amplitude=fallback)
     opt = model_options(args)
+    forced = sweep_displacement_force(args, swept, params, n, opt)
+    amplitude = amplitude if forced is None else forced
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
                       increments=n, options=opt, strain_energy=args.strain_energy)
