@@ -18,8 +18,8 @@ from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
 from ..loading import LOAD_CASES
 from ..solver.mesh import MESHES as BUILTIN_MESHES
-from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
 from .common import add_params, add_strain_energy, number, params_from_args, print_json
+from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
 
 __all__ = ["add_parser", "run"]
 

@@ -11,7 +11,6 @@ from ..models import MODELS, check_increments, get_model, macroslip_force
 from ..options import ModelOptions
 from ..params import ClampParams
 from ..results import DampingResult
-from .displacement import add_displacement_option, displacement_force
 from .common import (
     add_model_options,
     add_params,
@@ -20,6 +19,7 @@ from .common import (
     params_from_args,
     print_json,
 )
+from .displacement import add_displacement_option, displacement_force
 
 __all__ = ["add_parser", "result_json"]
 

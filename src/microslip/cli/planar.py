@@ -20,8 +20,8 @@ from ..planar import (
     planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
-from .displacement import PLANAR_HELP, add_displacement_option, planar_displacement_forces
 from .common import add_model_options, add_strain_energy, model_options, number, print_json
+from .displacement import PLANAR_HELP, add_displacement_option, planar_displacement_forces
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 

@@ -13,7 +13,6 @@ from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..models import MODELS, check_increments
 from ..params import preset
-from .displacement import DISPLACEMENT_HELP, add_displacement_option, sweep_displacement_force
 from .common import (
     PARAM_FLAGS,
     add_model_options,
@@ -23,6 +22,9 @@ from .common import (
     number,
     params_from_args,
 )
+from .displacement import DISPLACEMENT_HELP, add_displacement_option, sweep_displacement_force
+from .sweep_fe import RUNNERS as FE_RUNNERS
+from .sweep_fe import add_options as add_fe_sweep_options
 
 __all__ = ["add_parser", "run"]
 
@@ -119,6 +121,7 @@ def add_parser(sub: Any) -> None:
     o.add_argument("--retries", type=int, default=3, metavar="N",
                    help="retries of a failed Dask task (default 3)")
     o.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_fe_sweep_options(p)
     add_case_option(p)
     p.set_defaults(func=run)
 
@@ -142,6 +145,8 @@ def _cases(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.solver in FE_RUNNERS:
+        return FE_RUNNERS[args.solver](args)
     if args.model == "planar":
         return _run_planar(args)
     from ..plot.sweep import plot_sweep
