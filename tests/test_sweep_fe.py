@@ -55,6 +55,7 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path, capsys, counted
     assert counted["runs"] == 4  # only the two points left were run
     assert "2 computed now, 2 read from" in text
     assert "estimated time: 2 point(s) x" in text and " s = " in text
+    assert "point 3/4: F0 = 233.333 N" in text and "point 4/4: F0 = 300 N" in text
     resumed = _table(out)
 
     counted["runs"] = 0

@@ -79,13 +79,23 @@ def run(args: argparse.Namespace) -> int:
           f"{args.out}", flush=True)
     try:
         result = run_fe_sweep(spec, args.out, progress=not args.no_progress,
-                              say=lambda line: print(f"  {line}", flush=True))
+                              say=lambda line: print(f"  {line}", flush=True),
+                              on_point=None if sys.stderr.isatty() else _point_line(len(values)))
     except KeyboardInterrupt:
         print(f"interrupted: the finished points are in {args.out}; run the same command "
               "again to resume", file=sys.stderr)
         return 130
     _summary(result, args.out)
     return 0
+
+
+def _point_line(total: int) -> Any:
+    """Progress as one line per finished point, where no progress bar is drawn (no terminal)."""
+    def say(done: int, row: tuple[float, ...]) -> None:
+        print(f"  point {done}/{total}: F0 = {row[0]:.6g} N, eta = {row[4]:.6g} "
+              f"(dimensionless), {row[-1]:.3g} s", flush=True)
+
+    return say
 
 
 def _summary(result: Any, out: str) -> None:

@@ -156,11 +156,14 @@ def _todo(spec: FESweepSpec, done: dict[float, tuple[float, ...]]) -> Iterator[f
 
 
 def run_fe_sweep(spec: FESweepSpec, out: str | os.PathLike[str], *, progress: bool = True,
-                 say: Callable[[str], None] = print) -> FESweepResult:
+                 say: Callable[[str], None] = print,
+                 on_point: Callable[[int, tuple[float, ...]], None] | None = None
+                 ) -> FESweepResult:
     """Run the points of ``spec`` not yet in ``out``, appending each to ``out`` as it finishes.
 
-    ``say`` receives the estimate line before the long part of the run. A KeyboardInterrupt
-    leaves every finished point in ``out``: the same call resumes after them.
+    ``say`` receives the estimate line before the long part of the run; ``on_point`` (if
+    given) each finished row with the number of points done. A KeyboardInterrupt leaves every
+    finished point in ``out``: the same call resumes after them.
     """
     path = Path(out)
     done = read_finished(path, spec)
@@ -179,6 +182,8 @@ def run_fe_sweep(spec: FESweepSpec, out: str | os.PathLike[str], *, progress: bo
             done[amplitude] = row
             computed += 1
             bar.update(1)
+            if on_point is not None:
+                on_point(len(done), row)
             if i == 0 and len(left) > 1 and computed == len(done):
                 say(estimate(row[-1], len(left) - 1))
     table = np.array([done[a] for a in spec.amplitudes], dtype=float)
