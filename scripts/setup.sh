@@ -41,5 +41,12 @@ if ! command -v ccx >/dev/null 2>&1; then
     "say how to install it" >&2
 fi
 
+# Headless Chromium (Debian packages chromium, chromium-driver) for the browser test of
+# `microslip report` (tests/test_report.py); without it that test is skipped with the reason.
+if ! command -v chromium >/dev/null 2>&1; then
+  apt_install chromium chromium-driver || echo "setup: the report's browser test will be" \
+    "skipped" >&2
+fi
+
 # Compile and cache the numba kernels now (a few seconds), not in the user's first command.
 "$VPY" -m microslip.warmup

@@ -91,6 +91,13 @@ class MeasuredLoop:
         """Half the peak-to-peak force, N."""
         return float(0.5 * (self.force.max() - self.force.min()))
 
+    def centred(self) -> tuple[FloatArray, FloatArray]:
+        """Force (N) and displacement (mm) about the middle of their ranges: the loop as the
+        fit sees it."""
+        f = self.force - 0.5 * (self.force.max() + self.force.min())
+        d = self.displacement - 0.5 * (self.displacement.max() + self.displacement.min())
+        return f, d
+
 
 def read_loop_csv(path: str) -> MeasuredLoop:
     """A loop from a CSV file with the columns ``force_N,displacement_mm`` (as microslip
@@ -161,9 +168,7 @@ class FitResult:
 
 
 def _centred(loop: MeasuredLoop) -> tuple[FloatArray, FloatArray, float]:
-    f = loop.force - 0.5 * (loop.force.max() + loop.force.min())
-    d = loop.displacement - 0.5 * (loop.displacement.max() + loop.displacement.min())
-    return f, d, loop.amplitude
+    return (*loop.centred(), loop.amplitude)
 
 
 def _predict(loading: str, p: ClampParams, slope: float, law: PressureLaw | None,

@@ -128,7 +128,8 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
 
 
 def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str, Any]) -> None:
-    if not hasattr(args, "amplitude") or "amplitude" in explicit or _amplitude_swept(explicit):
+    if (not hasattr(args, "amplitude") or "amplitude" in explicit
+            or "displacement_amplitude" in explicit or _amplitude_swept(explicit)):
         return
     base = preset(args.preset) if getattr(args, "preset", None) else None
     mu = args.friction if args.friction is not None else getattr(base, "friction", None)

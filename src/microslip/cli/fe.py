@@ -31,6 +31,7 @@ from .common import (
     print_json,
 )
 from .contact import law_from_text
+from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
 
 __all__ = ["add_parser", "run"]
 
@@ -46,6 +47,8 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--model", choices=list(LOAD_CASES), required=True,
                    help="; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
     add_params(p, default_preset="table1")
+    add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
+                            "step (docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
     g.add_argument("--mesh", choices=sorted({m for e in SOLVERS.values() for m in e.meshes}),
                    default="coarse",
@@ -137,17 +140,22 @@ def _solver_options(args: argparse.Namespace, params: ClampParams) -> dict[str, 
 def run(args: argparse.Namespace) -> int:
     _check_run_options(args)
     check_output_dir(args.out)
-    params, amplitude = params_from_args(args)
-    result, files = run_loop(args.model, params, amplitude, solver=args.solver, out=args.out,
-                             vtu=not args.no_vtu, mesh=args.mesh, element=args.element,
-                             stick_slope=args.stick_slope, substeps=args.substeps,
-                             strain_energy_kind=args.strain_energy,
-                             **_solver_options(args, params))
+    params, amplitude = params_from_args(args, 1.0 if args.displacement_amplitude else None)
+    run_options = dict(solver=args.solver, mesh=args.mesh, element=args.element,
+                       stick_slope=args.stick_slope, substeps=args.substeps,
+                       strain_energy_kind=args.strain_energy, **_solver_options(args, params))
+    forced = fe_displacement_force(args, args.model, params,
+                                   lambda f: run_loop(args.model, params, f, **run_options)[0])
+    amplitude = amplitude if forced is None else forced
+    result, files = run_loop(args.model, params, amplitude, out=args.out,
+                             vtu=not args.no_vtu, **run_options)
     clamping = getattr(result.details, "clamping", None)
     if args.clamping_csv is not None and clamping is not None:
         files.append(clamping.write_csv(args.clamping_csv))
     out = result.summary()
     out["files"] = [str(f) for f in files]
+    if forced is not None:
+        out["displacement_amplitude_mm"] = args.displacement_amplitude
     status = 0 if result.converged else 1
     for warning in out["warnings"]:
         print(f"warning: {warning}", file=sys.stderr)

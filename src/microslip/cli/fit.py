@@ -34,6 +34,9 @@ def add_parser(sub: Any) -> None:
     p.add_argument("--confidence", type=number, default=0.95, metavar="X",
                    help="confidence level of the intervals, in [0.5, 1) (default 0.95)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="write a figure of the measured loops against the fitted model "
+                        "(.png, .pdf or .svg)")
     p.set_defaults(func=run)
 
 
@@ -44,14 +47,35 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError("--amplitude does nothing in fit: each loop's amplitude is "
                              "half its peak-to-peak force")
     params, _ = params_from_args(args, fallback_amplitude=1.0)
+    _check_plot(args.plot)
     loops = [read_loop_csv(path) for path in args.loops]
     res = fit_loops(loops, args.model, params, fit=args.fit, stick_slope=args.stick_slope,
                     confidence=args.confidence)
+    if args.plot:
+        from ..plot.fit import plot_fit
+
+        plot_fit(res, args.plot)
     if args.json:
-        print_json(_json(res, args))
+        print_json(_json(res, args) | ({"figure": args.plot} if args.plot else {}))
         return 0
     _print(res, args)
+    if args.plot:
+        print(f"  figure         {args.plot}")
     return 0
+
+
+def _check_plot(path: str | None) -> None:
+    """A figure path must end in .png, .pdf or .svg, and matplotlib must be installed."""
+    if path is None:
+        return
+    import os
+
+    from ..errors import ParameterError
+    from ..plot import pyplot
+
+    if os.path.splitext(path)[1].lower() not in (".png", ".pdf", ".svg"):
+        raise ParameterError(f"--plot file must end in .png, .pdf or .svg, got {path!r}")
+    pyplot()
 
 
 def _json(res: FitResult, args: argparse.Namespace) -> dict[str, Any]:

@@ -28,6 +28,7 @@ from .contact import (
     report_warnings,
     warnings_for,
 )
+from .displacement import add_displacement_option, displacement_force
 
 __all__ = ["add_parser", "result_json"]
 
@@ -38,6 +39,7 @@ def add_parser(sub: Any) -> None:
                        "amplitude, complete the loop with Masing's rule, report W_d, U and eta.")
     p.add_argument("--model", choices=list(MODELS), required=True)
     add_params(p, default_preset="table1")
+    add_displacement_option(p)
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="number of force increments of the first loading (default 1000)")
     add_model_options(p)
@@ -73,15 +75,19 @@ def result_json(model: str, params: ClampParams, result: DampingResult, incremen
 
 
 def run(args: argparse.Namespace) -> int:
-    params, amplitude = params_from_args(args)
+    params, amplitude = params_from_args(args, 1.0 if args.displacement_amplitude else None)
     n = increments_option(args.increments)
     check_plot(args.plot)
     opt = model_options(args)
     contact = contact_from_args(args, params)
+    forced = displacement_force(args, args.model, params, n, opt, contact)
+    amplitude = amplitude if forced is None else forced
     result = damping(args.model, params, amplitude, n, opt, args.strain_energy, contact)
     warnings = warnings_for(args.model, params, amplitude, contact)
     out = result_json(args.model, params, result, n, opt, contact, warnings)
     report_warnings(warnings)
+    if args.displacement_amplitude is not None:
+        out["displacement_amplitude_mm"] = args.displacement_amplitude
     if args.plot:
         from ..plot import plot_damping
 
@@ -97,6 +103,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"  amplitude F0           {amplitude:12.6g} N  (macroslip at "
           f"{out['macroslip_force_N']:.6g} N)")
     print(f"  peak displacement d0   {result.peak_displacement:12.6g} mm")
+    if args.displacement_amplitude is not None:
+        print(f"  (F0 = {amplitude!r} N from --displacement-amplitude "
+              f"{args.displacement_amplitude:g} mm)")
     for name, a in out["slip_length_by_domain_mm"].items():
         print(f"  slip length ({name})   {a:12.6g} mm")
     print(f"  dissipated energy W_d  {result.dissipated_energy:12.6g} N·mm")

@@ -23,7 +23,7 @@ __all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
 #: Subcommand modules, in the order ``--help`` lists them.
 SUBCOMMANDS = (
     "loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case",
-    "joint", "modal", "frf",
+    "joint", "modal", "frf", "report",
 )
 
 
@@ -82,6 +82,9 @@ def _main(argv: Sequence[str] | None) -> int:
     except MicroslipError as exc:
         print(f"error: {_one_line(str(exc))}", file=sys.stderr)
         return 1
+    except UsageError as exc:  # conflicting options found by the command itself
+        print(f"error: {_one_line(str(exc))}", file=sys.stderr)
+        return 2
     except BrokenPipeError:  # output piped into head & co.
         return 0
     except OSError as exc:  # a file system failure the checks before the work could not see

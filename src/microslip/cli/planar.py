@@ -39,6 +39,7 @@ from .contact import (
     report_warnings,
     warnings_for,
 )
+from .displacement import PLANAR_HELP, add_displacement_option, planar_displacement_forces
 
 __all__ = ["SOLVERS", "add_parser", "result_json", "run"]
 
@@ -73,6 +74,7 @@ def add_parser(sub: Any) -> None:
                    help="force ratio R = F_T(tip)/F_T(centre) of normalised forces; the "
                         "amplitudes follow from the paper's levels (2000 N tip, 4000 N centre "
                         "per level)")
+    add_displacement_option(g, PLANAR_HELP, nargs=2, metavar=("TIP_MM", "CENTRE_MM"))
     g.add_argument("--levels", choices=list(LEVEL_SCHEMES), default="base",
                    help="level pairs for --ratio: "
                         + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
@@ -175,6 +177,7 @@ def run_fe(args: argparse.Namespace) -> int:
     """Coupled 2-D friction (built-in FE solver) against the sum of its uni-axial runs."""
     from ..solver import DEFAULT_MESH, coupling_study
 
+    planar_displacement_forces(args, 0, None, (None, None))  # refused with --solver fe
     if args.ratio is not None:
         raise ParameterError("--ratio maps onto the paper's Table 2 levels; with --solver fe "
                              "give --tip-amplitude N and --centre-amplitude N")
@@ -220,7 +223,6 @@ def result_message(result: Any) -> str:
 
 
 def run_analytical(args: argparse.Namespace) -> int:
-    at, ac = amplitudes(args)
     n = increments_option(args.increments, loops=2)
     check_plot(args.plot)
     opt = model_options(args)
@@ -228,6 +230,8 @@ def run_analytical(args: argparse.Namespace) -> int:
                                              preset(args.centre_preset),
                                              clamp_overrides(args), args.tip_symmetry)
     contact = contact_from_args(args, tip_params)
+    at, ac = (planar_displacement_forces(args, n, opt, (tip_params, centre_params), contact)
+              or amplitudes(args))
     try:
         result = planar_damping(
             tip_params, centre_params, at, ac, increments=n,

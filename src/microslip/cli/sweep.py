@@ -28,6 +28,9 @@ from .common import (
     warn_cost,
 )
 from .contact import add_contact_options, contact_from_args
+from .displacement import DISPLACEMENT_HELP, add_displacement_option, sweep_displacement_force
+from .sweep_fe import RUNNERS as FE_RUNNERS
+from .sweep_fe import add_options as add_fe_sweep_options
 
 __all__ = ["add_parser", "run"]
 
@@ -105,6 +108,8 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--levels", default="base", metavar="SCHEME",
                    help="planar: how R maps to the amplitudes (microslip.planar."
                         "LEVEL_SCHEMES; default base)")
+    add_displacement_option(g, DISPLACEMENT_HELP + ", for the base clamp (no swept clamp "
+                            "parameters)")
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="force increments of each first loading (default 1000)")
     add_model_options(p)
@@ -123,6 +128,7 @@ def add_parser(sub: Any) -> None:
     o.add_argument("--retries", type=int, default=3, metavar="N",
                    help="retries of a failed Dask task (default 3)")
     o.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_fe_sweep_options(p)
     add_case_option(p)
     p.set_defaults(func=run)
 
@@ -151,6 +157,8 @@ def _cases(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.solver in FE_RUNNERS:
+        return FE_RUNNERS[args.solver](args)
     refuse_inapplicable(args, "model", MODEL_OPTIONS)
     if args.model == "planar":
         return _run_planar(args)
@@ -181,12 +189,17 @@ def run(args: argparse.Namespace) -> int:
         if args.amplitude is not None:
             raise ParameterError("--amplitude conflicts with sweeping or sampling the amplitude")
         fallback = 1.0  # only to satisfy params_from_args: the amplitude varies
+    if args.displacement_amplitude is not None:
+        fallback = 1.0  # replaced by the force of the displacement amplitude
     params, amplitude = params_from_args(args, fallback_amplitude=fallback)
     opt = model_options(args)
+    contact = contact_from_args(args, params)
+    forced = sweep_displacement_force(args, swept, params, n, opt, contact)
+    amplitude = amplitude if forced is None else forced
     spec = make_sweep(args.model, params, amplitude=None if "amplitude" in swept else amplitude,
                       grid=grid, samples=samples, n_samples=args.samples, seed=args.seed,
                       increments=n, options=opt, strain_energy=args.strain_energy,
-                      contact=contact_from_args(args, params), check_draws=False)
+                      contact=contact, check_draws=False)
     _warn_implausible(spec)
     warn_cost(n, spec.size, batch=True)
     result = run_sweep(spec, chunk_size=args.chunk_size, scheduler=args.scheduler,
