@@ -116,7 +116,7 @@ def test_unknown_keys_name_the_key_and_the_nearest_valid_one(table, words):
     ({"load": {"amplitude_fraction": 1.2}}, ["amplitude_fraction", "(0, 1)"]),
     ({"load": {"model": "planar"}}, ["load.model", "tip, centre"]),
     ({"load": {"amplitude": 3, "amplitude_fraction": 0.5}}, ["exclude"]),
-    ({"clamping": {"pressure": "parabolic"}}, ["not yet available", "uniform", "power"]),
+    ({"clamping": {"pressure": "power:"}}, ["clamping.pressure", "power:N[:EDGE]"]),
     ({"clamping": {"pressure": "cosine"}}, ["clamping.pressure", "uniform"]),
     ({"preset": "table9"}, ["preset", "table1"]),
     ({"contact": {"friction": 0.5}}, ["not", "geometry.length", "preset"]),

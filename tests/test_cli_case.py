@@ -223,7 +223,7 @@ def test_preset_on_the_command_line_conflicts_with_the_case_clamp(capsys, ti):
     ("[geometry]\nlenght = 30\n", ["geometry.lenght", "did you mean geometry.length"]),
     ("[geometry\nlength = 30\n", ["not valid TOML"]),
     ("[load]\nmodel = 'planar'\n", ["load.model", "tip, centre"]),
-    ("[clamping]\npressure = 'parabolic'\n", ["not yet available"]),
+    ("[clamping]\npressure = 'wavy'\n", ["clamping.pressure", "parabolic"]),
 ])
 def test_bad_case_files_are_one_line_exit_1(capsys, tmp_path, text, words):
     path = write(tmp_path, text)
@@ -257,3 +257,16 @@ def test_implausible_units_warn_from_case_and_options(capsys, tmp_path):
 def test_no_case_no_extra_keys(capsys):
     data = json.loads(run(capsys, "loop", "--model", "tip", "--json", "--increments", "100")[1])
     assert "case_file" not in data and data["warnings"] == []  # Table 1: within range
+
+
+def test_case_pressure_law_equals_the_option(capsys, tmp_path):
+    path = write(tmp_path, TITANIUM_TOML.replace("[contact]\n", "[contact]\nstick_slope = 1e5\n")
+                 .replace("[clamping]\n", "[clamping]\npressure = 'parabolic'\n"))
+    by_case = json.loads(run(capsys, "loop", "--case", path, "--model", "tip", "--json",
+                             "--increments", "200")[1])
+    plain = write(tmp_path, TITANIUM_TOML, "plain.toml")
+    by_flags = json.loads(run(capsys, "loop", "--case", plain, "--model", "tip", "--json",
+                              "--increments", "200", "--stick-slope", "1e5",
+                              "--pressure-law", "parabolic")[1])
+    assert by_case["contact"]["pressure_law"].startswith("power(n=2")
+    assert by_case["dissipated_energy_Nmm"] == by_flags["dissipated_energy_Nmm"]

@@ -104,6 +104,10 @@ def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
     argv = _shrink(shlex.split(line, comments=True)[1:])
     if argv[0] == "fit":
         _measured_loops(tmp_path, argv)
+    for toml in {a for a in argv if a.endswith(".toml")} - {"new"}:
+        if not (argv[:2] == ["case", "new"] or (tmp_path / toml).exists()):
+            assert main(["case", "new", toml]) == 0  # the template the docs start from
+            capsys.readouterr()
     code = main(argv)
     out, err = capsys.readouterr()
     assert code == 0, f"{doc}: `{line}` exited {code}: {err.strip()[-400:]}"

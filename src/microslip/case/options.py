@@ -27,7 +27,7 @@ __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "p
 PLANAR_COMMANDS = ("planar",)
 
 #: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
-#: Keys not listed (name, description, preset, clamping.pressure) map to no option.
+#: Keys not listed (name, description, preset) map to no option.
 CASE_OPTIONS: dict[str, tuple[str, str]] = {
     "geometry.length": ("length", "all"),
     "geometry.width": ("width", "all"),
@@ -37,6 +37,7 @@ CASE_OPTIONS: dict[str, tuple[str, str]] = {
     "contact.friction": ("friction", "all"),
     "clamping.normal_force": ("normal_force", "all"),
     "contact.stick_slope": ("stick_slope", "all"),
+    "clamping.pressure": ("pressure_law", "all"),
     "load.model": ("model", "load"),
     "load.amplitude": ("amplitude", "load"),
     "load.amplitude_fraction": ("amplitude", "load"),
