@@ -65,7 +65,7 @@ def describe_structure(structure: Structure) -> dict[str, Any]:
 def add_balance_options(parser: argparse.ArgumentParser) -> None:
     """``--harmonics`` and ``--samples``."""
     g = parser.add_argument_group("harmonic balance")
-    g.add_argument("--harmonics", type=int, default=DEFAULT_HARMONICS, metavar="H",
+    g.add_argument("--harmonics", type=int, metavar="H",
                    help=f"harmonics, 1 = single-harmonic (describing-function) balance "
                         f"(default {DEFAULT_HARMONICS})")
     g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
@@ -74,7 +74,9 @@ def add_balance_options(parser: argparse.ArgumentParser) -> None:
 
 
 def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
-    """(harmonics, samples), checked."""
+    """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
+    if args.harmonics is None:
+        args.harmonics = DEFAULT_HARMONICS
     if not 1 <= args.harmonics <= 256:
         raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
     low = 2 * args.harmonics + 2
@@ -112,6 +114,9 @@ def run(args: argparse.Namespace) -> int:
     from .common import print_json
 
     structure = structure_from_args(args)
+    if args.method == "energy" and args.harmonics is not None:
+        raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
+                             "balance); leave it out or use --method epmc")
     harmonics, samples = balance_from_args(args)
     amps = amplitudes_from_args(args)
     curve = METHODS[args.method](structure, amps, harmonics, samples)

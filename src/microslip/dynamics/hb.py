@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
+from .operators import HystereticOperator
 from .structure import SI_PER_MM, Structure
 
 __all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
@@ -98,7 +99,8 @@ class HarmonicBalance:
         self._m = s * np.kron(structure.mass, np.diag(order**2))
         self._c = s * np.kron(structure.damping, dc)
         self._mc = s * np.kron(structure.mass, dc)
-        self._synth = to_time(np.eye(h), samples).T  # (N, h): coefficients -> samples
+        # (N, h): coefficients -> samples
+        self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)
         # joint j's harmonics U = B_j^T x, its force enters as B_j F (B_j = w_j kron I_h)
         self._links = tuple((link.operator, np.kron(link.participation[:, None], np.eye(h)))
                             for link in structure.joints)
@@ -131,12 +133,21 @@ class HarmonicBalance:
         r = dyn @ x - load
         dx = dyn.copy()
         for operator, b in self._links:
-            f, jac = operator.periodic_force(to_time(b.T @ x, self.samples))
+            f, jac_synth = self.joint_force(operator, to_time(b.T @ x, self.samples))
             r += b @ from_time(f, self.harmonics)
-            dx += b @ from_time((jac @ self._synth).T, self.harmonics).T @ b.T
+            dx += b @ from_time(jac_synth.T, self.harmonics).T @ b.T
         dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
         dxi = -omega * (self._mc @ x)
         return Residual(r, dx, dw, dxi)
+
+    def joint_force(self, operator: HystereticOperator, u: Array) -> tuple[Array, Array]:
+        """A joint's periodic force (N) at the samples ``u`` (mm) and ``J @ E_N`` (N/mm,
+        (N, 2H + 1)); operators with ``periodic_force_projected`` skip the (N, N) J."""
+        projected = getattr(operator, "periodic_force_projected", None)
+        if projected is not None:
+            return projected(u, self._synth)  # type: ignore[no-any-return]
+        f, jac = operator.periodic_force(u)
+        return f, jac @ self._synth
 
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
