@@ -145,7 +145,7 @@ class HarmonicBalance:
         (N, 2H + 1)); operators with ``periodic_force_projected`` skip the (N, N) J."""
         projected = getattr(operator, "periodic_force_projected", None)
         if projected is not None:
-            return projected(u, self._synth)  # type: ignore[no-any-return]
+            return projected(u, self._synth)
         f, jac = operator.periodic_force(u)
         return f, jac @ self._synth
 
