@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from ..errors import ParameterError
 from .operators import HystereticOperator
+from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
 __all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
@@ -101,8 +102,9 @@ class HarmonicBalance:
         self._mc = s * np.kron(structure.mass, dc)
         # (N, h): coefficients -> samples
         self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)
-        # joint j's harmonics U = B_j^T x, its force enters as B_j F (B_j = w_j kron I_h)
-        self._links = tuple((link.operator, np.kron(link.participation[:, None], np.eye(h)))
+        # joint j's harmonics U = B_j^T x (direction-major), its force enters as B_j F
+        # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation)
+        self._links = tuple((link.operator, np.kron(link.weights, np.eye(h)))
                             for link in structure.joints)
 
     @property
@@ -121,8 +123,8 @@ class HarmonicBalance:
         extra = np.zeros((self.size, self.size))
         h = 2 * self.harmonics + 1
         for link in self.structure.joints:
-            w = link.participation
-            extra += np.kron(np.outer(w, w), np.eye(h)) * link.operator.initial_stiffness
+            w = link.weights
+            extra += np.kron(w @ w.T, np.eye(h)) * link.operator.initial_stiffness
         lin = self._k - omega**2 * self._m + omega * self._c + extra
         return np.asarray(np.linalg.solve(lin, load))
 
@@ -133,12 +135,27 @@ class HarmonicBalance:
         r = dyn @ x - load
         dx = dyn.copy()
         for operator, b in self._links:
-            f, jac_synth = self.joint_force(operator, to_time(b.T @ x, self.samples))
-            r += b @ from_time(f, self.harmonics)
-            dx += b @ from_time(jac_synth.T, self.harmonics).T @ b.T
+            force, dforce = self.joint_harmonics(operator, b.T @ x)
+            r += b @ force
+            dx += b @ dforce @ b.T
         dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
         dxi = -omega * (self._mc @ x)
         return Residual(r, dx, dw, dxi)
+
+    def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
+                        ) -> tuple[Array, Array]:
+        """A joint's force harmonics (N, (d (2H + 1),)) and their derivative in its
+        displacement harmonics ``u`` (mm, direction-major), N/mm; d its directions."""
+        h = 2 * self.harmonics + 1
+        if getattr(operator, "directions", 1) == 2:
+            samples = to_time(u.reshape(2, h), self.samples).T
+            f, jb = operator.periodic_force_projected(samples, self._synth)  # type: ignore[union-attr]
+            force = from_time(f.T, self.harmonics).ravel()
+            # jb[t, a, b, c] -> d F_a,i / d U_b,c
+            df = from_time(np.moveaxis(jb, 0, -1), self.harmonics)
+            return force, np.moveaxis(df, 3, 1).reshape(2 * h, 2 * h)
+        f, jac_synth = self.joint_force(operator, to_time(u, self.samples))  # type: ignore[arg-type]
+        return from_time(f, self.harmonics), from_time(jac_synth.T, self.harmonics).T
 
     def joint_force(self, operator: HystereticOperator, u: Array) -> tuple[Array, Array]:
         """A joint's periodic force (N) at the samples ``u`` (mm) and ``J @ E_N`` (N/mm,
