@@ -26,6 +26,9 @@ __all__ = ["circular_periodic_kernel", "radial_return"]
 #: Passes at most of the per-element fixed-point (Newton) iteration for the periodic state.
 MAX_PASSES = 200
 
+#: Cycles repeated as the history would before Newton's method takes over.
+CYCLES = 60
+
 
 @njit(cache=True, fastmath=False, nogil=True)
 def radial_return(ux: float, uy: float, zx: float, zy: float, ph: float
@@ -39,6 +42,16 @@ def radial_return(ux: float, uy: float, zx: float, zy: float, ph: float
         ny = dy / r
         return ux - ph * nx, uy - ph * ny, nx, ny, True
     return zx, zy, 0.0, 0.0, False
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _project(ux: float, uy: float, zx: float, zy: float, ph: float) -> tuple[float, float]:
+    """Slider on the limit circle: u - phi (u - z) / |u - z| (the radial return of a
+    slipping element, also at r = phi)."""
+    dx = ux - zx
+    dy = uy - zy
+    r = math.hypot(dx, dy)
+    return ux - ph * (dx / r), uy - ph * (dy / r)
 
 
 @njit(cache=True, fastmath=False, nogil=True)
@@ -76,48 +89,76 @@ def _advance(g: np.ndarray, d: np.ndarray, basis: np.ndarray, t: int, h: int) ->
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
-                    z0: np.ndarray, dz0: np.ndarray) -> bool:
-    """The element's periodic slider position before sample ``start`` (``z0``, updated in
-    place from its initial guess) and its derivative ``dz0`` (2, 2h) in the coefficients.
+def _slips(r: float, ph: float, first: bool, virgin: bool) -> int:
+    """0: the element sticks; 1: it slips (r > phi); 2: it sits where the virgin radial
+    loading to the start sample left it, at its limit (counted as slipping there, as in the
+    1-D kernel, with the virgin state's derivative)."""
+    if r > ph:
+        return 1
+    if first and virgin and r >= ph * (1.0 - 1e-14):
+        return 2
+    return 0
 
-    Newton's method on ``z0 = G(z0)``, G one pass through the period: ``P = dG/dz0`` is the
-    product of the slipping steps' D, ``Q = dG/dC`` follows the recursion of :func:`_advance`
-    from 0, and at the fixed point ``dz0 = (I - P)^-1 Q``. Returns False if not converged.
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _virgin_map(ux: float, uy: float, ph: float) -> np.ndarray:
+    """D of the virgin radial loading z = u (1 - phi / |u|): dz = (I - D) du."""
+    return _slip_map(ux, uy, 0.0, 0.0, ph)
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
+                    z0: np.ndarray, dz0: np.ndarray, virgin: bool) -> bool:
+    """The element's periodic slider position before sample ``start`` (``z0``, updated in
+    place from the virgin state) and its derivative ``dz0`` (2, 2h) in the coefficients.
+
+    One pass G through the period has ``P = dG/dz0`` (the product of the slipping steps'
+    D) and ``Q = dG/dC`` (the recursion of :func:`_advance` from 0). The first
+    :data:`CYCLES` passes repeat the cycle as the history would (``z0 <- G(z0)``,
+    ``dz0 <- P dz0 + Q``): an element that shakes down to elastic cycling keeps the state
+    and derivative its history gave it. Then Newton's method on ``z0 = G(z0)``, and at the
+    fixed point ``dz0 = (I - P)^-1 Q``. Returns False if not converged.
     """
     n = u.shape[0]
     h = basis.shape[1]
     scale = ph + abs(u[start, 0]) + abs(u[start, 1])
     q = np.zeros((2, 2 * h))
-    for _ in range(MAX_PASSES):
+    for cycle in range(MAX_PASSES):
         zx, zy = z0[0], z0[1]
         p00, p01, p10, p11 = 1.0, 0.0, 0.0, 1.0
         q[:, :] = 0.0
-        slipped = False
         for j in range(n):
             t = start + j
             if t >= n:
                 t -= n
             ux, uy = u[t, 0], u[t, 1]
-            dx, dy = ux - zx, uy - zy
-            if math.hypot(dx, dy) > ph:
+            kind = _slips(math.hypot(ux - zx, uy - zy), ph, j == 0, virgin)
+            if kind == 2:  # the virgin state: depends on u[start] only
+                p00, p01, p10, p11 = 0.0, 0.0, 0.0, 0.0
+                q[:, :] = 0.0
+                _advance(q, _virgin_map(ux, uy, ph), basis, t, h)
+            elif kind == 1:
                 d = _slip_map(ux, uy, zx, zy, ph)
                 p00, p01, p10, p11 = (d[0, 0] * p00 + d[0, 1] * p10,
                                       d[0, 0] * p01 + d[0, 1] * p11,
                                       d[1, 0] * p00 + d[1, 1] * p10,
                                       d[1, 0] * p01 + d[1, 1] * p11)
                 _advance(q, d, basis, t, h)
-                zx, zy, _, _, _ = radial_return(ux, uy, zx, zy, ph)
-                slipped = True
+                zx, zy = _project(ux, uy, zx, zy, ph)
         rx, ry = zx - z0[0], zy - z0[1]
         a00, a01, a10, a11 = 1.0 - p00, -p01, -p10, 1.0 - p11
         det = a00 * a11 - a01 * a10
-        if not slipped:
-            dz0[:, :] = 0.0
-            return True
-        if abs(rx) + abs(ry) <= 1e-15 * scale:
-            if abs(det) < 1e-300:
-                return False
+        done = abs(rx) + abs(ry) <= 1e-15 * scale
+        if cycle < CYCLES or (done and abs(det) < 1e-12):
+            for c in range(2 * h):  # dz0 <- P dz0 + Q, the history's derivative
+                d0, d1 = dz0[0, c], dz0[1, c]
+                dz0[0, c] = p00 * d0 + p01 * d1 + q[0, c]
+                dz0[1, c] = p10 * d0 + p11 * d1 + q[1, c]
+            z0[0], z0[1] = zx, zy
+            if done:
+                return True
+            continue
+        if done:
             for c in range(2 * h):
                 dz0[0, c] = (a11 * q[0, c] - a01 * q[1, c]) / det
                 dz0[1, c] = (-a10 * q[0, c] + a00 * q[1, c]) / det
@@ -157,7 +198,7 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, phi: np.ndarray, star
         if um > phi[e]:
             z[e, 0] = u[start, 0] - phi[e] * (u[start, 0] / um)
             z[e, 1] = u[start, 1] - phi[e] * (u[start, 1] / um)
-        if not _periodic_state(u, phi[e], start, basis, z[e], g[e]):
+        if not _periodic_state(u, phi[e], start, basis, z[e], g[e], um > phi[e]):
             failed += 1
     total = 0.0
     s = np.zeros((2, 2 * h))
@@ -175,17 +216,22 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, phi: np.ndarray, star
         fy = 0.0
         for e in range(m):
             zx, zy = z[e, 0], z[e, 1]
-            if math.hypot(ux - zx, uy - zy) > phi[e]:
-                d = _slip_map(ux, uy, zx, zy, phi[e])
+            kind = _slips(math.hypot(ux - zx, uy - zy), phi[e], j == 0, um > phi[e])
+            if kind:
                 ge = g[e]
                 for a in range(2):
                     for c in range(2 * h):
                         s[a, c] -= k[e] * ge[a, c]
+                if kind == 2:
+                    ge[:, :] = 0.0
+                    d = _virgin_map(ux, uy, phi[e])
+                else:
+                    d = _slip_map(ux, uy, zx, zy, phi[e])
                 _advance(ge, d, basis, t, h)
                 for a in range(2):
                     for c in range(2 * h):
                         s[a, c] += k[e] * ge[a, c]
-                zx, zy, _, _, _ = radial_return(ux, uy, zx, zy, phi[e])
+                zx, zy = _project(ux, uy, zx, zy, phi[e])
                 z[e, 0], z[e, 1] = zx, zy
             fx += k[e] * (ux - zx)
             fy += k[e] * (uy - zy)

@@ -52,7 +52,7 @@ class JointLink:
     def __post_init__(self) -> None:
         w = np.array(self.participation, dtype=np.float64)
         d = self.directions
-        if not (w.ndim == 1 and d == 1 or w.ndim == 2 and w.shape[1] == d):
+        if not ((w.ndim == 1 and d == 1) or (w.ndim == 2 and w.shape[1] == d)):
             raise ParameterError(f"a joint with {d} direction(s) needs participation of "
                                  f"shape (n_dof,{' 2' if d == 2 else ''}), got {w.shape}")
         if not np.all(np.isfinite(w)) or not np.any(w):
