@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..dynamics.assemble import joint_orbits, mode_load
+from ..dynamics.files import read_structure
 from ..dynamics.modal import epmc
 from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_response
 from ..dynamics.structure import Structure
@@ -20,6 +21,7 @@ from .modal import (
     add_balance_options,
     add_structure_options,
     balance_from_args,
+    connectivity_from_args,
     describe_structure,
     headline,
     mode_from_args,
@@ -118,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json({"structure": describe_structure(structure, args), "harmonics": harmonics,
                     "samples": samples, "frequency_range_Hz": list(frange),
-                    "curves": [_curve_json(structure, c) for c in curves]})
+                    "curves": [_curve_json(c, _connectivity(args)) for c in curves]})
         return 0
     print(f"{headline(structure, mode)}; {harmonics} harmonic(s), {samples} samples, "
           f"{frange[0]:.6g} to {frange[1]:.6g} Hz")
@@ -129,11 +131,17 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _curve_json(structure: Structure, c: FrequencyResponse) -> dict[str, Any]:
+def _connectivity(args: argparse.Namespace) -> np.ndarray:
+    if args.structure is None:
+        return np.zeros((0, 1, 2), dtype=np.int64)
+    return connectivity_from_args(args, read_structure(args.structure))
+
+
+def _curve_json(c: FrequencyResponse, joints: np.ndarray) -> dict[str, Any]:
     out = {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
            "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
            "points": int(c.frequency.size), "success": c.success, "message": c.message}
-    orbits = joint_orbits(structure, c)
+    orbits = joint_orbits(c, joints)
     if orbits:
         out["joint_orbits"] = orbits
     return out

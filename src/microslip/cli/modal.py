@@ -24,8 +24,8 @@ from .common import number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
-           "balance_from_args", "describe_structure", "headline", "mode_from_args", "run",
-           "structure_from_args"]
+           "balance_from_args", "connectivity_from_args", "describe_structure", "headline",
+           "mode_from_args", "run", "structure_from_args"]
 
 #: Harmonics of the balance unless --harmonics is given.
 DEFAULT_HARMONICS = 7
@@ -79,7 +79,7 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
             ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
             why="--structure (the file's matrices give them)")
     matrices = read_structure(args.structure)
-    joints = matrices.joints if args.joint_dof is None else _joint_dofs(args, matrices)
+    joints = connectivity_from_args(args, matrices)
     if args.coupling is not None and not np.any(np.asarray(joints).shape[1:2] == (2,)):
         raise ParameterError("--coupling applies to two-directional joints only (give "
                              "--joint-dof twice or a (n, 2, 2) joints array)")
@@ -94,7 +94,10 @@ def mode_from_args(args: argparse.Namespace) -> int:
     return int(mode) - 1
 
 
-def _joint_dofs(args: argparse.Namespace, matrices: MatrixFile) -> np.ndarray:
+def connectivity_from_args(args: argparse.Namespace, matrices: MatrixFile) -> np.ndarray:
+    """The joints' [i, j] per direction ((n, d, 2)): --joint-dof, else the file's."""
+    if args.joint_dof is None:
+        return np.asarray(matrices.joints)
     rows = args.joint_dof
     if len(rows) > 2 or any(len(r) > 2 for r in rows):
         raise ParameterError("--joint-dof takes I or I J, at most twice (two directions), "

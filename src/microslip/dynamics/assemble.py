@@ -97,17 +97,18 @@ def describe_matrices(structure: Structure) -> dict[str, Any]:
                         "participation": link.participation} for link in structure.joints]}
 
 
-def joint_orbits(structure: Structure, response: FrequencyResponse) -> list[dict[str, Any]]:
-    """Orbit of every two-directional joint at the continuation point of largest amplitude:
-    its relative displacement (mm) in both directions at the AFT samples of one period."""
+def joint_orbits(response: FrequencyResponse, joints: np.ndarray) -> list[dict[str, Any]]:
+    """Orbit of every two-directional joint of the connectivity ``joints`` ((n, d, 2),
+    :mod:`.files`) at the continuation point of largest amplitude: its relative
+    displacement (mm) in both directions at the AFT samples of one period."""
     i = int(np.argmax(response.amplitude))
     h = 2 * response.harmonics + 1
-    q = response.coefficients[i].reshape(structure.dofs, h)
+    q = response.coefficients[i].reshape(-1, h)
     out = []
-    for j, link in enumerate(structure.joints):
-        if link.directions != 2:
+    for j, w in enumerate(joint_weights(joints, q.shape[0])):
+        if w.ndim == 1:
             continue
-        u = to_time(link.weights.T @ q, response.samples)
+        u = to_time(w.T @ q, response.samples)
         out.append({"joint": j, "frequency_Hz": float(response.frequency[i]),
                     "amplitude_mm": float(response.amplitude[i]), "x_mm": u[0],
                     "y_mm": u[1]})

@@ -146,21 +146,25 @@ def check_joint_dofs(where: str, joints: np.ndarray, dofs: int) -> np.ndarray:
 
 
 def _read_npz(path: str) -> dict[str, object]:
+    if not zipfile.is_zipfile(path):  # np.load would take it for a pickle or a .npy
+        raise ParameterError(f"{path}: is not a readable .npz file (numpy.savez)")
     try:
         with np.load(path, allow_pickle=False) as data:
-            unknown = sorted(set(data.files) - set(NPZ_ARRAYS))
-            if unknown:
-                raise ParameterError(f"{path}: unknown array(s) {', '.join(unknown)}; a "
-                                     f"structure file holds {', '.join(NPZ_ARRAYS)}")
-            missing = [name for name in ("M", "K") if name not in data.files]
-            if missing:
-                raise ParameterError(f"{path}: missing array(s) {', '.join(missing)}")
-            return {name: data[name] for name in data.files}
+            names = list(data.files)
+            arrays = {name: data[name] for name in names if name in NPZ_ARRAYS}
     except ValueError as exc:  # pickled object arrays, or not an npz file
         why = "holds pickled objects" if "pickle" in str(exc) else "is not a readable .npz"
         raise ParameterError(f"{path}: {why} (numpy arrays of numbers only)") from None
     except (OSError, zipfile.BadZipFile, EOFError):
         raise ParameterError(f"{path}: is not a readable .npz file") from None
+    unknown = sorted(set(names) - set(NPZ_ARRAYS))
+    if unknown:
+        raise ParameterError(f"{path}: unknown array(s) {', '.join(unknown)}; a structure "
+                             f"file holds {', '.join(NPZ_ARRAYS)}")
+    missing = [name for name in ("M", "K") if name not in names]
+    if missing:
+        raise ParameterError(f"{path}: missing array(s) {', '.join(missing)}")
+    return arrays
 
 
 def _read_mtx_dir(path: str) -> dict[str, object]:
