@@ -67,7 +67,7 @@ def test_linear_modes_are_reported_stuck_and_joint_free(capsys, planar):
     np.testing.assert_allclose(s["joint_free_frequencies_Hz"], free, rtol=1e-13)
     # stuck: each plane gains the joint's 300 N/mm = 3e5 N/m
     k = (2 * np.pi * F0) ** 2
-    stuck = np.sqrt((np.array([k, 1.03 * k]) + 3e5)) / (2 * np.pi)
+    stuck = np.sqrt(np.array([k, 1.03 * k]) + 3e5) / (2 * np.pi)
     np.testing.assert_allclose(s["stuck_frequencies_Hz"], stuck, rtol=1e-13)
     assert s["mode"] == 2 and s["dofs"] == 2
     # small amplitude: mode 2 stuck, damping 1 % of the joint-free frequency's c

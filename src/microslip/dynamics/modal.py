@@ -19,6 +19,7 @@ from scipy.linalg import eigh
 
 from ..errors import ParameterError
 from ..named import result
+from ..solver.solve import single_threaded_blas
 from .continuation import newton
 from .describing import DEFAULT_SAMPLES, describing_function
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
@@ -124,7 +125,12 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
     ``zeta = xi / (2 w)`` (Krack 2015). Each amplitude starts Newton's method from the
     previous one (the first from the stuck linear mode).
     """
-    a = _amplitudes(amplitude)
+    with single_threaded_blas():  # small dense solves: threads cost 10x on a shared machine
+        return _epmc(structure, _amplitudes(amplitude), harmonics, samples, mode)
+
+
+def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int
+          ) -> ModalCurve:
     hb = HarmonicBalance(structure, harmonics, samples)
     h = 2 * harmonics + 1
     n = hb.size
