@@ -103,8 +103,9 @@ class HarmonicBalance:
         # (N, h): coefficients -> samples
         self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)
         # joint j's harmonics U = B_j^T x (direction-major), its force enters as B_j F
-        # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation)
-        self._links = tuple((link.operator, np.kron(link.weights, np.eye(h)))
+        # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation), kept only on
+        # the rows of the DOFs the joint touches (the condensation onto joint DOFs)
+        self._links = tuple(_condensed(link.operator, link.weights, h)
                             for link in structure.joints)
 
     @property
@@ -134,10 +135,10 @@ class HarmonicBalance:
         dyn = self._k - omega**2 * self._m + omega * (self._c - xi * self._mc)
         r = dyn @ x - load
         dx = dyn.copy()
-        for operator, b in self._links:
-            force, dforce = self.joint_harmonics(operator, b.T @ x)
-            r += b @ force
-            dx += b @ dforce @ b.T
+        for operator, idx, b in self._links:
+            force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
+            r[idx] += b @ force
+            dx[np.ix_(idx, idx)] += b @ dforce @ b.T
         dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
         dxi = -omega * (self._mc @ x)
         return Residual(r, dx, dw, dxi)
@@ -178,3 +179,11 @@ class HarmonicBalance:
             grad[:, 1] = out * (c / a)
             grad[:, 2] = out * (s / a)
         return a, grad.ravel()
+
+
+def _condensed(operator: HystereticOperator | CircularIwan, weights: Array, h: int
+               ) -> tuple[HystereticOperator | CircularIwan, NDArray[np.int64], Array]:
+    """The joint, the coefficient indices of the DOFs it touches, and B restricted to them."""
+    dofs = np.flatnonzero(np.any(weights != 0.0, axis=1))
+    idx = (dofs[:, None] * h + np.arange(h)).ravel().astype(np.int64)
+    return operator, idx, np.asarray(np.kron(weights[dofs], np.eye(h)), dtype=np.float64)
