@@ -104,6 +104,16 @@ def test_two_directional_joint_orbits_and_coupling(capsys, planar):
                                                          rel=1e-3)
 
 
+def test_plot_with_the_joint_orbit_is_written(capsys, planar, tmp_path):
+    pytest.importorskip("matplotlib")
+    png = tmp_path / "planar.png"
+    assert main(["frf", "--structure", planar, "--joint", "jenkins", "--joint-stiffness",
+                 "100", "--slip-force", "5", "--excitation", "0", "1", "--force", "3",
+                 "--harmonics", "1", "--samples", "64", "--frequency-range", "90", "125",
+                 "--plot", str(png)]) == 0
+    assert png.stat().st_size > 1000
+
+
 def write(tmp_path, name, **arrays):
     path = tmp_path / name
     np.savez(path, **arrays)
