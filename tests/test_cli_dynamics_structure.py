@@ -75,6 +75,15 @@ def test_linear_modes_are_reported_stuck_and_joint_free(capsys, planar):
     assert out["damping_ratio"][0] == pytest.approx(0.01 * F0 / stuck[1], rel=1e-9)
 
 
+def test_text_output_lists_the_linear_modes(capsys, planar):
+    assert main(["modal", "--structure", planar, *JOINT, "--amplitude-range", "1e-3",
+                 "1e-2", "--amplitudes", "2", "--method", "energy"]) == 0
+    text = capsys.readouterr().out
+    assert "linear modes (Hz), stuck: 132.662, 133.787;" in text
+    assert "joints removed: 100, 101.489" in text
+    assert "2 DOFs, mode 1: 100 Hz with the joint removed" in text
+
+
 def test_matrix_market_directory_is_the_npz(capsys, tmp_path, one_dof):
     scipy.io.mmwrite(tmp_path / "M.mtx", np.array([[M]]))
     scipy.io.mmwrite(tmp_path / "K.mtx", np.array([[K]]))

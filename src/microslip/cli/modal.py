@@ -213,12 +213,20 @@ def run(args: argparse.Namespace) -> int:
 
 
 def headline(structure: Structure, mode: int) -> str:
-    """'mode N: F Hz with the joints removed, F Hz stuck' (one mode: 'mode F Hz ...')."""
+    """'mode F Hz with the joint removed, F Hz stuck'; for a file structure the linear
+    modes (stuck and joint-free) on a line before it."""
     free = structure.linear_frequencies(stuck=False)[mode]
     stuck = structure.linear_frequencies(stuck=True)[mode]
     label = "mode" if structure.dofs == 1 else f"{structure.dofs} DOFs, mode {mode + 1}:"
     joints = "the joint" if len(structure.joints) == 1 else "the joints"
-    return f"{label} {free:.6g} Hz with {joints} removed, {stuck:.6g} Hz stuck"
+    line = f"{label} {free:.6g} Hz with {joints} removed, {stuck:.6g} Hz stuck"
+    if structure.dofs == 1:
+        return line
+    modes = (f"linear modes (Hz), stuck: "
+             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=True))
+             + "; joints removed: "
+             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=False)))
+    return f"{modes}\n{line}"
 
 
 def amplitudes_from_args(args: argparse.Namespace) -> np.ndarray:
