@@ -222,7 +222,7 @@ def headline(structure: Structure, mode: int) -> str:
     line = f"{label} {free:.6g} Hz with {joints} removed, {stuck:.6g} Hz stuck"
     if structure.dofs == 1:
         return line
-    modes = (f"linear modes (Hz), stuck: "
+    modes = ("linear modes (Hz), stuck: "
              + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=True))
              + "; joints removed: "
              + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=False)))
