@@ -230,3 +230,20 @@ def test_rigid_bar_needs_a_finite_series_stiffness():
 def test_jenkins_refuses_bad_parameters(stiffness, slip):
     with pytest.raises(ParameterError):
         jenkins(stiffness, slip)
+
+
+@pytest.mark.parametrize("name", list(OPERATORS))
+@settings(max_examples=40, deadline=None)
+@given(coef=st.lists(st.floats(-1.0, 1.0, allow_nan=False), min_size=6, max_size=6),
+       basis=st.lists(st.floats(-1.0, 1.0, allow_nan=False), min_size=96, max_size=96),
+       scale=st.floats(0.05, 3.0))
+def test_projected_jacobian_is_the_jacobian_times_the_basis(name, coef, basis, scale):
+    """The kernel that never forms J gives the same force (bit for bit: same sums in the
+    same order) and J @ E to round-off."""
+    op = OPERATORS[name]()
+    x = _signal(coef, 32) * float(op.slip.max()) * scale
+    e = np.asarray(basis).reshape(32, 3)
+    f, jac = op.periodic_force(x)
+    f_p, je = op.periodic_force_projected(x, e)
+    np.testing.assert_array_equal(f_p, f)
+    np.testing.assert_allclose(je, jac @ e, rtol=0, atol=1e-13 * op.initial_stiffness)

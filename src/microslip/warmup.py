@@ -30,7 +30,27 @@ def warm_up() -> float:
                     opt = ModelOptions(poisson=poisson, centre=reading)
                     batch_damping(model, preset("table1"), amplitude, increments=4,
                                   options=opt, strain_energy=kind)
+    _warm_up_dynamics()
     return time.perf_counter() - start
+
+
+def _warm_up_dynamics() -> None:
+    """The Iwan operators' kernels (periodic, projected, history; 1-D and circular) and the
+    time steppers."""
+    from .dynamics import jenkins
+    from .dynamics.operators2d import circular
+    from .dynamics.structure import one_mode
+    from .dynamics.timeint import steady_state, transient
+
+    joint = jenkins(100.0, 5.0)
+    x = 0.1 * np.cos(np.linspace(0.0, 2.0 * np.pi, 16, endpoint=False))
+    joint.periodic_force(x)
+    joint.periodic_force_projected(x, np.eye(16)[:, :3])
+    joint.force_history(x)
+    circular(joint).periodic_force_projected(np.column_stack([x, 0.5 * x]), np.eye(16)[:, :3])
+    structure = one_mode(100.0, 1.0, 0.01, joint)
+    steady_state(structure, 1.0, 100.0, periods=2, steps=16)
+    transient(structure, np.ones(1), 100.0, periods=2, steps=16)
 
 
 def main() -> int:

@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.assemble import joint_orbits, mode_load
+from ..dynamics.files import read_structure
 from ..dynamics.modal import epmc
 from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_response
 from ..dynamics.structure import Structure
@@ -19,11 +21,14 @@ from .modal import (
     add_balance_options,
     add_structure_options,
     balance_from_args,
+    connectivity_from_args,
     describe_structure,
+    headline,
+    mode_from_args,
     structure_from_args,
 )
 
-__all__ = ["add_parser", "default_range", "run"]
+__all__ = ["add_parser", "default_range", "excitation_from_args", "run"]
 
 #: Default frequency range: this fraction of the joint-removed frequency up to the
 #: reciprocal fraction of the stuck frequency.
@@ -41,7 +46,11 @@ def add_parser(sub: Any) -> None:
     add_balance_options(p)
     g = p.add_argument_group("excitation and output")
     g.add_argument("--force", type=number, action="append", required=True, metavar="N",
-                   help="excitation amplitude, N (repeat for several curves)")
+                   help="excitation amplitude, N (repeat for several curves): a modal force "
+                        "on --mode, or a force on each --excitation DOF")
+    g.add_argument("--excitation", type=int, nargs="+", metavar="I",
+                   help="--structure: forced DOFs (0-based), each by F cos(2 pi f t) "
+                        "(default: the modal force of --mode)")
     g.add_argument("--frequency-range", nargs=2, type=number, metavar=("MIN", "MAX"),
                    help=f"excitation frequencies, Hz (default {RANGE_MARGIN:g} x the "
                         f"joint-removed to {1 / RANGE_MARGIN:g} x the stuck frequency)")
@@ -56,11 +65,29 @@ def add_parser(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
-def default_range(structure: Structure) -> tuple[float, float]:
-    """(MIN, MAX) Hz around the resonance of the lowest mode, joint removed to stuck."""
-    free = float(structure.linear_frequencies(stuck=False)[0])
-    stuck = float(structure.linear_frequencies(stuck=True)[0])
-    return RANGE_MARGIN * free, stuck / RANGE_MARGIN
+def default_range(structure: Structure, mode: int = 0) -> tuple[float, float]:
+    """(MIN, MAX) Hz around the resonance of ``mode`` (0-based), joints removed to stuck
+    (from half the stuck frequency if the joint-free structure has a rigid-body mode)."""
+    free = float(structure.linear_frequencies(stuck=False)[mode])
+    stuck = float(structure.linear_frequencies(stuck=True)[mode])
+    low = min(free, stuck) if free > 0.0 else stuck / (2.0 * RANGE_MARGIN)
+    return RANGE_MARGIN * low, stuck / RANGE_MARGIN
+
+
+def excitation_from_args(args: argparse.Namespace, structure: Structure) -> np.ndarray:
+    """Force per unit --force on each DOF, N: the modal force of --mode, or the
+    --excitation DOFs (one mode: 1)."""
+    if structure.dofs == 1 and args.structure is None:
+        return np.ones(1)
+    if args.excitation is None:
+        return mode_load(structure, mode_from_args(args))
+    dofs = np.array(args.excitation)
+    if np.any(dofs < 0) or np.any(dofs >= structure.dofs) or len(set(dofs)) != dofs.size:
+        raise ParameterError(f"--excitation must name distinct DOFs in [0, "
+                             f"{structure.dofs - 1}], got {args.excitation}")
+    shape = np.zeros(structure.dofs)
+    shape[dofs] = 1.0
+    return shape
 
 
 def run(args: argparse.Namespace) -> int:
@@ -77,8 +104,9 @@ def run(args: argparse.Namespace) -> int:
             raise ParameterError(f"--force must be finite and > 0 N, got {f!r}")
     if not (math.isfinite(args.step) and 0.0 < args.step <= 1.0):
         raise ParameterError(f"--step must be in (0, 1], got {args.step!r}")
-    frange = _range(args, structure)
-    shape = np.ones(structure.dofs)
+    mode = mode_from_args(args)
+    frange = _range(args, structure, mode)
+    shape = excitation_from_args(args, structure)
     curves = [frequency_response(structure, f, shape, frange, harmonics, samples, args.step)
               for f in progress(args.force, desc="frf", total=len(args.force))]
     for c in curves:
@@ -91,16 +119,15 @@ def run(args: argparse.Namespace) -> int:
             "frequency_Hz": np.concatenate([c.frequency for c in curves]),
             "amplitude_mm": np.concatenate([c.amplitude for c in curves])})
     if args.plot:
-        _plot(structure, curves, args.plot)
+        _plot(structure, curves, args.plot, mode,
+              [joint_orbits(c, _connectivity(args)) for c in curves])
     if args.json:
-        print_json({"structure": describe_structure(structure), "harmonics": harmonics,
+        print_json({"structure": describe_structure(structure, args), "harmonics": harmonics,
                     "samples": samples, "frequency_range_Hz": list(frange),
-                    "curves": [_curve_json(c) for c in curves]})
+                    "curves": [_curve_json(c, _connectivity(args)) for c in curves]})
         return 0
-    d = describe_structure(structure)
-    print(f"mode {d['frequency_Hz']:.6g} Hz with the joint removed, "
-          f"{d['stuck_frequency_Hz']:.6g} Hz stuck; {harmonics} harmonic(s), {samples} "
-          f"samples, {frange[0]:.6g} to {frange[1]:.6g} Hz")
+    print(f"{headline(structure, mode)}; {harmonics} harmonic(s), {samples} samples, "
+          f"{frange[0]:.6g} to {frange[1]:.6g} Hz")
     print(f"{'force (N)':>12} {'peak a (mm)':>14} {'peak f (Hz)':>14} {'points':>7}")
     for c in curves:
         print(f"{c.force:12.6g} {c.peak_amplitude:14.7g} {c.peak_frequency:14.8g} "
@@ -108,15 +135,26 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _curve_json(c: FrequencyResponse) -> dict[str, Any]:
-    return {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
-            "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
-            "points": int(c.frequency.size), "success": c.success, "message": c.message}
+def _connectivity(args: argparse.Namespace) -> np.ndarray:
+    if args.structure is None:
+        return np.zeros((0, 1, 2), dtype=np.int64)
+    return connectivity_from_args(args, read_structure(args.structure))
 
 
-def _range(args: argparse.Namespace, structure: Structure) -> tuple[float, float]:
+def _curve_json(c: FrequencyResponse, joints: np.ndarray) -> dict[str, Any]:
+    out = {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
+           "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
+           "points": int(c.frequency.size), "success": c.success, "message": c.message}
+    orbits = joint_orbits(c, joints)
+    if orbits:
+        out["joint_orbits"] = orbits
+    return out
+
+
+def _range(args: argparse.Namespace, structure: Structure, mode: int
+           ) -> tuple[float, float]:
     if args.frequency_range is None:
-        return default_range(structure)
+        return default_range(structure, mode)
     lo, hi = args.frequency_range
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
         raise ParameterError(f"--frequency-range must satisfy 0 < MIN < MAX (Hz), got "
@@ -124,13 +162,17 @@ def _range(args: argparse.Namespace, structure: Structure) -> tuple[float, float
     return float(lo), float(hi)
 
 
-def _plot(structure: Structure, curves: list[FrequencyResponse], path: str) -> None:
+def _plot(structure: Structure, curves: list[FrequencyResponse], path: str, mode: int,
+          orbits: list[list[dict[str, Any]]]) -> None:
+    """The curves with the backbone over them; beside them the first two-directional
+    joint's orbit at each curve's peak, if there is one."""
     from ..plot import COLOURS, new_figure, save_figure
 
     top = max(float(c.amplitude.max()) for c in curves)
     backbone = epmc(structure, np.geomspace(top * 1e-3, top * 1.05, 80),
-                    curves[0].harmonics, curves[0].samples)
-    fig, axes = new_figure(width_mm=120.0)
+                    curves[0].harmonics, curves[0].samples, mode)
+    planar = any(orbits)
+    fig, axes = new_figure(ncols=2 if planar else 1, width_mm=120.0 if not planar else 80.0)
     ax = axes[0][0]
     for c, colour in zip(curves, COLOURS * len(curves), strict=False):
         ax.plot(c.frequency, c.amplitude, color=colour, label=f"F = {c.force:g} N")
@@ -140,4 +182,17 @@ def _plot(structure: Structure, curves: list[FrequencyResponse], path: str) -> N
     ax.set_xlabel("excitation frequency f (Hz)")
     ax.set_ylabel("first-harmonic amplitude a (mm)")
     ax.legend()
+    if planar:
+        ax = axes[0][1]
+        for c, found, colour in zip(curves, orbits, COLOURS * len(curves), strict=False):
+            if found:
+                x, y = np.append(found[0]["x_mm"], found[0]["x_mm"][0]), \
+                    np.append(found[0]["y_mm"], found[0]["y_mm"][0])
+                ax.plot(x, y, color=colour, label=f"F = {c.force:g} N, "
+                        f"{found[0]['frequency_Hz']:.5g} Hz")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel(f"joint {orbits[0][0]['joint'] if orbits[0] else 0} "
+                      "relative displacement x (mm)")
+        ax.set_ylabel("relative displacement y (mm)")
+        ax.legend()
     save_figure(fig, path)

@@ -92,11 +92,15 @@ def add_joint_options(parser: argparse.ArgumentParser) -> None:
                         "length (instead of --joint-stiffness)")
     g.add_argument("--elements", type=int, metavar="N",
                    help=f"iwan, tip, centre: Jenkins elements (default {DEFAULT_ELEMENTS})")
+    before = len(parser._actions)
     add_params(parser, default_preset="table1")
-    for action in parser._actions:  # the clamp's load amplitude is not a joint option
-        if action.dest == "amplitude":
-            action.help = argparse.SUPPRESS
     add_model_options(parser)
+    clamp = []
+    for action in parser._actions[before:]:
+        if action.dest == "amplitude":  # the clamp's load amplitude is not a joint option
+            action.help = argparse.SUPPRESS
+        clamp.append((action.dest, action.default, action.option_strings[0]))
+    parser.set_defaults(clamp_options=tuple(clamp))
 
 
 def joint_from_args(args: argparse.Namespace) -> IwanOperator:
@@ -104,6 +108,9 @@ def joint_from_args(args: argparse.Namespace) -> IwanOperator:
     build, uses = JOINTS[args.joint]
     extra = [flag for dest, flag in _FLAGS.items()
              if dest not in uses and getattr(args, dest, None) is not None]
+    if args.joint not in MODELS and getattr(args, "case", None) is None:
+        extra += [flag for dest, default, flag in getattr(args, "clamp_options", ())
+                  if getattr(args, dest, default) != default]
     if extra:
         raise ParameterError(f"{', '.join(extra)} not used by --joint {args.joint}")
     return build(args)

@@ -13,44 +13,113 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.assemble import describe_matrices, from_matrices, modal_output, with_output
+from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, ModalCurve, energy_method
+from ..dynamics.operators2d import COUPLINGS
 from ..dynamics.structure import Structure, one_mode
 from ..errors import ParameterError
 from .common import number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
-           "balance_from_args", "describe_structure", "run", "structure_from_args"]
+           "balance_from_args", "connectivity_from_args", "describe_structure", "headline",
+           "mode_from_args", "run", "structure_from_args"]
 
 #: Harmonics of the balance unless --harmonics is given.
 DEFAULT_HARMONICS = 7
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
-    """``--frequency``, ``--modal-mass``, ``--damping-ratio``, ``--participation`` and the
-    joint's options."""
+    """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
+    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode`` and
+    ``--coupling``; and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
-    g.add_argument("--frequency", type=number, required=True, metavar="HZ",
+    g.add_argument("--frequency", type=number, metavar="HZ",
                    help="natural frequency with the joint removed, Hz")
-    g.add_argument("--modal-mass", type=number, required=True, metavar="KG",
-                   help="modal mass, kg")
-    g.add_argument("--damping-ratio", type=number, default=0.0, metavar="X",
+    g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
+    g.add_argument("--damping-ratio", type=number, metavar="X",
                    help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
                         "(default 0)")
-    g.add_argument("--participation", type=number, default=1.0, metavar="X",
+    g.add_argument("--participation", type=number, metavar="X",
                    help="joint displacement per unit modal displacement, != 0 (default 1)")
+    f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
+    f.add_argument("--structure", metavar="FILE",
+                   help="FILE.npz with arrays M, K, optional C and joints, or a directory "
+                        "with M.mtx, K.mtx, optional C.mtx (Matrix Market); see "
+                        "docs/dynamics.md")
+    f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
+                   help="a joint between DOF I (0-based) and the ground, or I J between two "
+                        "DOFs; give it twice for a two-directional joint (one per "
+                        "direction); replaces the file's joints")
+    f.add_argument("--mode", type=int, metavar="N",
+                   help="mode followed and reported, 1-based by stuck frequency (default 1)")
+    f.add_argument("--coupling", choices=list(COUPLINGS),
+                   help="two-directional joints: one circular Coulomb limit (default) or "
+                        "two independent directions (the paper's decoupled sum)")
     add_joint_options(parser)
 
 
 def structure_from_args(args: argparse.Namespace) -> Structure:
-    """The one-mode structure with its joint that the options describe."""
-    return one_mode(args.frequency, args.modal_mass, args.damping_ratio,
-                    joint_from_args(args), args.participation)
+    """The structure with its joints that the options describe; for a file structure the
+    output is the modal coordinate of ``--mode``."""
+    if args.structure is None:
+        _refuse(args, ("joint_dof", "--joint-dof"), ("mode", "--mode"),
+                ("coupling", "--coupling"), ("excitation", "--excitation"),
+                why="a one-mode structure (they need --structure)")
+        if args.frequency is None or args.modal_mass is None:
+            raise ParameterError("give --frequency HZ and --modal-mass KG (one mode) or "
+                                 "--structure FILE")
+        return one_mode(args.frequency, args.modal_mass,
+                        0.0 if args.damping_ratio is None else args.damping_ratio,
+                        joint_from_args(args),
+                        1.0 if args.participation is None else args.participation)
+    _refuse(args, ("frequency", "--frequency"), ("modal_mass", "--modal-mass"),
+            ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
+            why="--structure (the file's matrices give them)")
+    matrices = read_structure(args.structure)
+    joints = connectivity_from_args(args, matrices)
+    if args.coupling is not None and not np.any(np.asarray(joints).shape[1:2] == (2,)):
+        raise ParameterError("--coupling applies to two-directional joints only (give "
+                             "--joint-dof twice or a (n, 2, 2) joints array)")
+    structure = from_matrices(matrices, joints, joint_from_args(args),
+                              args.coupling or "circular")
+    return with_output(structure, modal_output(structure, mode_from_args(args)))
 
 
-def describe_structure(structure: Structure) -> dict[str, Any]:
-    """JSON description of a one-mode structure and its joint (keys carry units)."""
+def mode_from_args(args: argparse.Namespace) -> int:
+    """The followed mode, 0-based."""
+    mode = 1 if getattr(args, "mode", None) is None else args.mode
+    return int(mode) - 1
+
+
+def connectivity_from_args(args: argparse.Namespace, matrices: MatrixFile) -> np.ndarray:
+    """The joints' [i, j] per direction ((n, d, 2)): --joint-dof, else the file's."""
+    if args.joint_dof is None:
+        return np.asarray(matrices.joints)
+    rows = args.joint_dof
+    if len(rows) > 2 or any(len(r) > 2 for r in rows):
+        raise ParameterError("--joint-dof takes I or I J, at most twice (two directions), "
+                             f"got {rows}")
+    pairs = [[r[0], r[1] if len(r) == 2 else -1] for r in rows]
+    return check_joint_dofs("--joint-dof", np.array([pairs], dtype=np.int64),
+                            matrices.mass.shape[0])
+
+
+def _refuse(args: argparse.Namespace, *flags: tuple[str, str], why: str) -> None:
+    given = [flag for dest, flag in flags if getattr(args, dest, None) is not None]
+    if given:
+        raise ParameterError(f"{', '.join(given)} not used with {why}")
+
+
+def describe_structure(structure: Structure, args: argparse.Namespace | None = None
+                       ) -> dict[str, Any]:
+    """JSON description of the structure and its joint (keys carry units)."""
+    if args is not None and args.structure is not None:
+        return {"file": args.structure, "mode": mode_from_args(args) + 1,
+                **describe_matrices(structure),
+                "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
     m = float(structure.mass[0, 0])
     k = float(structure.stiffness[0, 0])
     link = structure.joints[0]
@@ -65,7 +134,7 @@ def describe_structure(structure: Structure) -> dict[str, Any]:
 def add_balance_options(parser: argparse.ArgumentParser) -> None:
     """``--harmonics`` and ``--samples``."""
     g = parser.add_argument_group("harmonic balance")
-    g.add_argument("--harmonics", type=int, default=DEFAULT_HARMONICS, metavar="H",
+    g.add_argument("--harmonics", type=int, metavar="H",
                    help=f"harmonics, 1 = single-harmonic (describing-function) balance "
                         f"(default {DEFAULT_HARMONICS})")
     g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
@@ -74,7 +143,9 @@ def add_balance_options(parser: argparse.ArgumentParser) -> None:
 
 
 def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
-    """(harmonics, samples), checked."""
+    """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
+    if args.harmonics is None:
+        args.harmonics = DEFAULT_HARMONICS
     if not 1 <= args.harmonics <= 256:
         raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
     low = 2 * args.harmonics + 2
@@ -115,31 +186,50 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         check_writable(args.csv)
     structure = structure_from_args(args)
+    if args.method == "energy" and args.harmonics is not None:
+        raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
+                             "balance); leave it out or use --method epmc")
     harmonics, samples = balance_from_args(args)
     amps = amplitudes_from_args(args)
-    curve = METHODS[args.method](structure, amps, harmonics, samples)
-    energy = curve if args.method == "energy" else energy_method(structure, amps)
+    mode = mode_from_args(args)
+    curve = METHODS[args.method](structure, amps, harmonics, samples, mode)
+    energy = curve if args.method == "energy" else energy_method(structure, amps, mode=mode)
     if args.csv:
         write_csv(args.csv, {"amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                              "damping_ratio": curve.damping_ratio})
     if args.plot:
         _plot(curve, energy, args.plot)
     if args.json:
-        print_json({"structure": describe_structure(structure), "method": curve.method,
+        print_json({"structure": describe_structure(structure, args), "method": curve.method,
                     "harmonics": curve.harmonics, "samples": curve.samples,
                     "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                     "damping_ratio": curve.damping_ratio,
                     "energy_method": {"frequency_Hz": energy.frequency,
                                       "damping_ratio": energy.damping_ratio}})
         return 0
-    d = describe_structure(structure)
-    print(f"mode {d['frequency_Hz']:.6g} Hz with the joint removed, "
-          f"{d['stuck_frequency_Hz']:.6g} Hz stuck; {args.method}, {curve.harmonics} "
-          f"harmonic(s), {curve.samples} samples")
+    print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "
+          f"{curve.samples} samples")
     print(f"{'a (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")
     for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
         print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
     return 0
+
+
+def headline(structure: Structure, mode: int) -> str:
+    """'mode F Hz with the joint removed, F Hz stuck'; for a file structure the linear
+    modes (stuck and joint-free) on a line before it."""
+    free = structure.linear_frequencies(stuck=False)[mode]
+    stuck = structure.linear_frequencies(stuck=True)[mode]
+    label = "mode" if structure.dofs == 1 else f"{structure.dofs} DOFs, mode {mode + 1}:"
+    joints = "the joint" if len(structure.joints) == 1 else "the joints"
+    line = f"{label} {free:.6g} Hz with {joints} removed, {stuck:.6g} Hz stuck"
+    if structure.dofs == 1:
+        return line
+    modes = ("linear modes (Hz), stuck: "
+             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=True))
+             + "; joints removed: "
+             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=False)))
+    return f"{modes}\n{line}"
 
 
 def amplitudes_from_args(args: argparse.Namespace) -> np.ndarray:

@@ -16,6 +16,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
+from .operators import HystereticOperator
+from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
 __all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
@@ -98,9 +100,12 @@ class HarmonicBalance:
         self._m = s * np.kron(structure.mass, np.diag(order**2))
         self._c = s * np.kron(structure.damping, dc)
         self._mc = s * np.kron(structure.mass, dc)
-        self._synth = to_time(np.eye(h), samples).T  # (N, h): coefficients -> samples
-        # joint j's harmonics U = B_j^T x, its force enters as B_j F (B_j = w_j kron I_h)
-        self._links = tuple((link.operator, np.kron(link.participation[:, None], np.eye(h)))
+        # (N, h): coefficients -> samples
+        self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)
+        # joint j's harmonics U = B_j^T x (direction-major), its force enters as B_j F
+        # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation), kept only on
+        # the rows of the DOFs the joint touches (the condensation onto joint DOFs)
+        self._links = tuple(_condensed(link.operator, link.weights, h)
                             for link in structure.joints)
 
     @property
@@ -119,8 +124,8 @@ class HarmonicBalance:
         extra = np.zeros((self.size, self.size))
         h = 2 * self.harmonics + 1
         for link in self.structure.joints:
-            w = link.participation
-            extra += np.kron(np.outer(w, w), np.eye(h)) * link.operator.initial_stiffness
+            w = link.weights
+            extra += np.kron(w @ w.T, np.eye(h)) * link.operator.initial_stiffness
         lin = self._k - omega**2 * self._m + omega * self._c + extra
         return np.asarray(np.linalg.solve(lin, load))
 
@@ -130,13 +135,37 @@ class HarmonicBalance:
         dyn = self._k - omega**2 * self._m + omega * (self._c - xi * self._mc)
         r = dyn @ x - load
         dx = dyn.copy()
-        for operator, b in self._links:
-            f, jac = operator.periodic_force(to_time(b.T @ x, self.samples))
-            r += b @ from_time(f, self.harmonics)
-            dx += b @ from_time((jac @ self._synth).T, self.harmonics).T @ b.T
+        for operator, idx, b in self._links:
+            force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
+            r[idx] += b @ force
+            dx[np.ix_(idx, idx)] += b @ dforce @ b.T
         dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
         dxi = -omega * (self._mc @ x)
         return Residual(r, dx, dw, dxi)
+
+    def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
+                        ) -> tuple[Array, Array]:
+        """A joint's force harmonics (N, (d (2H + 1),)) and their derivative in its
+        displacement harmonics ``u`` (mm, direction-major), N/mm; d its directions."""
+        h = 2 * self.harmonics + 1
+        if getattr(operator, "directions", 1) == 2:
+            samples = to_time(u.reshape(2, h), self.samples).T
+            f, jb = operator.periodic_force_projected(samples, self._synth)  # type: ignore[union-attr]
+            force = from_time(f.T, self.harmonics).ravel()
+            # jb[t, a, b, c] -> d F_a,i / d U_b,c
+            df = from_time(np.moveaxis(jb, 0, -1), self.harmonics)
+            return force, np.moveaxis(df, 3, 1).reshape(2 * h, 2 * h)
+        f, jac_synth = self.joint_force(operator, to_time(u, self.samples))  # type: ignore[arg-type]
+        return from_time(f, self.harmonics), from_time(jac_synth.T, self.harmonics).T
+
+    def joint_force(self, operator: HystereticOperator, u: Array) -> tuple[Array, Array]:
+        """A joint's periodic force (N) at the samples ``u`` (mm) and ``J @ E_N`` (N/mm,
+        (N, 2H + 1)); operators with ``periodic_force_projected`` skip the (N, N) J."""
+        projected = getattr(operator, "periodic_force_projected", None)
+        if projected is not None:
+            return projected(u, self._synth)
+        f, jac = operator.periodic_force(u)
+        return f, jac @ self._synth
 
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
@@ -150,3 +179,11 @@ class HarmonicBalance:
             grad[:, 1] = out * (c / a)
             grad[:, 2] = out * (s / a)
         return a, grad.ravel()
+
+
+def _condensed(operator: HystereticOperator | CircularIwan, weights: Array, h: int
+               ) -> tuple[HystereticOperator | CircularIwan, NDArray[np.int64], Array]:
+    """The joint, the coefficient indices of the DOFs it touches, and B restricted to them."""
+    dofs = np.flatnonzero(np.any(weights != 0.0, axis=1))
+    idx = (dofs[:, None] * h + np.arange(h)).ravel().astype(np.int64)
+    return operator, idx, np.asarray(np.kron(weights[dofs], np.eye(h)), dtype=np.float64)

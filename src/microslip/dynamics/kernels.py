@@ -30,7 +30,7 @@ except ImportError:  # pragma: no cover - exercised only without numba
 else:
     HAVE_NUMBA = True
 
-__all__ = ["HAVE_NUMBA", "history_kernel", "periodic_kernel"]
+__all__ = ["HAVE_NUMBA", "history_kernel", "periodic_kernel", "periodic_projected_kernel"]
 
 
 @njit(cache=True, fastmath=False, nogil=True)
@@ -97,3 +97,73 @@ def periodic_kernel(x: np.ndarray, k: np.ndarray, phi: np.ndarray, start: int,
                 jac[t, t] += ke
                 if src >= 0:
                     jac[t, src] -= ke
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def periodic_projected_kernel(x: np.ndarray, k: np.ndarray, phi: np.ndarray, start: int,
+                              basis: np.ndarray, f: np.ndarray, jb: np.ndarray) -> None:
+    """Closed periodic force ``f`` (N) and ``jb = J @ basis`` (N/mm per basis column), both
+    added into, without forming the (N, N) Jacobian J of :func:`periodic_kernel`.
+
+    Notes
+    -----
+    Same return mapping and start as :func:`periodic_kernel`, samples outermost: row t of
+    J is ``k_t`` (the stiffness of the elements sticking at t) on the diagonal and
+    ``-k_e`` at the last slip sample ``s_e`` of every sticking element, so
+    ``jb[t] = k_t basis[t] - sum_s w_ts basis[s]`` with the weights gathered per row over
+    the distinct samples s. Cost O(N (n_elements + distinct s x columns)).
+    """
+    n = x.size
+    m = k.size
+    cols = basis.shape[1]
+    xm = x[start]
+    sgn = 1.0 if xm >= 0.0 else -1.0
+    z = np.empty(m)
+    src = np.empty(m, dtype=np.int64)
+    for e in range(m):
+        if abs(xm) > phi[e]:
+            z[e] = xm - sgn * phi[e]
+            src[e] = start
+        else:
+            z[e] = 0.0
+            src[e] = -1
+    weight = np.zeros(n)
+    touched = np.empty(n, dtype=np.int64)
+    for j in range(n):
+        t = start + j
+        if t >= n:
+            t -= n
+        xt = x[t]
+        diag = 0.0
+        force = 0.0
+        count = 0
+        for e in range(m):
+            ze = z[e]
+            ph = phi[e]
+            if xt - ze > ph:
+                ze = xt - ph
+                src[e] = t
+                z[e] = ze
+            elif xt - ze < -ph:
+                ze = xt + ph
+                src[e] = t
+                z[e] = ze
+            ke = k[e]
+            force += ke * (xt - ze)
+            s = src[e]
+            if s != t:
+                diag += ke
+                if s >= 0 and ke != 0.0:
+                    if weight[s] == 0.0:
+                        touched[count] = s
+                        count += 1
+                    weight[s] += ke
+        f[t] += force
+        for c in range(cols):
+            jb[t, c] += diag * basis[t, c]
+        for i in range(count):
+            s = touched[i]
+            w = weight[s]
+            for c in range(cols):
+                jb[t, c] -= w * basis[s, c]
+            weight[s] = 0.0

@@ -19,9 +19,11 @@ from scipy.linalg import eigh
 
 from ..errors import ParameterError
 from ..named import result
+from ..solver.solve import single_threaded_blas
 from .continuation import newton
 from .describing import DEFAULT_SAMPLES, describing_function
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
+from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
 __all__ = ["METHODS", "ModalCurve", "energy_method", "epmc"]
@@ -60,41 +62,48 @@ class ModalCurve:
     samples: int
 
 
-def stuck_mode(structure: Structure) -> tuple[Array, float, float, float]:
-    """Lowest linear mode with every joint stuck: shape (output . shape = 1), modal mass
-    (kg), stiffness (N/m, joints removed) and damping (N·s/m)."""
+def stuck_mode(structure: Structure, mode: int = 0) -> tuple[Array, float, float, float]:
+    """Linear mode ``mode`` (0-based, by frequency) with every joint stuck: shape
+    (output . shape = 1), modal mass (kg), stiffness (N/m, joints removed) and damping
+    (N·s/m)."""
+    if not (isinstance(mode, int) and 0 <= mode < structure.dofs):
+        raise ParameterError(f"mode must be in [1, {structure.dofs}] (1-based), got "
+                             f"{mode + 1 if isinstance(mode, int) else mode!r}")
     _, vecs = eigh(structure.stuck_stiffness(), structure.mass)
-    phi = vecs[:, 0]
+    phi = vecs[:, mode]
     norm = float(structure.output @ phi)
-    if norm == 0.0:
-        raise ParameterError("the output coordinate does not move in the lowest stuck mode")
+    if abs(norm) <= 1e-12 * float(np.max(np.abs(phi))):
+        raise ParameterError(f"the output coordinate does not move in stuck mode {mode + 1}")
     phi = phi / norm
     return (phi, float(phi @ structure.mass @ phi), float(phi @ structure.stiffness @ phi),
             float(phi @ structure.damping @ phi))
 
 
 def energy_method(structure: Structure, amplitude: ArrayLike,
-                  samples: int = DEFAULT_SAMPLES) -> ModalCurve:
+                  samples: int = DEFAULT_SAMPLES, mode: int = 0) -> ModalCurve:
     """Frequency and damping ratio from the joints' describing functions.
 
     Notes
     -----
     Along the stuck mode shape phi (output . phi = 1) of modal mass m, stiffness k and
-    damping c, a joint with participation p = w . phi sees the amplitude |p| a and adds
-    p^2 K_eq and p^2 D_eq (N/mm, x 1e3 to N/m): w^2 = (k + sum p^2 K_eq) / m and
-    zeta = (c w + sum p^2 D_eq) / (2 m w^2) = zeta_lin + W_d / (2 pi m w^2 a^2)
-    (REFERENCES.md, 1-DOF single-harmonic balance). Exact single-harmonic balance for one
-    degree of freedom.
+    damping c, a joint with participation p = W^T phi (one entry per direction) moves on
+    a line with amplitude |p| a and adds |p|^2 K_eq and |p|^2 D_eq (N/mm, x 1e3 to N/m):
+    w^2 = (k + sum |p|^2 K_eq) / m and zeta = (c w + sum |p|^2 D_eq) / (2 m w^2)
+    = zeta_lin + W_d / (2 pi m w^2 a^2) (REFERENCES.md, 1-DOF single-harmonic balance).
+    A circular two-directional joint on a line is its 1-D operator. Exact single-harmonic
+    balance for one degree of freedom.
     """
     a = _amplitudes(amplitude)
-    phi, m, k, c = stuck_mode(structure)
+    phi, m, k, c = stuck_mode(structure, mode)
     k_eq = np.full(a.size, k)
     d_eq = np.zeros(a.size)
     for link in structure.joints:
-        p = float(link.participation @ phi)
+        p = float(np.linalg.norm(link.weights.T @ phi))
         if p == 0.0:
             continue
-        df = describing_function(link.operator, abs(p) * a, samples)
+        op = link.operator
+        df = describing_function(op.axial if isinstance(op, CircularIwan) else op, p * a,
+                                 samples)
         k_eq += p * p * df.stiffness / SI_PER_MM
         d_eq += p * p * df.damping / SI_PER_MM
     omega = np.sqrt(k_eq / m)
@@ -104,7 +113,7 @@ def energy_method(structure: Structure, amplitude: ArrayLike,
 
 
 def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
-         samples: int = DEFAULT_HB_SAMPLES) -> ModalCurve:
+         samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
     """Frequency and damping ratio by the extended periodic motion concept.
 
     Notes
@@ -116,11 +125,16 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
     ``zeta = xi / (2 w)`` (Krack 2015). Each amplitude starts Newton's method from the
     previous one (the first from the stuck linear mode).
     """
-    a = _amplitudes(amplitude)
+    with single_threaded_blas():  # small dense solves: threads cost 10x on a shared machine
+        return _epmc(structure, _amplitudes(amplitude), harmonics, samples, mode)
+
+
+def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int
+          ) -> ModalCurve:
     hb = HarmonicBalance(structure, harmonics, samples)
     h = 2 * harmonics + 1
     n = hb.size
-    phi, m, _, c = stuck_mode(structure)
+    phi, m, _, c = stuck_mode(structure, mode)
     omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
     guess = np.zeros(n + 2)
     guess[:n].reshape(structure.dofs, h)[:, 1] = phi
@@ -152,13 +166,14 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
                       harmonics=harmonics, samples=samples)
 
 
-def _energy(structure: Structure, amplitude: ArrayLike, harmonics: int, samples: int
-            ) -> ModalCurve:
-    return energy_method(structure, amplitude, samples)
+def _energy(structure: Structure, amplitude: ArrayLike, harmonics: int, samples: int,
+            mode: int = 0) -> ModalCurve:
+    return energy_method(structure, amplitude, samples, mode)
 
 
-#: Modal method name -> ``(structure, amplitudes mm, harmonics, samples) -> ModalCurve``.
-METHODS: dict[str, Callable[[Structure, ArrayLike, int, int], ModalCurve]] = {
+#: Modal method name -> ``(structure, amplitudes mm, harmonics, samples, mode) ->
+#: ModalCurve`` (mode 0-based by stuck frequency).
+METHODS: dict[str, Callable[[Structure, ArrayLike, int, int, int], ModalCurve]] = {
     "epmc": epmc, "energy": _energy}
 
 

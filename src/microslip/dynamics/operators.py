@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from ..errors import ParameterError
 from ..named import readonly, result
 from ..params import check_positive
-from .kernels import history_kernel, periodic_kernel
+from .kernels import history_kernel, periodic_kernel, periodic_projected_kernel
 
 __all__ = ["HystereticOperator", "IwanHistory", "IwanOperator", "jenkins"]
 
@@ -135,6 +135,21 @@ class IwanOperator:
         jac = np.zeros((x.size, x.size))
         periodic_kernel(x, self.stiffness, self.slip, int(np.argmax(np.abs(x))), f, jac)
         return f, jac
+
+    def periodic_force_projected(self, x: NDArray[np.float64], basis: NDArray[np.float64]
+                                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The closed periodic force ``f`` (N) of :meth:`periodic_force` and ``J @ basis``
+        (shape (N, m)) without forming J: what harmonic balance needs, at a cost linear in
+        the samples (``basis`` maps m coefficients to the N samples)."""
+        x = _samples(x)
+        basis = np.ascontiguousarray(basis, dtype=np.float64)
+        if basis.ndim != 2 or basis.shape[0] != x.size:
+            raise ParameterError(f"basis must have shape ({x.size}, m), got {basis.shape}")
+        f = np.zeros(x.size)
+        jb = np.zeros(basis.shape)
+        periodic_projected_kernel(x, self.stiffness, self.slip, int(np.argmax(np.abs(x))),
+                                  basis, f, jb)
+        return f, jb
 
     def force_history(self, x: NDArray[np.float64],
                       state: NDArray[np.float64] | None = None) -> IwanHistory:

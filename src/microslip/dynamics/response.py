@@ -14,6 +14,7 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..named import result
+from ..solver.solve import single_threaded_blas
 from .continuation import arclength, newton
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
 from .structure import Structure
@@ -82,6 +83,14 @@ def frequency_response(structure: Structure, force: float, shape: Array,
     A the first-harmonic amplitude of the output coordinate, by Brent's method between the
     neighbours of the largest continuation point.
     """
+    with single_threaded_blas():  # small dense solves: threads cost 10x on a shared machine
+        return _frequency_response(structure, force, shape, frequency_range, harmonics,
+                                   samples, step, max_points)
+
+
+def _frequency_response(structure: Structure, force: float, shape: Array,
+                        frequency_range: tuple[float, float], harmonics: int, samples: int,
+                        step: float, max_points: int) -> FrequencyResponse:
     if not (math.isfinite(force) and force > 0.0):
         raise ParameterError(f"force must be finite and > 0 N, got {force!r}")
     lo, hi = (2.0 * np.pi * f for f in frequency_range)

@@ -22,6 +22,7 @@ from ..errors import ParameterError
 from ..named import readonly, result
 from ..params import check_positive
 from .operators import HystereticOperator
+from .operators2d import CircularIwan
 
 __all__ = ["SI_PER_MM", "JointLink", "Structure", "one_mode"]
 
@@ -36,15 +37,37 @@ class JointLink:
 
     Attributes
     ----------
-    operator : HystereticOperator
-        Force law of the joint (displacement mm -> force N).
-    participation : ndarray, shape (n_dof,)
+    operator : HystereticOperator or CircularIwan
+        Force law of the joint (displacement mm -> force N); a two-directional operator
+        (``directions = 2``, :mod:`.operators2d`) takes both components at once.
+    participation : ndarray, shape (n_dof,) or (n_dof, 2)
         Relative displacement of the joint per unit displacement of each degree of freedom
-        (-); the joint force acts on the structure with the same weights.
+        (-), one column per direction; the joint force acts on the structure with the same
+        weights.
     """
 
-    operator: HystereticOperator
+    operator: HystereticOperator | CircularIwan
     participation: np.ndarray
+
+    def __post_init__(self) -> None:
+        w = np.array(self.participation, dtype=np.float64)
+        d = self.directions
+        if not ((w.ndim == 1 and d == 1) or (w.ndim == 2 and w.shape[1] == d)):
+            raise ParameterError(f"a joint with {d} direction(s) needs participation of "
+                                 f"shape (n_dof,{' 2' if d == 2 else ''}), got {w.shape}")
+        if not np.all(np.isfinite(w)) or not np.any(w):
+            raise ParameterError("joint participation must be finite and not all zero")
+        object.__setattr__(self, "participation", readonly(w))
+
+    @property
+    def directions(self) -> int:
+        """Relative displacement components of the joint (1 or 2)."""
+        return int(getattr(self.operator, "directions", 1))
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Participation as (n_dof, directions)."""
+        return self.participation.reshape(self.participation.shape[0], -1)
 
 
 @result
@@ -83,9 +106,9 @@ class Structure:
             raise ParameterError(f"output weights must have shape ({n},), got "
                                  f"{self.output.shape}")
         for link in self.joints:
-            if link.participation.shape != (n,):
-                raise ParameterError(f"joint participation must have shape ({n},), got "
-                                     f"{link.participation.shape}")
+            if link.participation.shape[0] != n:
+                raise ParameterError(f"joint participation must have {n} rows (the degrees "
+                                     f"of freedom), got shape {link.participation.shape}")
 
     @property
     def dofs(self) -> int:
@@ -96,8 +119,8 @@ class Structure:
         """K plus every joint's initial stiffness, N/m (the small-amplitude limit)."""
         k = np.array(self.stiffness, dtype=np.float64)
         for link in self.joints:
-            w = link.participation
-            k += np.outer(w, w) * link.operator.initial_stiffness / SI_PER_MM
+            w = link.weights
+            k += (w @ w.T) * link.operator.initial_stiffness / SI_PER_MM
         return k
 
     def linear_frequencies(self, stuck: bool) -> np.ndarray:

@@ -2,7 +2,9 @@
 
 A one-degree-of-freedom structure with Iwan joints (parallel Jenkins elements) under
 ``F cos(w t)``, integrated by Newmark's average-acceleration rule (trapezoidal, second order,
-unconditionally stable) with the elements' return mapping solved exactly in every step.
+unconditionally stable) with the elements' return mapping solved exactly in every step
+(:func:`steady_state`); any structure, with 1-D and circular two-directional joints, by
+explicit central differences (:func:`transient`).
 
 Units: mass kg, displacement mm, force N, frequency Hz.
 """
@@ -16,10 +18,12 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..named import result
+from .kernels2d import radial_return
 from .operators import IwanOperator
+from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
-__all__ = ["SteadyState", "steady_state"]
+__all__ = ["SteadyState", "Transient", "steady_state", "transient"]
 
 
 @result
@@ -146,3 +150,135 @@ def steady_state(structure: Structure, force: float, frequency: float, periods: 
                        amplitude=float(abs(h_last)),
                        change=float(abs(h_last - h_before) / abs(h_last)),
                        periods=periods, steps=steps)
+
+
+@result
+class Transient:
+    """The last periods of an explicit time integration of a structure with joints.
+
+    Attributes
+    ----------
+    frequency : float
+        Excitation frequency, Hz.
+    displacement : ndarray, shape (steps, n_dof)
+        Displacements over the last period, mm (at t = (j + 1) T / steps).
+    amplitude : float
+        First-harmonic amplitude of the structure's output coordinate over the last
+        period, mm.
+    change : float
+        Relative change of that first harmonic over the last period (how settled it is).
+    periods, steps : int
+        Periods integrated and time steps per period.
+    """
+
+    frequency: float
+    displacement: np.ndarray
+    amplitude: float
+    change: float
+    periods: int
+    steps: int
+
+
+@njit(cache=True, nogil=True)
+def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
+                  first_el: np.ndarray, k: np.ndarray, phi: np.ndarray, z: np.ndarray,
+                  g: np.ndarray) -> None:
+    """Generalised joint forces ``g`` (N) at ``x`` (mm); sliders ``z`` (mm) stepped in
+    place (1-D return mapping or radial return, by the joint's number of rows)."""
+    g[:] = 0.0
+    for j in range(first_row.size - 1):
+        r0 = first_row[j]
+        d = first_row[j + 1] - r0
+        ux = rows[r0] @ x
+        uy = rows[r0 + 1] @ x if d == 2 else 0.0
+        fx = 0.0
+        fy = 0.0
+        for e in range(first_el[j], first_el[j + 1]):
+            zx, zy, _, _, _ = radial_return(ux, uy, z[e, 0], z[e, 1], phi[e])
+            z[e, 0], z[e, 1] = zx, zy
+            fx += k[e] * (ux - zx)
+            fy += k[e] * (uy - zy)
+        g += fx * rows[r0]
+        if d == 2:
+            g += fy * rows[r0 + 1]
+
+
+@njit(cache=True, nogil=True)
+def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: np.ndarray,
+                        load: np.ndarray, omega: float, dt: float, rows: np.ndarray,
+                        first_row: np.ndarray, first_el: np.ndarray, k: np.ndarray,
+                        phi: np.ndarray, out: np.ndarray) -> None:
+    """Integrate from rest; ``out`` (steps, n) receives x_1 ... x_steps (mm)."""
+    n = kl.shape[0]
+    x_prev = np.zeros(n)
+    x = np.zeros(n)
+    z = np.zeros((k.size, 2))
+    g = np.zeros(n)
+    for s in range(out.shape[0]):
+        _joint_forces(x, rows, first_row, first_el, k, phi, z, g)
+        rhs = (load * math.cos(omega * s * dt) - kl @ x - g + m2 @ (2.0 * x - x_prev)
+               + c2 @ x_prev)
+        x_prev = x
+        x = a_inv @ rhs
+        out[s] = x
+
+
+def transient(structure: Structure, load: np.ndarray, frequency: float, periods: int,
+              steps: int = 1000) -> Transient:
+    """Integrate ``structure`` (any degrees of freedom, 1-D Iwan and circular joints) from
+    rest under ``load cos(2 pi frequency t)`` (N per degree of freedom).
+
+    Notes
+    -----
+    Central differences, ``M (x_{n+1} - 2 x_n + x_{n-1}) / dt^2 + C (x_{n+1} - x_{n-1}) /
+    (2 dt) + K x_n + g(x_n) = p(t_n)``, explicit (second order, stable for
+    dt < 2 / w_max with w_max the highest stuck frequency: ``steps`` is raised to
+    4 pi w_max / w if needed), the joints' sliders stepped by the exact return mapping (1-D)
+    or radial return (circular) at every step, as the harmonic balance's AFT does at its
+    samples.
+    """
+    if not (isinstance(periods, int) and periods >= 2 and isinstance(steps, int)
+            and steps >= 16):
+        raise ParameterError(f"need periods >= 2 and steps >= 16, got {periods}, {steps}")
+    omega = 2.0 * np.pi * frequency
+    w_max = 2.0 * np.pi * float(structure.linear_frequencies(stuck=True)[-1])
+    steps = max(steps, int(np.ceil(4.0 * np.pi * w_max / omega)))
+    dt = 2.0 * np.pi / omega / steps
+    m2 = SI_PER_MM * np.asarray(structure.mass) / dt**2
+    c2 = SI_PER_MM * np.asarray(structure.damping) / (2.0 * dt)
+    rows, first_row, first_el, k, phi = _flatten_joints(structure)
+    x = np.empty((periods * steps, structure.dofs))
+    _central_difference(np.linalg.inv(m2 + c2), m2, c2,
+                        SI_PER_MM * np.asarray(structure.stiffness, dtype=np.float64),
+                        np.asarray(load, dtype=np.float64), omega, dt, rows, first_row,
+                        first_el, k, phi, x)
+    out = x @ structure.output
+    last, before = out[-steps:], out[-2 * steps:-steps]
+    theta = 2.0 * np.pi * np.arange(1, steps + 1) / steps
+    basis = np.exp(-1j * theta) * (2.0 / steps)
+    h_last, h_before = last @ basis, before @ basis
+    return Transient(frequency=float(frequency), displacement=x[-steps:],
+                     amplitude=float(abs(h_last)),
+                     change=float(abs(h_last - h_before) / abs(h_last)), periods=periods,
+                     steps=steps)
+
+
+def _flatten_joints(structure: Structure
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Participation rows, each joint's first row and first element, element k and phi."""
+    rows, first_row, first_el, ks, phis = [], [0], [0], [], []
+    for link in structure.joints:
+        op = link.operator
+        if not isinstance(op, IwanOperator | CircularIwan):
+            raise ParameterError(f"time integration needs Iwan joints, got {type(op).__name__}")
+        rows.extend(link.weights.T)
+        first_row.append(len(rows))
+        ks.append(op.stiffness)
+        phis.append(op.slip)
+        first_el.append(first_el[-1] + op.stiffness.size)
+    if not rows:
+        rows.append(np.zeros(structure.dofs))
+    return (np.array(rows, dtype=np.float64), np.array(first_row, dtype=np.int64),
+            np.array(first_el, dtype=np.int64),
+            np.concatenate(ks) if ks else np.zeros(0), np.concatenate(phis) if phis
+            else np.zeros(0))

@@ -1,0 +1,115 @@
+"""A structure from matrices and joint connectivity: joints placed, the mode to follow, the
+coordinate reported, the excitation.
+
+The reported amplitude of a many-DOF structure is the modal coordinate of the chosen stuck
+mode phi (scaled so that its largest DOF displacement is 1): ``a = phi^T M q / phi^T M phi``,
+mm, i.e. the largest displacement of the linear mode shape; the excitation of a mode is
+``F M phi / (phi^T M phi)`` (a modal force F, N) unless DOFs are named.
+
+Units: SI matrices (kg, N/m, N·s/m), displacements mm, forces N.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+from scipy.linalg import eigh
+
+from ..errors import ParameterError
+from ..named import readonly
+from .files import MatrixFile, joint_weights
+from .hb import to_time
+from .operators import IwanOperator
+from .operators2d import COUPLINGS
+from .response import FrequencyResponse
+from .structure import JointLink, Structure
+
+__all__ = ["describe_matrices", "from_matrices", "joint_orbits", "modal_output", "mode_load",
+           "mode_shape", "with_output"]
+
+
+def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
+                  coupling: str) -> Structure:
+    """The structure of ``matrices`` with ``joint`` at every connectivity row of ``joints``
+    ((n, directions, 2), :mod:`.files`); two-directional joints coupled by ``coupling``
+    (:data:`~.operators2d.COUPLINGS`). The output coordinate is set by :func:`with_output`.
+    """
+    if joints.shape[0] == 0:
+        raise ParameterError(f"{matrices.path}: no joint; give --joint-dof I [J] or a "
+                             "'joints' array in the file")
+    links = []
+    for w in joint_weights(joints, matrices.mass.shape[0]):
+        if w.ndim == 1:
+            links.append(JointLink(joint, w))
+            continue
+        ops = COUPLINGS[coupling](joint)
+        if len(ops) == 1:
+            links.append(JointLink(ops[0], w))
+        else:
+            links.extend(JointLink(op, w[:, d]) for d, op in enumerate(ops))
+    n = matrices.mass.shape[0]
+    s = Structure(mass=matrices.mass, damping=matrices.damping, stiffness=matrices.stiffness,
+                  joints=tuple(links), output=readonly(np.eye(n)[0]))
+    lam = eigh(s.stuck_stiffness(), s.mass, eigvals_only=True)
+    if not lam[0] > 1e-12 * lam[-1]:
+        raise ParameterError(f"{matrices.path}: the structure with its joints stuck has a "
+                             "zero-frequency (rigid-body) mode; fix it with a joint to the "
+                             "ground or in K")
+    return s
+
+
+def mode_shape(structure: Structure, mode: int) -> np.ndarray:
+    """Stuck mode ``mode`` (0-based by frequency), scaled to a largest entry of +1."""
+    if not 0 <= mode < structure.dofs:
+        raise ParameterError(f"--mode must be in [1, {structure.dofs}], got {mode + 1}")
+    _, vecs = eigh(structure.stuck_stiffness(), structure.mass)
+    phi = vecs[:, mode]
+    return np.asarray(phi / phi[np.argmax(np.abs(phi))])
+
+
+def with_output(structure: Structure, output: np.ndarray) -> Structure:
+    """The same structure reporting the coordinate ``output . q``."""
+    return dataclasses.replace(structure, output=readonly(np.asarray(output, dtype=float)))
+
+
+def modal_output(structure: Structure, mode: int) -> np.ndarray:
+    """Weights of the modal coordinate of stuck mode ``mode``: phi^T M / (phi^T M phi)."""
+    phi = mode_shape(structure, mode)
+    m_phi = structure.mass @ phi
+    return np.asarray(m_phi / (phi @ m_phi))
+
+
+def mode_load(structure: Structure, mode: int) -> np.ndarray:
+    """Excitation shape of a unit modal force on stuck mode ``mode``, N per DOF."""
+    return modal_output(structure, mode)
+
+
+def describe_matrices(structure: Structure) -> dict[str, Any]:
+    """JSON description: DOFs, linear frequencies stuck and joint-free, the joints."""
+    free = structure.linear_frequencies(stuck=False)
+    return {"dofs": structure.dofs,
+            "stuck_frequencies_Hz": structure.linear_frequencies(stuck=True),
+            "joint_free_frequencies_Hz": free,
+            "joints": [{"directions": link.directions,
+                        "operator": type(link.operator).__name__,
+                        "participation": link.participation} for link in structure.joints]}
+
+
+def joint_orbits(response: FrequencyResponse, joints: np.ndarray) -> list[dict[str, Any]]:
+    """Orbit of every two-directional joint of the connectivity ``joints`` ((n, d, 2),
+    :mod:`.files`) at the continuation point of largest amplitude: its relative
+    displacement (mm) in both directions at the AFT samples of one period."""
+    i = int(np.argmax(response.amplitude))
+    h = 2 * response.harmonics + 1
+    q = response.coefficients[i].reshape(-1, h)
+    out = []
+    for j, w in enumerate(joint_weights(joints, q.shape[0])):
+        if w.ndim == 1:
+            continue
+        u = to_time(w.T @ q, response.samples)
+        out.append({"joint": j, "frequency_Hz": float(response.frequency[i]),
+                    "amplitude_mm": float(response.amplitude[i]), "x_mm": u[0],
+                    "y_mm": u[1]})
+    return out
