@@ -94,3 +94,14 @@ def test_out_writes_result_json_and_a_vtu_series_read_back(capsys, tmp_path):
         np.delete(status, bottom) == -1)
     slipping = status == 2
     assert np.all(np.linalg.norm(peak.point_data["contact_slip"][slipping], axis=1) > 0)
+
+
+@pytest.mark.parametrize("extreme", [["--length", "1e-6"], ["--thickness", "1e6"],
+                                     ["--thickness", "1e-9"]])
+def test_extreme_geometry_is_one_line_not_a_traceback(capsys, extreme):
+    code = main(["fe", "--model", "tip", "--mesh", "tiny", *extreme])
+    out, err = capsys.readouterr()
+    lines = [ln for ln in err.splitlines() if not ln.startswith("warning: ")]
+    assert code == 1 and "Traceback" not in err and "dissipated energy" not in out
+    assert len(lines) <= 1  # one error line, or the non-convergence said on stdout
+    assert lines or "not converged" in out

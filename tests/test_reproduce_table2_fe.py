@@ -33,7 +33,11 @@ def test_columns_are_what_they_say(cols):
         rigid = damping(model, p, a, 200, ModelOptions()).dissipated_energy
         assert cols["rigid_dissipated_energy_Nmm"][i] == rigid
         w = cols["fe_dissipated_energy_Nmm"][i]
-        assert w > 0 and cols["fe_converged"][i] is True
+        assert w >= 0 and cols["fe_converged"][i] is True
+        if w == 0:  # the FE sticks throughout (tiny mesh, low level): no ratio
+            assert math.isnan(cols["rigid_over_fe"][i])
+            assert "W_d = 0" in cols["fe_message"][i] or "stick" in cols["fe_message"][i]
+            continue
         assert cols["rigid_over_fe"][i] == pytest.approx(rigid / w, rel=1e-15)
         assert cols["layer_over_fe"][i] == pytest.approx(
             cols["layer_dissipated_energy_Nmm"][i] / w, rel=1e-15)
@@ -43,6 +47,6 @@ def test_columns_are_what_they_say(cols):
 
 def test_report_states_the_range_of_the_ratios(cols):
     text = _table2_fe_section(cols)
-    lo, hi = min(cols["rigid_over_fe"]), max(cols["rigid_over_fe"])
-    assert f"{lo:.3g} to {hi:.3g} times the FE's W_d" in text
-    assert math.isfinite(lo) and text.count("\n| ") == len(cols["model"]) + 1
+    ratios = [r for r in cols["rigid_over_fe"] if math.isfinite(r)]
+    assert f"{min(ratios):.3g} to {max(ratios):.3g} times the FE's W_d" in text
+    assert text.count("\n| ") == len(cols["model"]) + 1

@@ -7,6 +7,7 @@ Units: force N, displacement mm, energy N·mm; loss factors dimensionless.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -337,8 +338,11 @@ def _table2_fe_section(c: Mapping[str, Any]) -> str:
                 c["model"], c["level"], c["amplitude_N"], c["fe_dissipated_energy_Nmm"],
                 c["rigid_dissipated_energy_Nmm"], c["layer_dissipated_energy_Nmm"],
                 c["rigid_over_fe"], c["layer_over_fe"], strict=True)]
-    rigid = [float(x) for x in c["rigid_over_fe"]]
-    layer = [float(x) for x in c["layer_over_fe"]]
+    rigid = [float(x) for x in c["rigid_over_fe"] if math.isfinite(float(x))]
+    layer = [float(x) for x in c["layer_over_fe"] if math.isfinite(float(x))]
+    stuck = sum(1 for w in c["fe_dissipated_energy_Nmm"] if float(w) == 0.0)
+    if not rigid:
+        return "The FE sticks throughout at every level run here: no ratio to report.\n"
     return "\n".join([
         "The paper checks its models against FE on the slender Table 1 bar only, then computes "
         "Figs 10-12 on the Table 2 zones, which are squat (length/thickness 5 in the reading of "
@@ -352,6 +356,9 @@ def _table2_fe_section(c: Mapping[str, Any]) -> str:
         f"The paper's model gives {min(rigid):.3g} to {max(rigid):.3g} times the FE's W_d on "
         f"its own clamp, the shear-layer model {min(layer):.3g} to {max(layer):.3g} times: "
         "neither is within a few percent, and `microslip loop` says so for these zones (the "
-        "validity warnings). Figs 10-12 compare loss factors of the two 1-D models with each "
-        "other; their absolute values for this clamp need the FE.\n",
+        "validity warnings)"
+        + (f"; at {stuck} level(s) the FE sticks throughout (W_d = 0) while the 1-D models "
+           "slip" if stuck else "")
+        + ". Figs 10-12 compare loss factors of the two 1-D models with each other; their "
+        "absolute values for this clamp need the FE.\n",
     ])

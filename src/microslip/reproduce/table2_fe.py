@@ -68,8 +68,8 @@ def table2_fe_table(*, mesh: str | None = None, stick_slope: float = TABLE2_STIC
                                ("fe_dissipated_energy_Nmm", w),
                                ("rigid_dissipated_energy_Nmm", rigid),
                                ("layer_dissipated_energy_Nmm", layer),
-                               ("rigid_over_fe", rigid / w if w > 0 else float("inf")),
-                               ("layer_over_fe", layer / w if w > 0 else float("inf")),
+                               ("rigid_over_fe", rigid / w if w > 0 else float("nan")),
+                               ("layer_over_fe", layer / w if w > 0 else float("nan")),
                                ("fe_converged", bool(fe.converged)),
                                ("fe_message", str(getattr(fe, "message", "")))):
                 cols[key].append(value)

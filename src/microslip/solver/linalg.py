@@ -33,6 +33,12 @@ from numpy.typing import NDArray
 
 from ..errors import ParameterError
 
+#: One line for a stiffness matrix that rounding makes indefinite.
+NOT_DEFINITE = ("the finite-element stiffness matrix is not positive definite in double "
+                "precision: the element aspect ratio or the contact stiffness against the "
+                "body's is too extreme for this geometry and mesh; check the lengths (mm) and "
+                "the modulus (MPa)")
+
 __all__ = ["LINEAR_SOLVERS", "Factorisation", "available_linear_solvers", "make_backend"]
 
 FloatArray = NDArray[np.float64]
@@ -142,8 +148,11 @@ class BandedBackend:
 
     def _full(self, d: FloatArray) -> FloatArray:
         self.factorised_columns += self.ab.shape[1]
-        return np.asarray(sla.cholesky_banded(self._band_with(d), lower=True,
-                                              check_finite=False))
+        try:
+            return np.asarray(sla.cholesky_banded(self._band_with(d), lower=True,
+                                                  check_finite=False))
+        except np.linalg.LinAlgError:
+            raise ParameterError(NOT_DEFINITE) from None
 
     def factor(self, d: FloatArray) -> _BandFactor | _PartialBandFactor:
         if self.ref is None or self.ref_d is None:

@@ -95,7 +95,7 @@ def level_counts(params: ClampParams, level: str) -> tuple[int, int, int]:
 
     >>> from microslip import preset
     >>> level_counts(preset("table1"), "fine"), level_counts(preset("table2-tip"), "coarse")
-    ((96, 8, 2), (24, 4, 4))
+    ((96, 8, 2), (24, 4, 2))
     """
     if level in MESH_LEVELS:
         return MESH_LEVELS[level].counts(params.length, params.width, params.thickness)
