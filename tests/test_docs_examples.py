@@ -1,7 +1,8 @@
 """Every ``microslip`` command shown in README.md and docs/*.md runs and exits 0.
 
 The commands are read from the fenced code blocks (continuation lines joined, comments
-dropped) and run in-process in an empty directory; examples that differ only in their output
+dropped) and run in-process in an empty directory (a ``--structure`` file is first written by
+the document's own ``python`` blocks); examples that differ only in their output
 paths or ``--json`` run once. Full-size runs are shrunk so that the
 suite stays fast, by the rules of :data:`SHRINK` (fewer cases and samples, the smallest mesh
 of the solver); the options and their combination are those of the documentation, which is
@@ -30,6 +31,11 @@ SHRINK = {
     "--samples": lambda v: str(min(int(float(v)), 50)),
     "--amplitudes": lambda v: str(min(int(v), 12)),
 }
+
+
+def _python_blocks(doc: str) -> list[str]:
+    path = next(p for p in DOCS if p.name == doc)
+    return re.findall(r"```python\n(.*?)```", path.read_text(encoding="utf-8"), re.S)
 
 
 def _commands() -> list[tuple[str, str]]:
@@ -102,6 +108,9 @@ def test_the_documents_show_commands():
 def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     argv = _shrink(shlex.split(line, comments=True)[1:])
+    if "--structure" in argv:  # the document's python blocks write the structure file
+        for code in _python_blocks(doc):
+            exec(compile(code, f"{doc} python block", "exec"), {})
     if argv[0] == "fit":
         _measured_loops(tmp_path, argv)
     for toml in {a for a in argv if a.endswith(".toml")} - {"new"}:
