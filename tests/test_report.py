@@ -182,3 +182,20 @@ def test_user_errors_are_one_line_and_write_nothing(tmp_path, capsys, case_text,
 def test_out_must_be_html(tmp_path, capsys):
     assert main(["report", "--case", "x.toml", "--out", str(tmp_path / "r.pdf")]) == 1
     assert "--out must end in .html" in capsys.readouterr().err
+
+
+def test_unwritable_out_is_refused_before_the_work(tmp_path, capsys, monkeypatch):
+    import microslip.report as report
+
+    def never(*args, **kwargs):
+        raise AssertionError("the report was computed although --out cannot be written")
+
+    monkeypatch.setattr(report, "write_report", never)
+    blocker = tmp_path / "afile"
+    blocker.write_text("x")
+    case = tmp_path / "c.toml"
+    assert main(["case", "new", str(case)]) == 0
+    capsys.readouterr()
+    assert main(["report", "--case", str(case), "--out", str(blocker / "r.html")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("error: cannot write report") and err.count("\n") == 1

@@ -39,11 +39,13 @@ def add_parser(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..case.model import load_case
     from ..fe import SOLVERS
+    from ..io import check_writable
     from ..models import check_increments
     from ..report import ReportSettings, write_report
 
     if os.path.splitext(args.out)[1].lower() not in (".html", ".htm"):
         raise ParameterError(f"--out must end in .html, got {args.out!r}")
+    check_writable(args.out, (".html", ".htm"), "report")  # before the work
     meshes = SOLVERS[args.fe_solver].meshes
     if args.mesh not in meshes:
         raise ParameterError(f"--mesh {args.mesh} is not a mesh of the {args.fe_solver} solver; "
