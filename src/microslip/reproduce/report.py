@@ -359,6 +359,8 @@ def _table2_fe_section(c: Mapping[str, Any]) -> str:
         "validity warnings)"
         + (f"; at {stuck} level(s) the FE sticks throughout (W_d = 0) while the 1-D models "
            "slip" if stuck else "")
-        + ". Figs 10-12 compare loss factors of the two 1-D models with each other; their "
-        "absolute values for this clamp need the FE.\n",
+        + ". At the lowest levels the little slip there is sits at the loaded edge and the "
+        "FE's W_d still changes by a factor of two or more between meshes (interpretation.md "
+        "§6): read those ratios as orders of magnitude. Figs 10-12 compare loss factors of the "
+        "two 1-D models with each other; their absolute values for this clamp need the FE.\n",
     ])
