@@ -23,7 +23,7 @@ from .operators import IwanOperator
 from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
-__all__ = ["SteadyState", "Transient", "steady_state", "transient"]
+__all__ = ["SteadyState", "steady_state", "transient"]
 
 
 @result
@@ -34,12 +34,14 @@ class SteadyState:
     ----------
     frequency : float
         Excitation frequency, Hz.
-    displacement : ndarray, shape (steps,)
-        Displacement over the last period, mm (at t = (j + 1) T / steps).
+    displacement : ndarray, shape (steps,) or (steps, n_dof)
+        Displacement over the last period, mm (at t = (j + 1) T / steps): of the one mode
+        (:func:`steady_state`) or of every DOF (:func:`transient`).
     amplitude : float
-        First-harmonic amplitude over the last period, mm.
+        First-harmonic amplitude over the last period, mm (for :func:`transient`, of the
+        structure's output coordinate).
     change : float
-        Relative change of the first harmonic over the last period (how settled it is).
+        Relative change of that first harmonic over the last period (how settled it is).
     periods, steps : int
         Periods integrated and time steps per period.
     """
@@ -152,33 +154,6 @@ def steady_state(structure: Structure, force: float, frequency: float, periods: 
                        periods=periods, steps=steps)
 
 
-@result
-class Transient:
-    """The last periods of an explicit time integration of a structure with joints.
-
-    Attributes
-    ----------
-    frequency : float
-        Excitation frequency, Hz.
-    displacement : ndarray, shape (steps, n_dof)
-        Displacements over the last period, mm (at t = (j + 1) T / steps).
-    amplitude : float
-        First-harmonic amplitude of the structure's output coordinate over the last
-        period, mm.
-    change : float
-        Relative change of that first harmonic over the last period (how settled it is).
-    periods, steps : int
-        Periods integrated and time steps per period.
-    """
-
-    frequency: float
-    displacement: np.ndarray
-    amplitude: float
-    change: float
-    periods: int
-    steps: int
-
-
 @njit(cache=True, nogil=True)
 def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
                   first_el: np.ndarray, k: np.ndarray, phi: np.ndarray, z: np.ndarray,
@@ -224,7 +199,7 @@ def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: n
 
 
 def transient(structure: Structure, load: np.ndarray, frequency: float, periods: int,
-              steps: int = 1000) -> Transient:
+              steps: int = 1000) -> SteadyState:
     """Integrate ``structure`` (any degrees of freedom, 1-D Iwan and circular joints) from
     rest under ``load cos(2 pi frequency t)`` (N per degree of freedom).
 
@@ -257,7 +232,7 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
     theta = 2.0 * np.pi * np.arange(1, steps + 1) / steps
     basis = np.exp(-1j * theta) * (2.0 / steps)
     h_last, h_before = last @ basis, before @ basis
-    return Transient(frequency=float(frequency), displacement=x[-steps:],
+    return SteadyState(frequency=float(frequency), displacement=x[-steps:],
                      amplitude=float(abs(h_last)),
                      change=float(abs(h_last - h_before) / abs(h_last)), periods=periods,
                      steps=steps)
