@@ -113,3 +113,24 @@ def test_loop_beyond_gross_sliding_needs_friction(tmp_path: Path, capsys) -> Non
     assert "beyond the clamp's gross-sliding force 2400 N" in capsys.readouterr().err
     assert main(["fit", str(path), "--model", "tip", "--amplitude", "5"]) == 1
     assert "--amplitude does nothing in fit" in capsys.readouterr().err
+
+
+def test_loops_microslip_writes_are_what_fit_reads(tmp_path, capsys):
+    """``loop --csv`` and ``fe --out DIR`` (DIR/loop.csv) write the format fit reads, with the
+    samples of the JSON loop bit for bit."""
+    from microslip.cli.main import main
+    from microslip.fit import read_loop_csv
+
+    assert main(["loop", "--model", "tip", "--amplitude", "200", "--increments", "100",
+                 "--json", "--csv", str(tmp_path / "a.csv")]) == 0
+    loop = json.loads(capsys.readouterr().out)["loop"]
+    back = read_loop_csv(str(tmp_path / "a.csv"))
+    assert back.force.tolist() == loop["force_N"]
+    assert back.displacement.tolist() == loop["displacement_mm"]
+    assert main(["fe", "--model", "tip", "--amplitude", "200", "--mesh", "tiny", "--json",
+                 "--no-vtu", "--out", str(tmp_path / "fe")]) == 0
+    fe = json.loads(capsys.readouterr().out)
+    back = read_loop_csv(str(tmp_path / "fe" / "loop.csv"))
+    assert back.displacement.tolist() == fe["loop"]["displacement_mm"]
+    assert str(tmp_path / "fe" / "loop.csv") in fe["files"]
+    assert main(["loop", "--model", "tip", "--csv", str(tmp_path / "x.txt")]) == 1

@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from scipy import optimize, stats
 
 from .errors import ParameterError
+from .io import LOOP_COLUMNS
 from .models.interface import PressureLaw, virgin_curve
 from .named import result
 from .params import ClampParams
@@ -109,11 +110,12 @@ def read_loop_csv(path: str) -> MeasuredLoop:
         raise ParameterError(f"cannot read loop file {path}: {exc.strerror}") from None
     except UnicodeDecodeError:
         raise ParameterError(f"loop file {path} is not a text CSV file") from None
-    if not rows or not {"force_N", "displacement_mm"} <= set(rows[0]):
-        raise ParameterError(f"loop file {path} needs the columns force_N,displacement_mm")
+    fn, dn = LOOP_COLUMNS
+    if not rows or not {fn, dn} <= set(rows[0]):
+        raise ParameterError(f"loop file {path} needs the columns {fn},{dn}")
     try:
-        f = np.array([float(r["force_N"]) for r in rows])
-        d = np.array([float(r["displacement_mm"]) for r in rows])
+        f = np.array([float(r[fn]) for r in rows])
+        d = np.array([float(r[dn]) for r in rows])
     except (TypeError, ValueError):
         raise ParameterError(f"loop file {path} holds a value that is not a number") from None
     if f.size < 8 or not (np.all(np.isfinite(f)) and np.all(np.isfinite(d))):

@@ -178,3 +178,14 @@ def _column(values: tuple[str, ...]) -> list[Any]:
         return [float(v) for v in values]
     except ValueError:
         return list(values)
+
+
+#: The columns of a force-displacement loop file (written by ``loop --csv`` and ``fe --out``,
+#: read by ``microslip fit``).
+LOOP_COLUMNS = ("force_N", "displacement_mm")
+
+
+def write_loop_csv(path: str | os.PathLike[str], force: Any, displacement: Any) -> Path:
+    """A loop as CSV (:data:`LOOP_COLUMNS`, samples in their order, round-trip digits)."""
+    write_csv(path, dict(zip(LOOP_COLUMNS, (force, displacement), strict=True)))
+    return Path(path)

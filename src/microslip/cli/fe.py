@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from pathlib import Path
 from typing import Any
 
 from ..case.options import add_case_option
@@ -17,6 +18,7 @@ from ..errors import ParameterError
 from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..fe.mesh import MESHES
+from ..io import write_loop_csv
 from ..loading import LOAD_CASES
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
@@ -152,6 +154,9 @@ def run(args: argparse.Namespace) -> int:
     clamping = getattr(result.details, "clamping", None)
     if args.clamping_csv is not None and clamping is not None:
         files.append(clamping.write_csv(args.clamping_csv))
+    if args.out is not None and result.converged and result.loop is not None:
+        files.append(write_loop_csv(Path(args.out) / "loop.csv", result.loop.force,
+                                    result.loop.displacement))
     out = result.summary()
     out["files"] = [str(f) for f in files]
     if forced is not None:

@@ -7,6 +7,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..energy import damping
+from ..io import check_writable, write_loop_csv
 from ..models import MODELS, Contact, get_model, macroslip_force
 from ..options import ModelOptions
 from ..params import ClampParams
@@ -47,6 +48,8 @@ def add_parser(sub: Any) -> None:
     add_contact_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="write a figure of loop and backbone")
+    p.add_argument("--csv", metavar="FILE.csv",
+                   help="write the loop as CSV (force_N,displacement_mm: what fit reads)")
     add_case_option(p)
     p.set_defaults(func=run)
 
@@ -78,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
     params, amplitude = params_from_args(args, 1.0 if args.displacement_amplitude else None)
     n = increments_option(args.increments)
     check_plot(args.plot)
+    if args.csv is not None:
+        check_writable(args.csv, (".csv",), "loop file")
     opt = model_options(args)
     contact = contact_from_args(args, params)
     forced = displacement_force(args, args.model, params, n, opt, contact)
@@ -92,6 +97,8 @@ def run(args: argparse.Namespace) -> int:
         from ..plot import plot_damping
 
         plot_damping(result, args.plot, title=f"{args.model} model, F0 = {amplitude:g} N")
+    if args.csv is not None:
+        write_loop_csv(args.csv, result.loop.force, result.loop.displacement)
     if args.json:
         print_json(out)
         return 0
@@ -113,6 +120,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"  loss factor eta        {result.loss_factor:12.6g} (dimensionless)")
     if args.plot:
         print(f"  figure                 {args.plot}")
+    if args.csv is not None:
+        print(f"  loop                   {args.csv}")
     return 0
 
 
