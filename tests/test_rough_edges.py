@@ -432,5 +432,20 @@ def test_ctrl_c_stops_promptly_and_leaves_nothing(tmp_path, argv, made):
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     assert time.perf_counter() - t0 < 5.0
-    assert proc.returncode == 130 and err == "error: interrupted\n"
+    assert proc.returncode == 130 and err == "error: interrupted\n", err[-2000:]
     assert not (tmp_path / made).exists() and listing(tmp_path) == []
+
+
+def test_an_interrupt_wrapped_by_a_library_is_still_an_interrupt(capsys, monkeypatch):
+    """numba and others may re-raise Ctrl-C as their own error: still one line, exit 130."""
+    import microslip.cli.loop as loop
+
+    def wrapped(*args, **kwargs):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise RuntimeError("compilation failed") from exc
+
+    monkeypatch.setattr(loop, "damping", wrapped)
+    assert main(["loop", "--model", "tip"]) == 130
+    assert capsys.readouterr().err == "error: interrupted\n"
