@@ -289,11 +289,9 @@ def damping(model: str, params: ClampParams, amplitude: float, increments: int =
     1.0
     """
     from .models import first_loading
+    from .models.contact import check_strain_energy
 
     _check_kind(strain_energy)
-    if contact is not None and not contact.is_rigid and _kind_name(strain_energy) == "stored":
-        raise ParameterError(
-            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
-            "contact with a stick slope or pressure law use secant, backbone or branch")
+    check_strain_energy(contact, strain_energy)
     bb = first_loading(model, params, amplitude, increments, options, contact)
     return damping_from_backbone(bb, strain_energy)

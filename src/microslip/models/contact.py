@@ -29,7 +29,8 @@ from ..errors import ParameterError
 from ..results import Backbone
 from .interface import PRESSURE_LAWS, PressureLaw, pressure_law, virgin_curve
 
-__all__ = ["DEFAULT_CONTACT", "Contact", "on_contact"]
+__all__ = ["DEFAULT_CONTACT", "RIGID_ONLY_ENERGIES", "Contact", "check_strain_energy",
+           "energy_defined", "on_contact"]
 
 
 @dataclass(frozen=True)
@@ -85,6 +86,23 @@ class Contact:
 
 #: The paper's rigid, uniformly pressed foundation.
 DEFAULT_CONTACT = Contact()
+
+
+#: Strain-energy definitions that need the rigid-foundation bar's own elastic energy.
+RIGID_ONLY_ENERGIES = ("stored",)
+
+
+def energy_defined(contact: Contact | None, kind: str) -> bool:
+    """Whether the strain energy ``kind`` is defined on ``contact`` (None: rigid)."""
+    return contact is None or contact.is_rigid or kind not in RIGID_ONLY_ENERGIES
+
+
+def check_strain_energy(contact: Contact | None, kind: str) -> None:
+    """Refuse, in one line, a strain energy ``kind`` that ``contact`` does not define."""
+    if not energy_defined(contact, kind):
+        raise ParameterError(
+            f"strain energy {kind!r} is the rigid-foundation bar's own elastic energy; on a "
+            "contact with a stick slope or pressure law use secant, backbone or branch")
 
 
 def on_contact(rigid: Backbone, uncorrected: Backbone, contact: Contact,

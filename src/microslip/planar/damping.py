@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, damping_from_backbone
 from ..errors import MicroslipError, ParameterError
 from ..models import Contact, check_increments, first_loading
+from ..models.contact import check_strain_energy, energy_defined
 from ..named import result
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude, preset
@@ -247,10 +248,7 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     copt = centre_options if centre_options is not None else opt
     ratio = force_ratio(at, ac, tip_symmetry)
 
-    if contact is not None and not contact.is_rigid and kind == "stored":
-        raise ParameterError(
-            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
-            "contact with a stick slope or pressure law use secant, backbone or branch")
+    check_strain_energy(contact, kind)
     tip_bb = _backbone("tip", tip_params, at, n, opt, contact)
     centre_bb = _backbone("centre", centre_params, ac, n, copt, contact)
     tip = damping_from_backbone(tip_bb, kind)
@@ -260,8 +258,7 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
     path = LoadPath.harmonic(tip_symmetry * at, ac, phi, samples_per_cycle)
     response = analytical_response(path, tip_bb, centre_bb, tip_symmetry)
     works = {}
-    layered = contact is not None and not contact.is_rigid
-    for k in (k for k in STRAIN_ENERGY if not (layered and k == "stored")):
+    for k in (k for k in STRAIN_ENERGY if energy_defined(contact, k)):
         works[k] = work_damping(response, ComponentEnergy(tip_bb, k, tip_symmetry),
                                 ComponentEnergy(centre_bb, k, 1), work_energy, k)
     work = works[kind]
@@ -276,7 +273,7 @@ def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_ampl
         centre=centre,
         paper=paper,
         paper_loss_factors={k: v for k, v in paper_loss_factors(paper).items()
-                            if not (layered and k == "stored")},
+                            if energy_defined(contact, k)},
         work=work,
         work_dissipated_energy=work.dissipated_energy,
         work_strain_energy=work.strain_energy,

@@ -18,6 +18,7 @@ from ..batch import PARAM_FIELDS, check_range, prepare_batch
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
 from ..models import MODELS, Contact, check_increments, get_model
+from ..models.contact import check_strain_energy
 from ..options import ModelOptions
 from ..params import ClampParams
 from .parameters import MAX_CASES, PARAMETERS, Distribution, FloatArray, parse_parameter
@@ -241,10 +242,7 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
                      int(n_samples) if sampled else 0, None if seed is None else int(seed),
                      n, opt, strain_energy,
                      None if contact is None or contact.is_rigid else contact)
-    if spec.contact is not None and _kind(strain_energy) == "stored":
-        raise ParameterError(
-            "strain energy 'stored' is the rigid-foundation bar's own elastic energy; on a "
-            "contact with a stick slope or pressure law use secant, backbone or branch")
+    check_strain_energy(spec.contact, strain_energy)
     if spec.size > MAX_CASES:
         raise ParameterError(f"the sweep has {spec.size} cases; at most {MAX_CASES} are allowed")
     return spec
@@ -334,7 +332,3 @@ def _check_parameter_values(name: str, v: FloatArray, where: str) -> None:
         raise ParameterError(f"{name} must be finite and in {rng}{u}, got {float(v[i])!r}"
                              + where.format(i=i))
 
-
-
-def _kind(name: str) -> str:
-    return name.strip().lower()
