@@ -32,7 +32,7 @@ from ..params import ClampParams
 from .mesh import BoxMesh
 
 if TYPE_CHECKING:
-    from .solve import FrictionModel
+    from .model import FrictionModel
 
 __all__ = ["ClampingPressure", "clamp_forces", "clamping_pressure", "fe_pressure_law"]
 

@@ -19,7 +19,7 @@ from ..results import HysteresisLoop
 
 if TYPE_CHECKING:
     from .clamping import ClampingPressure
-    from .solve import FrictionModel
+    from .model import FrictionModel
 
 __all__ = [
     "BuiltinDetails",
