@@ -2,7 +2,8 @@
 
 The commands are read from the fenced code blocks (continuation lines joined, comments
 dropped) and run in-process in an empty directory (a ``--structure`` file is first written by
-the document's own ``python`` blocks); examples that differ only in their output
+the document's own ``python`` blocks; a case file shown in a ``toml`` block whose first line
+is ``# file: NAME.toml`` is written first); examples that differ only in their output
 paths or ``--json`` run once. Full-size runs are shrunk so that the
 suite stays fast, by the rules of :data:`SHRINK` (fewer cases and samples, the smallest mesh
 of the solver); the options and their combination are those of the documentation, which is
@@ -36,6 +37,14 @@ SHRINK = {
 def _python_blocks(doc: str) -> list[str]:
     path = next(p for p in DOCS if p.name == doc)
     return re.findall(r"```python\n(.*?)```", path.read_text(encoding="utf-8"), re.S)
+
+
+def _toml_files(doc: str) -> dict[str, str]:
+    """The document's ``toml`` blocks whose first line is ``# file: NAME.toml``."""
+    path = next(p for p in DOCS if p.name == doc)
+    blocks = re.findall(r"```toml\n# file: (\S+)\n(.*?)```", path.read_text(encoding="utf-8"),
+                        re.S)
+    return dict(blocks)
 
 
 def _commands() -> list[tuple[str, str]]:
@@ -108,7 +117,11 @@ def test_the_documents_show_commands():
 def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     argv = _shrink(shlex.split(line, comments=True)[1:])
-    if "--structure" in argv:  # the document's python blocks write the structure file
+    cases = _toml_files(doc)  # case files the document shows in full
+    for name in {a for a in argv if a in cases}:
+        (tmp_path / name).write_text(cases[name], encoding="utf-8")
+    if "--structure" in argv or any("[structure]" in cases.get(a, "") for a in argv):
+        # the document's python blocks write the structure file
         for code in _python_blocks(doc):
             exec(compile(code, f"{doc} python block", "exec"), {})
     if argv[0] == "fit":

@@ -19,6 +19,7 @@ from typing import Any
 from ..errors import ParameterError
 from ..named import result
 from ..params import PRESETS, ClampParams
+from .joints import JointSpec, parse_joints
 from .schema import CLAMP_KEYS, KEYS, SECTIONS
 from .units import plausibility_warnings
 
@@ -38,13 +39,15 @@ class Case:
 
     ``values`` holds every key the file sets, by dotted name, validated; the seven clamp
     values are filled in from ``preset`` where the file does not set them. ``params`` is the
-    clamp when it is complete (a preset, or all seven values), else None.
+    clamp when it is complete (a preset, or all seven values), else None. ``joints`` are the
+    ``[[joint]]`` tables of a structure (:mod:`.joints`; empty if the file has none).
     """
 
     source: str | None
     values: Mapping[str, Any]
     params: ClampParams | None
     warnings: tuple[str, ...]
+    joints: tuple[JointSpec, ...] = ()
 
     @property
     def name(self) -> str:
@@ -123,16 +126,32 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
     """Validate a parsed TOML table (unknown keys and bad values raise ParameterError)."""
     where = f"case {source}: " if source else "case: "
     try:
+        table = dict(table)
+        joint_tables = table.pop("joint", None)
         values = _flatten(table)
+        if "structure.file" in values:
+            values["structure.file"] = _beside(source, values["structure.file"])
         _exclusive(values, "load.amplitude", "load.amplitude_fraction")
         _exclusive(values, "load.planar.ratio", "load.planar.tip_amplitude")
         _exclusive(values, "load.planar.ratio", "load.planar.centre_amplitude")
         params = _clamp(values)
+        joints = () if joint_tables is None else parse_joints(joint_tables, values)
         warnings = plausibility_warnings(
             {field: values.get(k) for k, field in CLAMP_KEYS.items()}, where)
+        for j in joints:
+            if j.clamp is not None and j.clamp != params:
+                warnings += plausibility_warnings(j.clamp.as_dict(),
+                                                  f"{where}joint {j.number}: ")
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
-    return Case(source, MappingProxyType(values), params, tuple(warnings))
+    return Case(source, MappingProxyType(values), params, tuple(warnings), joints)
+
+
+def _beside(source: str | None, path: str) -> str:
+    """A relative path of a case file, taken relative to the case file's directory."""
+    if source is None or os.path.isabs(path):
+        return path
+    return os.path.join(os.path.dirname(source), path)
 
 
 def load_case(path: str | os.PathLike[str]) -> Case:

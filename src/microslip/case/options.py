@@ -26,6 +26,16 @@ __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "p
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
 
+#: Commands of a structure: they read [structure] and [[joint]], and no load case (their
+#: excitation is --force).
+STRUCTURE_COMMANDS = ("modal", "frf")
+
+#: Destinations of the joint options of the command line (``--joint``, ``--joint-dof``, the
+#: joint's parameters and its clamp): a case with [[joint]] tables gives them instead.
+JOINT_DESTS = ("joint", "joint_dof", "joint_stiffness", "slip_force", "chi", "beta",
+               "stick_slope", "elements", "preset", "length", "width", "thickness", "modulus",
+               "poisson_ratio", "friction", "normal_force")
+
 #: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
 #: Keys not listed (name, description, preset) map to no option.
 CASE_OPTIONS: dict[str, tuple[str, str]] = {
@@ -45,6 +55,8 @@ CASE_OPTIONS: dict[str, tuple[str, str]] = {
     "load.planar.centre_amplitude": ("centre_amplitude", "planar"),
     "load.planar.ratio": ("ratio", "planar"),
     "load.planar.phase_deg": ("phase", "planar"),
+    "structure.file": ("structure", "all"),
+    "structure.coupling": ("coupling", "all"),
 }
 
 #: Destinations checked for plausible units (case values and command-line options alike).
@@ -90,6 +102,29 @@ def _reads(command: str, scope: str) -> bool:
     return (scope == "planar") == (command in PLANAR_COMMANDS)
 
 
+def _structure_case(case: Case, command: str, explicit: dict[str, Any]) -> dict[str, Any]:
+    """The checks and defaults of [[joint]] tables and of a load case on modal and frf."""
+    if command in STRUCTURE_COMMANDS:
+        load = [k for k in case.values if k.startswith("load.")]
+        if load:
+            raise ParameterError(f"case {case.source}: key {load[0]} is a load case, which "
+                                 f"`microslip {command}` does not read (the structure is "
+                                 "excited by --force); remove it")
+    if not case.joints:
+        return {}
+    if command not in STRUCTURE_COMMANDS:
+        raise ParameterError(f"case {case.source}: [[joint]] tables describe the joints of a "
+                             f"structure, read by {' and '.join(STRUCTURE_COMMANDS)}, not by "
+                             f"`microslip {command}`")
+    given = [d for d in JOINT_DESTS if d in explicit]
+    if given:
+        flags = ", ".join("--" + d.replace("_", "-") for d in given)
+        raise ParameterError(f"{flags} conflict{'s' if len(given) == 1 else ''} with the "
+                             f"[[joint]] tables of case {case.source}; set the joints in the "
+                             "case file, or leave them out of it")
+    return {"joint": None}
+
+
 def _amplitude_swept(explicit: dict[str, Any]) -> bool:
     """True if the command line varies the amplitude itself (sweep) or takes none."""
     if "amplitude_range" in explicit or explicit.get("model") == "planar":
@@ -106,7 +141,7 @@ def _amplitude_swept(explicit: dict[str, Any]) -> bool:
 def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
                   explicit: dict[str, Any]) -> dict[str, Any]:
     """The subcommand defaults a case gives; refuses keys whose option the command lacks."""
-    out: dict[str, Any] = {}
+    out: dict[str, Any] = _structure_case(case, command, explicit)
     for key, (dest, scope) in CASE_OPTIONS.items():
         if key not in case.values or not _reads(command, scope):
             continue
@@ -130,6 +165,7 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
 
 def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str, Any]) -> None:
     if (not hasattr(args, "amplitude") or "amplitude" in explicit
+            or args.command in STRUCTURE_COMMANDS
             or "displacement_amplitude" in explicit or _amplitude_swept(explicit)):
         return
     base = preset(args.preset) if getattr(args, "preset", None) else None
@@ -190,6 +226,7 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
+        args.case_joints = case.joints
     warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
     for line in warnings:
         print(f"warning: {line}", file=sys.stderr)

@@ -19,8 +19,13 @@ from ..params import PRESETS
 
 __all__ = [
     "CLAMP_KEYS",
+    "COUPLINGS",
     "DEFAULT_AMPLITUDE_FRACTION",
     "FUTURE_PRESSURE_LAWS",
+    "JOINT_CLAMP_SECTIONS",
+    "JOINT_KEYS",
+    "JOINT_MODELS",
+    "JOINT_USES",
     "KEYS",
     "PRESSURE_LAWS",
     "SECTIONS",
@@ -36,6 +41,11 @@ FUTURE_PRESSURE_LAWS: tuple[str, ...] = ()
 
 #: Uniaxial load cases of a case file.
 LOAD_MODELS = ("tip", "centre")
+
+#: Couplings of a two-directional joint: the names of
+#: :data:`microslip.dynamics.operators2d.COUPLINGS` (kept here so that reading a case file
+#: does not import the dynamics; tests/test_case_joints.py checks they are the same).
+COUPLINGS = ("circular", "decoupled")
 
 Check = Callable[[str, Any], Any]
 
@@ -105,6 +115,53 @@ def pressure_text(name: str, value: Any) -> str:
                          f"got {s!r}")
 
 
+def whole(low: int, high: int) -> Check:
+    """A check: a whole number in [low, high]."""
+    def check(name: str, value: Any) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+            raise ParameterError(f"case key {name} must be a whole number in [{low}, {high}], "
+                                 f"got {value!r}")
+        return int(value)
+    return check
+
+
+def exponent(name: str, value: Any) -> float:
+    """A check: Segalman's chi, in (-1, 0]."""
+    x = _number(name, value, "")
+    if not -1.0 < x <= 0.0:
+        raise ParameterError(f"case key {name} must be in (-1, 0], got {value!r}")
+    return x
+
+
+def _dof(name: str, value: Any, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < low:
+        raise ParameterError(f"case key {name} must hold whole DOF numbers >= {low} (0-based, "
+                             f"-1 for the ground as J), got {value!r}")
+    return int(value)
+
+
+def joint_dofs(name: str, value: Any) -> tuple[tuple[int, int], ...]:
+    """A check: where a joint sits, as ``[i, j]`` per direction (j = -1: the ground).
+
+    ``[I]`` or ``[I, J]``: one direction, between DOF I and the ground or DOF J (as
+    ``--joint-dof``); ``[[I, J], [K, L]]`` (or ``[[I], [K]]``): two directions, one pair per
+    direction (as the (n, 2, 2) ``joints`` array of a structure file).
+    """
+    shape = ("must be [I], [I, J] (one direction) or [[I, J], [K, L]] (two directions), "
+             "0-based")
+    if not isinstance(value, list) or not value:
+        raise ParameterError(f"case key {name} {shape}, got {value!r}")
+    rows = value if all(isinstance(v, list) for v in value) else [value]
+    if len(rows) > 2 or any(not 1 <= len(r) <= 2 for r in rows):
+        raise ParameterError(f"case key {name} {shape}, got {value!r}")
+    out = tuple((_dof(name, r[0], 0), _dof(name, r[1], -1) if len(r) == 2 else -1)
+                for r in rows)
+    if any(i == j for i, j in out):
+        raise ParameterError(f"case key {name}: a joint connects two different DOFs, got "
+                             f"{value!r}")
+    return out
+
+
 @dataclass(frozen=True)
 class Key:
     """One key of a case file."""
@@ -131,6 +188,7 @@ SECTIONS = {
     "clamping": "the clamping load",
     "load": "uniaxial load case (read by loop, fe, sweep, validate)",
     "load.planar": "planar load case (read by planar)",
+    "structure": "a structure from a file with its joints (read by modal and frf)",
 }
 
 _FROM_PRESET = "from preset"
@@ -174,7 +232,55 @@ KEYS: tuple[Key, ...] = (
         "force ratio R = F_T(tip)/F_T(centre) on the paper's levels"),
     Key("load.planar", "phase_deg", interval(-360.0, 360.0, "degrees", closed=True), "degrees",
         "[-360, 360]", 0.0, "phase of the centre force ahead of the tip force"),
+    Key("structure", "file", text, "", "path", None,
+        "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix Market directory, "
+        "SI units; relative to the case file (as --structure)"),
+    Key("structure", "coupling", choice(COUPLINGS), "", " | ".join(COUPLINGS), None,
+        "two-directional joints: one circular Coulomb limit or the paper's decoupled sum "
+        "(as --coupling; circular if neither is given)"),
 )
+
+#: Joint models of a ``[[joint]]`` table (the names of ``--joint``).
+JOINT_MODELS = ("jenkins", "iwan", "tip", "centre")
+
+#: Number of Jenkins elements of an iwan, tip or centre joint when ``elements`` is not given
+#: (as ``--elements``; :data:`microslip.dynamics.distributions.DEFAULT_ELEMENTS`).
+_ELEMENTS_NOTE = "default 200, as --elements"
+
+#: The keys of one ``[[joint]]`` table (section ``joint``); a tip or centre joint also takes
+#: ``preset`` and the clamp sections of :data:`JOINT_CLAMP_SECTIONS`.
+JOINT_KEYS: tuple[Key, ...] = (
+    Key("joint", "dofs", joint_dofs, "", "[I], [I, J] or [[I, J], [K, L]]", None,
+        "where the joint sits: DOF I (0-based) to the ground, I to J, or one pair per "
+        "direction for a two-directional joint (J = -1: the ground)"),
+    Key("joint", "model", choice(JOINT_MODELS), "", " | ".join(JOINT_MODELS), None,
+        "jenkins: one spring-slider; iwan: Segalman's 4-parameter Iwan; tip, centre: the "
+        "clamp's microslip model behind a series spring"),
+    Key("joint", "stiffness", positive("N/mm"), "N/mm", "> 0", None,
+        "jenkins: spring stiffness; iwan: initial stiffness K_T; tip, centre: the series "
+        "spring (or give contact.stick_slope) (as --joint-stiffness)"),
+    Key("joint", "slip_force", positive("N"), "N", "> 0", None,
+        "jenkins, iwan: macroslip force F_S (as --slip-force)"),
+    Key("joint", "chi", exponent, "", "(-1, 0]", None, "iwan: density exponent (as --chi)"),
+    Key("joint", "beta", interval(0.0, math.inf), "", "[0, inf)", None,
+        "iwan: macroslip elements' share of the stiffness (as --beta)"),
+    Key("joint", "elements", whole(2, 100_000), "", "[2, 100000]", None,
+        f"iwan, tip, centre: Jenkins elements ({_ELEMENTS_NOTE})"),
+    Key("joint", "coupling", choice(COUPLINGS), "", " | ".join(COUPLINGS), None,
+        "a two-directional joint's coupling (default: [structure] coupling, --coupling, "
+        "else circular)"),
+)
+
+#: Joint model -> the keys of :data:`JOINT_KEYS` it uses besides dofs, model and coupling.
+JOINT_USES: dict[str, frozenset[str]] = {
+    "jenkins": frozenset({"stiffness", "slip_force"}),
+    "iwan": frozenset({"stiffness", "slip_force", "chi", "beta", "elements"}),
+    "tip": frozenset({"stiffness", "elements"}),
+    "centre": frozenset({"stiffness", "elements"}),
+}
+
+#: Clamp sections a tip or centre joint may hold, overriding the case's own clamp.
+JOINT_CLAMP_SECTIONS = ("geometry", "material", "contact", "clamping")
 
 #: Dotted key -> ClampParams field, for the seven values that make a clamp.
 CLAMP_KEYS = {

@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..params import PRESETS
-from .schema import CLAMP_KEYS, KEYS, SECTIONS, Key
+from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, SECTIONS, Key
 
 __all__ = ["TEMPLATE_PRESET", "template"]
 
@@ -51,8 +51,9 @@ def template() -> str:
     """The text of a commented case file with every key, its unit, range and default."""
     lines = [
         "# microslip case file (TOML). Units: N, mm, MPa, N/mm^3, degrees.",
-        "# Use it with --case FILE.toml on loop, planar, fe, sweep and validate; options on",
-        "# the command line override the file. See docs/casefile.md.",
+        "# Use it with --case FILE.toml on loop, planar, fe, sweep and validate (modal and frf",
+        "# read [structure] and [[joint]]); options on the command line override the file.",
+        "# See docs/casefile.md.",
         "# Without an amplitude the load is amplitude_fraction x mu F_N (the slip limit).",
     ]
     for section, what in SECTIONS.items():
@@ -60,4 +61,36 @@ def template() -> str:
         if section:
             lines.append(f"[{section}]  # {what}")
         lines.extend(_line(k) for k in KEYS if k.section == section)
+    lines.extend(_joints())
     return "\n".join(lines) + "\n"
+
+
+#: The example joints of the template (uncommented, they parse: tests/test_case_joints.py).
+JOINT_EXAMPLE = (
+    "[[joint]]",
+    "dofs = [0]",
+    'model = "jenkins"',
+    "stiffness = 300.0",
+    "slip_force = 5.0",
+    "",
+    "[[joint]]",
+    "dofs = [[1, -1], [2, -1]]",
+    'model = "tip"',
+    'coupling = "circular"',
+    "stiffness = 1e5",
+    "[joint.clamping]",
+    "normal_force = 600.0",
+)
+
+
+def _joints() -> list[str]:
+    """The [[joint]] tables, commented out: their keys, then an example of two joints."""
+    out = ["", "# [[joint]] tables: the joints of the [structure], one table each (modal, frf).",
+           "# A tip or centre joint takes the clamp above unless it gives its own preset or",
+           "# [joint.geometry], [joint.material], [joint.contact], [joint.clamping] values."]
+    for key in JOINT_KEYS:
+        unit = f"{key.unit}, " if key.unit else ""
+        out.append(f"#   {key.name}: {key.meaning}; {unit}{key.range}")
+    out.append("# Example (uncomment):")
+    out.extend(f"#   {line}".rstrip() for line in JOINT_EXAMPLE)
+    return out

@@ -135,13 +135,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _connectivity(args: argparse.Namespace) -> np.ndarray:
+def _connectivity(args: argparse.Namespace) -> np.ndarray | list[np.ndarray]:
     if args.structure is None:
         return np.zeros((0, 1, 2), dtype=np.int64)
     return connectivity_from_args(args, read_structure(args.structure))
 
 
-def _curve_json(c: FrequencyResponse, joints: np.ndarray) -> dict[str, Any]:
+def _curve_json(c: FrequencyResponse, joints: np.ndarray | list[np.ndarray]
+                ) -> dict[str, Any]:
     out = {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
            "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
            "points": int(c.frequency.size), "success": c.success, "message": c.message}

@@ -20,17 +20,13 @@ from ..dynamics.describing import (
     amplitude_for_force,
     describing_function,
 )
-from ..dynamics.distributions import clamp_joint, iwan4_segalman
+from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
 from ..dynamics.operators import IwanOperator, jenkins
 from ..errors import ParameterError
 from .common import add_model_options, add_params, model_options, number, params_from_args
 
 __all__ = ["JOINTS", "add_joint_options", "add_parser", "describe_joint", "joint_from_args",
            "run"]
-
-#: Default number of Jenkins elements of the iwan, tip and centre joints.
-DEFAULT_ELEMENTS = 200
-
 
 def _jenkins(args: argparse.Namespace) -> IwanOperator:
     return jenkins(_need(args, "joint_stiffness"), _need(args, "slip_force"))

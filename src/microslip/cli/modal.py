@@ -13,7 +13,15 @@ from typing import Any
 
 import numpy as np
 
-from ..dynamics.assemble import describe_matrices, from_matrices, modal_output, with_output
+from ..case.options import add_case_option
+from ..dynamics.assemble import (
+    PlacedJoint,
+    describe_matrices,
+    from_joints,
+    from_matrices,
+    modal_output,
+    with_output,
+)
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, ModalCurve, energy_method
@@ -25,7 +33,7 @@ from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
            "balance_from_args", "connectivity_from_args", "describe_structure", "headline",
-           "mode_from_args", "run", "structure_from_args"]
+           "mode_from_args", "placed_joints", "run", "structure_from_args"]
 
 #: Harmonics of the balance unless --harmonics is given.
 DEFAULT_HARMONICS = 7
@@ -59,11 +67,20 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                    help="two-directional joints: one circular Coulomb limit (default) or "
                         "two independent directions (the paper's decoupled sum)")
     add_joint_options(parser)
+    add_case_option(parser)
+    for action in parser._actions:
+        if action.dest == "case":
+            action.help = ("a case file with [structure] file and [[joint]] tables: several "
+                           "joints, each with its own model (docs/casefile.md); or a clamp "
+                           "for --joint tip|centre")
 
 
 def structure_from_args(args: argparse.Namespace) -> Structure:
     """The structure with its joints that the options describe; for a file structure the
     output is the modal coordinate of ``--mode``."""
+    if getattr(args, "case_joints", ()) and args.structure is None:
+        raise ParameterError(f"case {args.case} has [[joint]] tables but no structure: give "
+                             "[structure] file = \"FILE.npz\" in it or --structure FILE")
     if args.structure is None:
         _refuse(args, ("joint_dof", "--joint-dof"), ("mode", "--mode"),
                 ("coupling", "--coupling"), ("excitation", "--excitation"),
@@ -79,13 +96,35 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
             ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
             why="--structure (the file's matrices give them)")
     matrices = read_structure(args.structure)
+    if getattr(args, "case_joints", ()):
+        structure = from_joints(matrices, placed_joints(args, matrices))
+        return with_output(structure, modal_output(structure, mode_from_args(args)))
     joints = connectivity_from_args(args, matrices)
     if args.coupling is not None and not np.any(np.asarray(joints).shape[1:2] == (2,)):
         raise ParameterError("--coupling applies to two-directional joints only (give "
                              "--joint-dof twice or a (n, 2, 2) joints array)")
-    structure = from_matrices(matrices, joints, joint_from_args(args),
+    structure = from_matrices(matrices, np.asarray(joints), joint_from_args(args),
                               args.coupling or "circular")
     return with_output(structure, modal_output(structure, mode_from_args(args)))
+
+
+def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
+    """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
+    coupling wins over --coupling (or [structure] coupling), which wins over circular."""
+    from ..case.joints import joint_operator
+    from .common import model_options
+
+    specs = args.case_joints
+    if args.coupling is not None and all(s.directions == 1 for s in specs):
+        raise ParameterError("--coupling ([structure] coupling) applies to two-directional "
+                             "joints only; the case's joints all have one direction")
+    out = []
+    for spec in specs:
+        dofs = check_joint_dofs(f"case {args.case}: joint {spec.number}: dofs",
+                                np.array(spec.dofs, dtype=np.int64), matrices.mass.shape[0])
+        out.append(PlacedJoint(dofs, joint_operator(spec, model_options(args)),
+                               spec.coupling or args.coupling or "circular"))
+    return out
 
 
 def mode_from_args(args: argparse.Namespace) -> int:
@@ -94,8 +133,12 @@ def mode_from_args(args: argparse.Namespace) -> int:
     return int(mode) - 1
 
 
-def connectivity_from_args(args: argparse.Namespace, matrices: MatrixFile) -> np.ndarray:
-    """The joints' [i, j] per direction ((n, d, 2)): --joint-dof, else the file's."""
+def connectivity_from_args(args: argparse.Namespace, matrices: MatrixFile
+                           ) -> np.ndarray | list[np.ndarray]:
+    """The joints' [i, j] per direction ((n, d, 2), or one (d, 2) array per joint of a case
+    file): the case's [[joint]] tables, --joint-dof, else the file's."""
+    if getattr(args, "case_joints", ()):
+        return [np.array(spec.dofs, dtype=np.int64) for spec in args.case_joints]
     if args.joint_dof is None:
         return np.asarray(matrices.joints)
     rows = args.joint_dof
@@ -117,9 +160,19 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
                        ) -> dict[str, Any]:
     """JSON description of the structure and its joint (keys carry units)."""
     if args is not None and args.structure is not None:
-        return {"file": args.structure, "mode": mode_from_args(args) + 1,
-                **describe_matrices(structure),
-                "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
+        out = {"file": args.structure, "mode": mode_from_args(args) + 1,
+               **describe_matrices(structure)}
+        specs = getattr(args, "case_joints", ())
+        if not specs:
+            return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
+        from ..case.joints import joint_operator
+        from .common import model_options
+
+        return {**out, "case_joints": [
+            {"number": s.number, "model": s.model, "dofs": [list(d) for d in s.dofs],
+             "coupling": (s.coupling or args.coupling or "circular") if s.directions == 2
+             else None, **describe_joint(joint_operator(s, model_options(args)))}
+            for s in specs]}
     m = float(structure.mass[0, 0])
     k = float(structure.stiffness[0, 0])
     link = structure.joints[0]

@@ -12,6 +12,7 @@ Units: SI matrices (kg, N/m, N·s/m), displacements mm, forces N.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -26,8 +27,22 @@ from .operators2d import COUPLINGS
 from .response import FrequencyResponse
 from .structure import JointLink, Structure
 
-__all__ = ["describe_matrices", "from_matrices", "joint_orbits", "modal_output", "mode_load",
-           "mode_shape", "with_output"]
+__all__ = ["PlacedJoint", "describe_matrices", "from_joints", "from_matrices", "joint_orbits",
+           "modal_output", "mode_load", "mode_shape", "with_output"]
+
+
+@dataclasses.dataclass(frozen=True)
+class PlacedJoint:
+    """One joint of a structure: where it sits, its 1-D operator and, if it has two
+    directions, how they are coupled.
+
+    ``dofs`` is its connectivity, shape (directions, 2): ``[i, j]`` per direction, j = -1 for
+    the ground (:mod:`.files`); ``coupling`` a name of :data:`~.operators2d.COUPLINGS`.
+    """
+
+    dofs: np.ndarray
+    operator: IwanOperator
+    coupling: str = "circular"
 
 
 def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
@@ -36,20 +51,27 @@ def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
     ((n, directions, 2), :mod:`.files`); two-directional joints coupled by ``coupling``
     (:data:`~.operators2d.COUPLINGS`). The output coordinate is set by :func:`with_output`.
     """
-    if joints.shape[0] == 0:
+    return from_joints(matrices, [PlacedJoint(row, joint, coupling) for row in joints])
+
+
+def from_joints(matrices: MatrixFile, joints: Sequence[PlacedJoint]) -> Structure:
+    """The structure of ``matrices`` with the joints ``joints``, each with its own operator
+    (several joints of a case file). The output coordinate is set by :func:`with_output`."""
+    if len(joints) == 0:
         raise ParameterError(f"{matrices.path}: no joint; give --joint-dof I [J] or a "
                              "'joints' array in the file")
     links = []
-    for w in joint_weights(joints, matrices.mass.shape[0]):
+    n = matrices.mass.shape[0]
+    for placed in joints:
+        (w,) = joint_weights([np.asarray(placed.dofs)], n)
         if w.ndim == 1:
-            links.append(JointLink(joint, w))
+            links.append(JointLink(placed.operator, w))
             continue
-        ops = COUPLINGS[coupling](joint)
+        ops = COUPLINGS[placed.coupling](placed.operator)
         if len(ops) == 1:
             links.append(JointLink(ops[0], w))
         else:
             links.extend(JointLink(op, w[:, d]) for d, op in enumerate(ops))
-    n = matrices.mass.shape[0]
     s = Structure(mass=matrices.mass, damping=matrices.damping, stiffness=matrices.stiffness,
                   joints=tuple(links), output=readonly(np.eye(n)[0]))
     lam = eigh(s.stuck_stiffness(), s.mass, eigvals_only=True)
@@ -97,10 +119,12 @@ def describe_matrices(structure: Structure) -> dict[str, Any]:
                         "participation": link.participation} for link in structure.joints]}
 
 
-def joint_orbits(response: FrequencyResponse, joints: np.ndarray) -> list[dict[str, Any]]:
-    """Orbit of every two-directional joint of the connectivity ``joints`` ((n, d, 2),
-    :mod:`.files`) at the continuation point of largest amplitude: its relative
-    displacement (mm) in both directions at the AFT samples of one period."""
+def joint_orbits(response: FrequencyResponse, joints: np.ndarray | Sequence[np.ndarray]
+                 ) -> list[dict[str, Any]]:
+    """Orbit of every two-directional joint of the connectivity ``joints`` ((n, d, 2), or
+    one (d, 2) array per joint, :mod:`.files`) at the continuation point of largest
+    amplitude: its relative displacement (mm) in both directions at the AFT samples of one
+    period."""
     i = int(np.argmax(response.amplitude))
     h = 2 * response.harmonics + 1
     q = response.coefficients[i].reshape(-1, h)

@@ -19,7 +19,11 @@ from ..errors import ParameterError
 from ..params import check_positive
 from .operators import IwanOperator
 
-__all__ = ["CONCAVITY_TOLERANCE", "clamp_joint", "from_backbone", "iwan4", "iwan4_segalman"]
+__all__ = ["CONCAVITY_TOLERANCE", "DEFAULT_ELEMENTS", "clamp_joint", "from_backbone", "iwan4",
+           "iwan4_segalman"]
+
+#: Jenkins elements of an iwan, tip or centre joint unless the user gives another number.
+DEFAULT_ELEMENTS = 200
 
 #: Relative slope rise (of the initial slope) tolerated as round-off before a sampled
 #: backbone counts as not concave and is refused.
@@ -76,7 +80,8 @@ def from_backbone(name: str, displacement: ArrayLike, force: ArrayLike, *,
     return IwanOperator(name, np.maximum(drop, 0.0), d[1:])
 
 
-def iwan4(chi: float, phi_max: float, r: float, s: float, elements: int = 200) -> IwanOperator:
+def iwan4(chi: float, phi_max: float, r: float, s: float,
+          elements: int = DEFAULT_ELEMENTS) -> IwanOperator:
     """Segalman's 4-parameter Iwan element, discretised into ``elements`` + 1 elements.
 
     Parameters
@@ -121,7 +126,7 @@ def iwan4(chi: float, phi_max: float, r: float, s: float, elements: int = 200) -
 
 
 def iwan4_segalman(stiffness: float, slip_force: float, chi: float, beta: float,
-                   elements: int = 200) -> IwanOperator:
+                   elements: int = DEFAULT_ELEMENTS) -> IwanOperator:
     """:func:`iwan4` from Segalman's physical parameters (K_T, F_S, chi, beta).
 
     ``stiffness`` K_T (N/mm) is the initial stiffness, ``slip_force`` F_S (N) the
@@ -147,7 +152,8 @@ def iwan4_segalman(stiffness: float, slip_force: float, chi: float, beta: float,
 
 
 def clamp_joint(model: str, params: ClampParams, series_stiffness: float, *,
-                elements: int = 200, options: ModelOptions | None = None) -> IwanOperator:
+                elements: int = DEFAULT_ELEMENTS, options: ModelOptions | None = None
+                ) -> IwanOperator:
     """The Iwan operator of a microslip model (tip, centre) behind a series spring.
 
     Parameters

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 import zipfile
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -106,7 +107,8 @@ def check_matrices(path: str, m: object, k: object, c: object
     return out[0], out[1], out[2]
 
 
-def joint_weights(joints: NDArray[np.int64], dofs: int) -> list[np.ndarray]:
+def joint_weights(joints: NDArray[np.int64] | Sequence[NDArray[np.int64]], dofs: int
+                  ) -> list[np.ndarray]:
     """Participation of each joint, (dofs,) or (dofs, 2): +1 at i, -1 at j per direction."""
     out = []
     for joint in joints:
