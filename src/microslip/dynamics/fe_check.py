@@ -1,0 +1,151 @@
+"""The Table 1 bar reduced to its joint, against the built-in FE solver at the same motion.
+
+The FE solver's coupled planar run (:func:`microslip.solver.coupling_study`: tip force along
+the bar on the end face, centre force across it on the mid-length section) gives the joint
+motion, the work-conjugate displacements (delta_tip, delta_centre) over one settled cycle,
+and the energy dissipated per cycle W_FE. The reduced model keeps only those two
+displacements as the structure's degrees of freedom (a static reduction: the FE loading is
+quasi-static, so no modes are kept), with one two-directional joint between them and the
+ground placed by the same path as ``modal`` and ``frf`` (:func:`.assemble.from_joints`);
+its operators are built from the clamp's 1-D backbones (:func:`.distributions.clamp_joint`,
+series spring = stick slope x width x length, the FE's contact stiffness). Driving the
+joint with the FE's orbit gives its dissipation per cycle, W = closed integral of f . du,
+for the circular coupling and the decoupled sum, beside the FE's; the tip force alone is the
+1-D limit. docs/dynamics.md ("The reduced bar against the FE") gives the figures and
+docs/interpretation.md the reading.
+
+Units: N, mm, N·mm.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..named import result
+from ..params import ClampParams
+from .assemble import PlacedJoint, from_joints
+from .distributions import DEFAULT_ELEMENTS, clamp_joint
+from .files import MatrixFile
+from .operators import IwanOperator
+from .structure import Structure
+
+__all__ = ["FEComparison", "cycle_work", "fe_comparison", "orbit_work", "reduced_bar"]
+
+
+@result
+class FEComparison:
+    """Dissipation per cycle (N·mm) of the FE and of the reduced joint at the FE's motion.
+
+    Attributes
+    ----------
+    fe_coupled, fe_tip_only, fe_centre_only : float
+        W of the FE runs: both forces, the tip force alone, the centre force alone.
+    circular, decoupled : float
+        The reduced joint on the coupled FE orbit: one circular Coulomb limit (the tip
+        model's elements, :class:`.operators2d.CircularIwan`), and the paper's decoupled sum
+        (tip model along the bar, centre model across it).
+    tip_limit : float
+        The tip model's operator on the FE's tip-only motion (the 1-D limit).
+    orbit : ndarray, shape (n, 2)
+        The coupled FE orbit (delta_tip, delta_centre) over the last cycle, mm.
+    tip_orbit : ndarray, shape (n,)
+        delta_tip of the tip-only run over its last cycle, mm.
+    series_stiffness : float
+        Series spring of the joint operators, N/mm.
+    """
+
+    fe_coupled: float
+    fe_tip_only: float
+    fe_centre_only: float
+    circular: float
+    decoupled: float
+    tip_limit: float
+    orbit: np.ndarray
+    tip_orbit: np.ndarray
+    series_stiffness: float
+
+    def summary(self) -> dict[str, Any]:
+        """The figures with units, and the ratios to the FE."""
+        return {"fe_coupled_Nmm": self.fe_coupled, "fe_tip_only_Nmm": self.fe_tip_only,
+                "fe_centre_only_Nmm": self.fe_centre_only,
+                "fe_decoupled_sum_Nmm": self.fe_tip_only + self.fe_centre_only,
+                "circular_Nmm": self.circular, "decoupled_Nmm": self.decoupled,
+                "tip_limit_Nmm": self.tip_limit,
+                "circular_over_fe": self.circular / self.fe_coupled,
+                "decoupled_over_fe": self.decoupled / self.fe_coupled,
+                "tip_limit_over_fe": self.tip_limit / self.fe_tip_only,
+                "orbit_amplitude_mm": (np.ptp(self.orbit, axis=0) / 2).tolist()}
+
+
+def cycle_work(force: np.ndarray, displacement: np.ndarray) -> float:
+    """Closed integral of f . du over one periodic cycle (samples without the repeated
+    end point; trapezoidal, wrapping around), N·mm. Works for (n,) and (n, d) arrays."""
+    f = np.asarray(force, dtype=float).reshape(len(force), -1)
+    u = np.asarray(displacement, dtype=float).reshape(len(displacement), -1)
+    du = np.roll(u, -1, axis=0) - u
+    return float(np.sum(0.5 * (f + np.roll(f, -1, axis=0)) * du))
+
+
+def reduced_bar(tip: IwanOperator, centre: IwanOperator | None, coupling: str) -> Structure:
+    """The bar reduced to its joint: DOFs (delta_tip, delta_centre), one two-directional
+    joint to the ground (the tip model's operator, or tip along the bar and centre across
+    it for ``decoupled``). Mass and stiffness are the unit matrix and zero: only the joint
+    matters for a prescribed motion."""
+    matrices = MatrixFile(mass=np.eye(2), stiffness=np.zeros((2, 2)),
+                          damping=np.zeros((2, 2)), joints=np.zeros((0, 1, 2), dtype=np.int64),
+                          path="reduced Table 1 bar")
+    dofs = np.array([[0, -1], [1, -1]])
+    if coupling == "decoupled" and centre is not None:
+        joints = [PlacedJoint(dofs[:1], tip), PlacedJoint(dofs[1:], centre)]
+    else:
+        joints = [PlacedJoint(dofs, tip, coupling)]
+    return from_joints(matrices, joints)
+
+
+def orbit_work(structure: Structure, q: np.ndarray) -> float:
+    """Energy the joints of ``structure`` dissipate per cycle on the periodic DOF motion
+    ``q`` ((n, n_dof), mm, without the repeated end point), N·mm."""
+    total = 0.0
+    for link in structure.joints:
+        u = q @ link.weights
+        op = link.operator
+        if link.directions == 1:
+            f, _ = op.periodic_force(np.ascontiguousarray(u[:, 0]))
+        else:
+            f = op.periodic_force(u)
+        total += cycle_work(f, u)
+    return total
+
+
+def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
+                  phase_deg: float = 90.0, *, mesh: Any = "coarse",
+                  increments_per_cycle: int = 256, cycles: int = 6,
+                  stick_slope: float = DEFAULT_STICK_SLOPE,
+                  elements: int = DEFAULT_ELEMENTS) -> FEComparison:
+    """Run the FE's coupled planar study and drive the reduced joint with its orbit."""
+    from ..solver import coupling_study
+
+    study = coupling_study(params, tip_amplitude, centre_amplitude, phase_deg, cycles=cycles,
+                           increments_per_cycle=increments_per_cycle, mesh=mesh,
+                           stick_slope=stick_slope)
+    if not study.coupled.converged or not study.tip_only.converged:
+        raise ParameterError("the FE runs did not converge; see microslip.solver")
+    series = stick_slope * params.width * params.length
+    tip = clamp_joint("tip", params, series, elements=elements)
+    centre = clamp_joint("centre", params, series, elements=elements)
+    c = study.coupled.last_cycle()
+    orbit = np.column_stack([study.coupled.d_tip[c], study.coupled.d_centre[c]])[:-1]
+    tip_orbit = study.tip_only.d_tip[study.tip_only.last_cycle()][:-1]
+    return FEComparison(
+        fe_coupled=study.coupled.dissipated_energy,
+        fe_tip_only=study.tip_only.dissipated_energy,
+        fe_centre_only=study.centre_only.dissipated_energy,
+        circular=orbit_work(reduced_bar(tip, None, "circular"), orbit),
+        decoupled=orbit_work(reduced_bar(tip, centre, "decoupled"), orbit),
+        tip_limit=orbit_work(reduced_bar(tip, None, "decoupled"),
+                             np.column_stack([tip_orbit, np.zeros_like(tip_orbit)])),
+        orbit=orbit, tip_orbit=tip_orbit, series_stiffness=series)
