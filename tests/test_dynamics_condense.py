@@ -75,14 +75,13 @@ def test_condensed_jacobian_matches_finite_differences():
 def test_condensed_frequency_response_is_the_full_one(monkeypatch):
     """Same peak to the solver's tolerance; every point solves the full balance."""
     s = chain()
-    band = tuple(float(f) * g for f, g in zip(
-        (s.linear_frequencies(stuck=False)[0], s.linear_frequencies(stuck=True)[0]),
-        (0.9, 1.0 / 0.9)))
+    band = (0.9 * float(s.linear_frequencies(stuck=False)[0]),
+            float(s.linear_frequencies(stuck=True)[0]) / 0.9)
     load = np.full(s.dofs, 10.0)
     a = response.frequency_response(s, 1.0, load, band, 5, 64)
     hb = HarmonicBalance(s, 5, 64)
     p = hb.excitation(load, 1.0)
-    for x, f in zip(a.coefficients, a.frequency):
+    for x, f in zip(a.coefficients, a.frequency, strict=True):
         r = hb.residual(x, 2 * np.pi * f, p).r
         assert np.abs(r).max() < 1e-8 * np.abs(p).max()
     monkeypatch.setattr(response, "condensable", lambda hb: False)

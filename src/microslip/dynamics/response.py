@@ -154,8 +154,11 @@ class _Full:
         return x
 
     def reach(self, x: Array) -> float:
-        """The amplitude the continuation's norm scales the unknowns by, mm."""
-        return self.hb.amplitude(x)[0]
+        """The amplitude the continuation's norm scales the unknowns by (that of the
+        output coordinate), mm."""
+        q = x.reshape(self.hb.structure.dofs, -1)
+        out = self.hb.structure.output
+        return float(np.hypot(out @ q[:, 1], out @ q[:, 2]))
 
 
 def _solve_at(hb: HarmonicBalance, load: Array, omega: float, guess: Array) -> Array | None:
