@@ -247,3 +247,25 @@ def test_projected_jacobian_is_the_jacobian_times_the_basis(name, coef, basis, s
     f_p, je = op.periodic_force_projected(x, e)
     np.testing.assert_array_equal(f_p, f)
     np.testing.assert_allclose(je, jac @ e, rtol=0, atol=1e-13 * op.initial_stiffness)
+
+
+@pytest.mark.parametrize("name", list(OPERATORS))
+@settings(max_examples=20, deadline=None)
+@given(coef=st.lists(st.floats(-1.0, 1.0, allow_nan=False), min_size=7, max_size=7),
+       scale=st.floats(0.05, 3.0))
+def test_periodic_harmonics_is_the_aft_of_the_periodic_force(name, coef, scale):
+    """The compiled AFT step: coefficients -> samples -> closed periodic force and J ->
+    coefficients, as the FFT transforms and the time-domain Jacobian give it."""
+    from microslip.dynamics.hb import from_time, to_time
+
+    op = OPERATORS[name]()
+    u = np.asarray(coef) * float(op.slip.max()) * scale
+    synth = np.ascontiguousarray(to_time(np.eye(7), 32).T)
+    analysis = np.ascontiguousarray(from_time(np.eye(32), 3).T)
+    # the samples as the compiled step makes them (an FFT's round-off differs, and where a
+    # sample ties with a slip sample that decides which one-sided derivative J is)
+    f, jac = op.periodic_force(synth @ u)
+    force, dforce = op.periodic_harmonics(u, synth, analysis)
+    np.testing.assert_allclose(force, from_time(f, 3), rtol=0, atol=1e-12 * op.slip_force)
+    np.testing.assert_allclose(dforce, analysis @ jac @ synth, rtol=0,
+                               atol=1e-12 * op.initial_stiffness)

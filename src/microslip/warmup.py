@@ -35,7 +35,7 @@ def warm_up() -> float:
 
 
 def _warm_up_dynamics() -> None:
-    """The Iwan operators' kernels (periodic, projected, history; 1-D and circular) and the
+    """The Iwan operators' kernels (periodic, AFT, history; 1-D and circular) and the
     time steppers."""
     from .dynamics import jenkins
     from .dynamics.operators2d import circular
@@ -46,6 +46,7 @@ def _warm_up_dynamics() -> None:
     x = 0.1 * np.cos(np.linspace(0.0, 2.0 * np.pi, 16, endpoint=False))
     joint.periodic_force(x)
     joint.periodic_force_projected(x, np.eye(16)[:, :3])
+    joint.periodic_harmonics(np.array([0.0, 0.1, 0.0]), np.eye(16, 3), np.eye(3, 16))
     joint.force_history(x)
     circular(joint).periodic_force_projected(np.column_stack([x, 0.5 * x]), np.eye(16)[:, :3])
     structure = one_mode(100.0, 1.0, 0.01, joint)

@@ -3,8 +3,9 @@
 Every degree of freedom is a truncated Fourier series in theta = w t,
 ``q(theta) = c_0 + sum_{k=1..H} (c_k cos(k theta) + s_k sin(k theta))``, stored per degree of
 freedom as ``[c_0, c_1, s_1, ..., c_H, s_H]`` (mm; vector index ``dof * (2H + 1) + j``).
-The joint forces are evaluated at N time samples of one period (inverse real FFT), their
-Fourier coefficients taken back with a real FFT, and their Jacobian follows from the
+The joint forces are evaluated at N time samples of one period, their
+Fourier coefficients taken back (both transforms as small precomputed matrices, the 1-D
+Iwan operators in one compiled call), and their Jacobian follows from the
 operator's analytic time-domain Jacobian by the same two transforms.
 
 Units: the residual is in N (force harmonics), coefficients in mm, frequency in rad/s.
@@ -100,11 +101,12 @@ class HarmonicBalance:
         self._m = s * np.kron(structure.mass, np.diag(order**2))
         self._c = s * np.kron(structure.damping, dc)
         self._mc = s * np.kron(structure.mass, dc)
-        # (N, h): coefficients -> samples
-        self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)
+        # the AFT's two transforms as matrices (small: a product beats an FFT call)
+        self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)  # (N, h)
+        self._analysis = np.ascontiguousarray(from_time(np.eye(samples), harmonics).T)
         # joint j's harmonics U = B_j^T x (direction-major), its force enters as B_j F
         # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation), kept only on
-        # the rows of the DOFs the joint touches (the condensation onto joint DOFs)
+        # the rows of the DOFs the joint touches
         self._links = tuple(_condensed(link.operator, link.weights, h)
                             for link in structure.joints)
 
@@ -132,40 +134,37 @@ class HarmonicBalance:
     def residual(self, x: Array, omega: float, load: Array, xi: float = 0.0) -> Residual:
         """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
         (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s)."""
-        dyn = self._k - omega**2 * self._m + omega * (self._c - xi * self._mc)
+        dyn = self._k - omega**2 * self._m + omega * self._c
+        if xi:
+            dyn -= (omega * xi) * self._mc
         r = dyn @ x - load
-        dx = dyn.copy()
-        for operator, idx, b in self._links:
+        for operator, idx, b, block in self._links:
             force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
             r[idx] += b @ force
-            dx[np.ix_(idx, idx)] += b @ dforce @ b.T
-        dw = (-2.0 * omega * self._m + self._c - xi * self._mc) @ x
+            dyn[block] += b @ dforce @ b.T
+        dw = (-2.0 * omega) * (self._m @ x) + self._c @ x
+        if xi:
+            dw -= xi * (self._mc @ x)
         dxi = -omega * (self._mc @ x)
-        return Residual(r, dx, dw, dxi)
+        return Residual(r, dyn, dw, dxi)
 
     def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
                         ) -> tuple[Array, Array]:
         """A joint's force harmonics (N, (d (2H + 1),)) and their derivative in its
         displacement harmonics ``u`` (mm, direction-major), N/mm; d its directions."""
+        compiled = getattr(operator, "periodic_harmonics", None)
+        if compiled is not None:  # the 1-D Iwan operators: one compiled AFT call
+            return compiled(u, self._synth, self._analysis)
         h = 2 * self.harmonics + 1
+        a = self._analysis
         if getattr(operator, "directions", 1) == 2:
-            samples = to_time(u.reshape(2, h), self.samples).T
+            samples = self._synth @ u.reshape(2, h).T
             f, jb = operator.periodic_force_projected(samples, self._synth)  # type: ignore[union-attr]
-            force = from_time(f.T, self.harmonics).ravel()
             # jb[t, a, b, c] -> d F_a,i / d U_b,c
-            df = from_time(np.moveaxis(jb, 0, -1), self.harmonics)
-            return force, np.moveaxis(df, 3, 1).reshape(2 * h, 2 * h)
-        f, jac_synth = self.joint_force(operator, to_time(u, self.samples))  # type: ignore[arg-type]
-        return from_time(f, self.harmonics), from_time(jac_synth.T, self.harmonics).T
-
-    def joint_force(self, operator: HystereticOperator, u: Array) -> tuple[Array, Array]:
-        """A joint's periodic force (N) at the samples ``u`` (mm) and ``J @ E_N`` (N/mm,
-        (N, 2H + 1)); operators with ``periodic_force_projected`` skip the (N, N) J."""
-        projected = getattr(operator, "periodic_force_projected", None)
-        if projected is not None:
-            return projected(u, self._synth)
-        f, jac = operator.periodic_force(u)
-        return f, jac @ self._synth
+            df = np.einsum("it,tabc->aibc", a, jb)
+            return (a @ f).T.ravel(), df.reshape(2 * h, 2 * h)
+        f, jac = operator.periodic_force(self._synth @ u)
+        return a @ f, a @ jac @ self._synth
 
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
@@ -182,8 +181,11 @@ class HarmonicBalance:
 
 
 def _condensed(operator: HystereticOperator | CircularIwan, weights: Array, h: int
-               ) -> tuple[HystereticOperator | CircularIwan, NDArray[np.int64], Array]:
-    """The joint, the coefficient indices of the DOFs it touches, and B restricted to them."""
+               ) -> tuple[HystereticOperator | CircularIwan, NDArray[np.int64], Array,
+                          tuple[NDArray[np.int64], ...]]:
+    """The joint, the coefficient indices of the DOFs it touches, B restricted to them, and
+    the index of their block of the Jacobian."""
     dofs = np.flatnonzero(np.any(weights != 0.0, axis=1))
     idx = (dofs[:, None] * h + np.arange(h)).ravel().astype(np.int64)
-    return operator, idx, np.asarray(np.kron(weights[dofs], np.eye(h)), dtype=np.float64)
+    return (operator, idx, np.asarray(np.kron(weights[dofs], np.eye(h)), dtype=np.float64),
+            np.ix_(idx, idx))

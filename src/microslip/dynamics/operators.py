@@ -13,6 +13,7 @@ Units: displacement mm, force N, stiffness N/mm.
 
 from __future__ import annotations
 
+from functools import cached_property
 from typing import Protocol, runtime_checkable
 
 import numpy as np
@@ -21,7 +22,7 @@ from numpy.typing import NDArray
 from ..errors import ParameterError
 from ..named import readonly, result
 from ..params import check_positive
-from .kernels import history_kernel, periodic_kernel, periodic_projected_kernel
+from .kernels import history_kernel, periodic_harmonics_kernel, periodic_kernel
 
 __all__ = ["HystereticOperator", "IwanHistory", "IwanOperator", "jenkins"]
 
@@ -128,13 +129,20 @@ class IwanOperator:
         mag = np.minimum(np.abs(a)[..., None], self.slip) @ self.stiffness
         return np.asarray(np.sign(a) * mag)
 
+    @cached_property
+    def _ascending(self) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                  NDArray[np.float64]]:
+        """phi ascending and the running sums of k and k phi over it (from 0), the
+        periodic kernel's view of the elements."""
+        order = np.argsort(self.slip, kind="stable")
+        k, phi = self.stiffness[order], self.slip[order]
+        ck = np.concatenate([[0.0], np.cumsum(k)])
+        ckp = np.concatenate([[0.0], np.cumsum(k * phi)])
+        return np.ascontiguousarray(phi), ck, ckp
+
     def periodic_force(self, x: NDArray[np.float64]
                        ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        x = _samples(x)
-        f = np.zeros(x.size)
-        jac = np.zeros((x.size, x.size))
-        periodic_kernel(x, self.stiffness, self.slip, int(np.argmax(np.abs(x))), f, jac)
-        return f, jac
+        return self.periodic_force_projected(x, np.eye(np.size(x)))
 
     def periodic_force_projected(self, x: NDArray[np.float64], basis: NDArray[np.float64]
                                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -147,9 +155,20 @@ class IwanOperator:
             raise ParameterError(f"basis must have shape ({x.size}, m), got {basis.shape}")
         f = np.zeros(x.size)
         jb = np.zeros(basis.shape)
-        periodic_projected_kernel(x, self.stiffness, self.slip, int(np.argmax(np.abs(x))),
-                                  basis, f, jb)
+        periodic_kernel(x, *self._ascending, int(np.argmax(np.abs(x))), basis, f, jb)
         return f, jb
+
+    def periodic_harmonics(self, u: NDArray[np.float64], synth: NDArray[np.float64],
+                           analysis: NDArray[np.float64]
+                           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Fourier coefficients of the closed periodic force (N, (m,)) and their derivative
+        in the displacement's coefficients ``u`` (mm, (m,)), N/mm, (m, m), in one compiled
+        call: ``analysis @ f(synth @ u)`` and ``analysis @ J @ synth`` (``synth`` (N, m)
+        coefficients -> samples, ``analysis`` (m, N) samples -> coefficients)."""
+        force = np.zeros(u.size)
+        dforce = np.zeros((u.size, u.size))
+        periodic_harmonics_kernel(u, synth, analysis, *self._ascending, force, dforce)
+        return force, dforce
 
     def force_history(self, x: NDArray[np.float64],
                       state: NDArray[np.float64] | None = None) -> IwanHistory:

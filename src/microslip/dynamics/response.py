@@ -15,6 +15,7 @@ from scipy.optimize import brentq
 from ..errors import ParameterError
 from ..named import result
 from ..solver.solve import single_threaded_blas
+from .condense import Condensed, condensable
 from .continuation import arclength, newton
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
 from .structure import Structure
@@ -78,10 +79,12 @@ def frequency_response(structure: Structure, force: float, shape: Array,
     -----
     Harmonic balance (:class:`~.hb.HarmonicBalance`) continued in frequency by
     pseudo-arclength (:func:`~.continuation.arclength`) from the lower end of the range,
-    starting from Newton's method at the stuck linear response. The peak is refined to the
-    zero of dA/dw = a . dX/dw with dX/dw = -(dR/dX)^-1 dR/dw (implicit function theorem),
-    A the first-harmonic amplitude of the output coordinate, by Brent's method between the
-    neighbours of the largest continuation point.
+    starting from Newton's method at the stuck linear response. Where the structure allows
+    (:func:`~.condense.condensable`) the continuation runs on the joints' harmonics only
+    (:class:`~.condense.Condensed`), its step then scaled by the largest joint amplitude.
+    The peak is refined to the zero of dA/dw = a . dX/dw with dX/dw = -(dR/dX)^-1 dR/dw
+    (implicit function theorem), A the first-harmonic amplitude of the output coordinate,
+    by Brent's method between the neighbours of the largest continuation point.
     """
     with single_threaded_blas():  # small dense solves: threads cost 10x on a shared machine
         return _frequency_response(structure, force, shape, frequency_range, harmonics,
@@ -103,25 +106,24 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
     if x0 is None:
         raise ParameterError(f"no harmonic-balance solution found at {frequency_range[0]:g} "
                              "Hz; start the frequency range elsewhere")
-    a_ref = max(hb.amplitude(x0)[0], 1e-300)
-
-    def fun(y: Array) -> tuple[Array, Array]:
-        res = hb.residual(y[:-1], float(y[-1]), load)
-        return res.r, np.column_stack([res.dx, res.dw])
+    system = Condensed(hb, load) if condensable(hb) else _Full(hb, load)
+    a_ref = max(system.reach(system.joints(x0)), 1e-300)
 
     def rescale(y: Array, scale: Array) -> Array:
         out = scale.copy()
-        out[:-1] = max(scale[0], hb.amplitude(y[:-1])[0])
+        out[:-1] = max(scale[0], system.reach(y[:-1]))
         return out
 
-    scale = np.full(hb.size + 1, a_ref)
+    scale = np.full(system.size + 1, a_ref)
     scale[-1] = hi - lo
-    direction = np.zeros(hb.size + 1)
+    direction = np.zeros(system.size + 1)
     direction[-1] = 1.0
-    curve = arclength(fun, np.append(x0, lo), direction, step, lambda y: y[-1] >= hi,
-                      scale, rescale, tol=TOLERANCE, max_points=max_points)
-    coeffs = np.array(curve.points[:, :-1])
+    curve = arclength(system.residual, np.append(system.joints(x0), lo), direction, step,
+                      lambda y: y[-1] >= hi, scale, rescale, tol=TOLERANCE,
+                      max_points=max_points)
     omega = np.array(curve.points[:, -1])
+    coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in curve.points])
+    coeffs[0] = x0
     if curve.success and omega.size > 1 and omega[-1] > hi:  # end exactly at MAX
         u = (hi - omega[-2]) / (omega[-1] - omega[-2])
         end = _solve_at(hb, load, hi, (1.0 - u) * coeffs[-2] + u * coeffs[-1])
@@ -133,6 +135,30 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
                              amplitude=amps, coefficients=coeffs, peak_amplitude=peak_a,
                              peak_frequency=peak_w / (2.0 * np.pi), harmonics=harmonics,
                              samples=samples, success=curve.success, message=curve.message)
+
+
+class _Full:
+    """The balance in all the structure's coefficients (the unknowns are x itself)."""
+
+    def __init__(self, hb: HarmonicBalance, load: Array) -> None:
+        self.hb, self.load, self.size = hb, load, hb.size
+
+    def residual(self, y: Array) -> tuple[Array, Array]:
+        res = self.hb.residual(y[:-1], float(y[-1]), self.load)
+        return res.r, np.column_stack([res.dx, res.dw])
+
+    def joints(self, x: Array) -> Array:
+        return x
+
+    def coefficients(self, x: Array, omega: float) -> Array:
+        return x
+
+    def reach(self, x: Array) -> float:
+        """The amplitude the continuation's norm scales the unknowns by (that of the
+        output coordinate), mm."""
+        q = x.reshape(self.hb.structure.dofs, -1)
+        out = self.hb.structure.output
+        return float(np.hypot(out @ q[:, 1], out @ q[:, 2]))
 
 
 def _solve_at(hb: HarmonicBalance, load: Array, omega: float, guess: Array) -> Array | None:

@@ -1,0 +1,168 @@
+"""Harmonic balance condensed onto the joints' coordinates: Newton on the joints' harmonics
+only, the linear structure solved once per frequency.
+
+With ``u = B^T x`` the joints' displacement harmonics (B stacks every joint's participation,
+:mod:`.hb` layout per joint), the balance ``D(w) x + B F(u) = P`` of :class:`~.hb.HarmonicBalance`
+is, wherever the structure's dynamic stiffness D(w) is invertible,
+
+    R(u, w) = u - B^T D^-1 P + G(w) F(u) = 0,     G(w) = B^T D(w)^-1 B   (mm),
+
+and ``x = D^-1 (P - B F(u))``. D is block-diagonal over the harmonics: for k >= 1 the complex
+``Z_k = K - k^2 w^2 M + i k w C`` acting on ``c_k - i s_k``, for k = 0 the stiffness K; so
+G is one small complex matrix per harmonic (joint coordinates x joint coordinates) and
+``dG/dw = -(Z^-1 B)^T Z' (Z^-1 B)`` for symmetric matrices. Used when the joints have fewer
+coordinates than the structure has DOFs and D(w) is invertible for every w > 0 (K and C
+symmetric positive definite); the joint forces are the same ``joint_harmonics`` calls.
+
+Units: coefficients mm, forces N, SI matrices times 1e-3, frequency rad/s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .hb import HarmonicBalance
+from .structure import SI_PER_MM
+
+__all__ = ["Condensed", "condensable"]
+
+Array = NDArray[np.float64]
+
+
+def _definite(a: Array) -> bool:
+    if not np.allclose(a, a.T, rtol=1e-12, atol=0.0):
+        return False
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+def condensable(hb: HarmonicBalance) -> bool:
+    """Whether :class:`Condensed` applies and is smaller: fewer joint coordinates than DOFs,
+    M symmetric, K and C symmetric positive definite (D(w) invertible for all w > 0)."""
+    s = hb.structure
+    coords = sum(link.directions for link in s.joints)
+    return (coords < s.dofs and np.allclose(s.mass, s.mass.T, rtol=1e-12, atol=0.0)
+            and _definite(s.stiffness) and _definite(s.damping))
+
+
+class Condensed:
+    """The condensed balance R(u, w) of one excitation ``load`` (N, :mod:`.hb` layout)."""
+
+    def __init__(self, hb: HarmonicBalance, load: Array) -> None:
+        s = hb.structure
+        self.hb = hb
+        h = 2 * hb.harmonics + 1
+        self._b = np.column_stack([link.weights for link in s.joints])  # (n, nb)
+        nb = self._b.shape[1]
+        self.size = nb * h
+        self._k = s.stiffness * SI_PER_MM
+        self._m = s.mass * SI_PER_MM
+        self._c = s.damping * SI_PER_MM
+        order = np.arange(1, hb.harmonics + 1, dtype=np.float64)
+        self._order = order[:, None, None]
+        p = np.asarray(load, dtype=np.float64).reshape(s.dofs, h)
+        self._p = (p[:, 1::2] - 1j * p[:, 2::2]).T[:, :, None]  # (H, n, 1)
+        self._rhs = np.concatenate([np.broadcast_to(self._b, (hb.harmonics, *self._b.shape)),
+                                    self._p], axis=2)
+        static = np.linalg.solve(self._k, np.column_stack([self._b, p[:, 0]]))
+        self._static = static  # K^-1 [B | P_0], k = 0
+        self._g0 = self._b.T @ static[:, :nb]
+        self._u0 = self._b.T @ static[:, nb]
+        # where harmonic k's (nb, nb) blocks go in the (size, size) matrices: u layout is
+        # coordinate-major, [c_0, c_1, s_1, ...] per coordinate
+        start = np.arange(nb) * h
+        cos = start[None, :] + 2 * np.arange(1, hb.harmonics + 1)[:, None] - 1  # (H, nb)
+        sin = cos + 1
+        rows = np.stack([cos, cos, sin, sin], axis=1)[:, :, :, None]  # (H, 4, nb, 1)
+        cols = np.stack([cos, sin, cos, sin], axis=1)[:, :, None, :]  # (H, 4, 1, nb)
+        self._rows, self._cols = np.broadcast_arrays(rows, cols)
+        self._zero = np.ix_(start, start)
+        self._diagonal = (np.arange(self.size), np.arange(self.size))
+        self._cos, self._sin, self._start = cos, sin, start
+        self._slices = []
+        offset = 0
+        for link in s.joints:
+            width = link.directions * h
+            self._slices.append((link.operator, slice(offset, offset + width)))
+            offset += width
+
+    def _blocks(self, g: NDArray[np.complex128], g0: Array) -> Array:
+        """The real (size, size) matrix of per-harmonic complex blocks ``g`` (H, nb, nb)
+        acting on ``c - i s``, and the static block ``g0``."""
+        out = np.zeros((self.size, self.size))
+        out[self._rows, self._cols] = np.stack([g.real, g.imag, -g.imag, g.real], axis=1)
+        out[self._zero] = g0
+        return out
+
+    def _vector(self, v: NDArray[np.complex128], v0: Array) -> Array:
+        """The real (size,) vector of per-harmonic complex values ``v`` (H, nb): c - i s."""
+        out = np.empty(self.size)
+        out[self._start] = v0
+        out[self._cos] = v.real
+        out[self._sin] = -v.imag
+        return out
+
+    def _solve(self, omega: float) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Z_k^-1 [B | P_k] (H, n, nb + 1) and Z_k' = dZ_k/dw (H, n, n)."""
+        kw = self._order * omega
+        z = self._k - kw**2 * self._m + 1j * kw * self._c
+        dz = -2.0 * self._order * kw * self._m + 1j * self._order * self._c
+        return np.linalg.solve(z, self._rhs), dz
+
+    def residual(self, y: Array) -> tuple[Array, Array]:
+        """``R(u, w)`` (mm, (size,)) and ``[dR/du | dR/dw]`` ((size, size + 1)) at
+        ``y = [u, w]``."""
+        u, omega = y[:-1], float(y[-1])
+        nb = self._b.shape[1]
+        sol, dz = self._solve(omega)
+        xb, xp = sol[:, :, :nb], sol[:, :, nb:]
+        bt = self._b.T
+        g = bt @ xb  # (H, nb, nb)
+        up = (bt @ xp)[:, :, 0]
+        tb = np.swapaxes(xb, 1, 2)
+        dg = -(tb @ dz @ xb)
+        dup = -(tb @ dz @ xp)[:, :, 0]
+        force = np.empty(self.size)
+        dforce = np.zeros((self.size, self.size))
+        for operator, part in self._slices:
+            force[part], dforce[part, part] = self.hb.joint_harmonics(operator, u[part])
+        f = force.reshape(nb, -1)
+        fk = (f[:, 1::2] - 1j * f[:, 2::2]).T[:, :, None]  # (H, nb, 1)
+        big_g = self._blocks(g, self._g0)
+        r = u - self._vector(up, self._u0) + big_g @ force
+        jac = np.empty((self.size, self.size + 1))
+        jac[:, :-1] = big_g @ dforce
+        jac[self._diagonal] += 1.0
+        jac[:, -1] = self._vector((dg @ fk)[:, :, 0] - dup, np.zeros(nb))
+        return r, jac
+
+    def joints(self, x: Array) -> Array:
+        """The joints' harmonics u = B^T x of full coefficients ``x`` (mm)."""
+        h = 2 * self.hb.harmonics + 1
+        return np.asarray((self._b.T @ x.reshape(-1, h)).ravel())
+
+    def coefficients(self, u: Array, omega: float) -> Array:
+        """The structure's coefficients x = D^-1 (P - B F(u)) (mm, :mod:`.hb` layout)."""
+        nb = self._b.shape[1]
+        h = 2 * self.hb.harmonics + 1
+        force = np.empty(self.size)
+        for operator, part in self._slices:
+            force[part] = self.hb.joint_harmonics(operator, u[part])[0]
+        f = force.reshape(nb, h)
+        fc = (f[:, 1::2] - 1j * f[:, 2::2]).T[:, :, None]  # (H, nb, 1)
+        sol, _ = self._solve(omega)
+        xk = (sol[:, :, nb:] - sol[:, :, :nb] @ fc)[:, :, 0]  # (H, n)
+        x = np.empty((self.hb.structure.dofs, h))
+        x[:, 0] = self._static[:, nb] - self._static[:, :nb] @ f[:, 0]
+        x[:, 1::2] = xk.T.real
+        x[:, 2::2] = -xk.T.imag
+        return x.ravel()
+
+    def reach(self, u: Array) -> float:
+        """The largest first-harmonic amplitude of the joints' coordinates, mm: what the
+        continuation's norm scales the unknowns by."""
+        return float(np.max(np.hypot(u[self._cos[0]], u[self._sin[0]])))
