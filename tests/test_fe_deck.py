@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from microslip import preset
 from microslip.errors import MacroslipError, ParameterError
-from microslip.fe import MESHES, FECase, MeshSpec, bar_mesh, build_deck
+from microslip.fe import LEVELS, FECase, MeshSpec, bar_mesh, build_deck, mesh_spec
 from microslip.fe import deck as d
 
 P = preset("table1")
@@ -153,8 +153,15 @@ def test_mesh_counts_volumes_and_load_shares(nx, ny, nz):
 
 
 def test_named_meshes_and_their_sizes():
-    assert {k: v.dof for k, v in MESHES.items()} == {
-        "coarse": 1076, "medium": 4578, "paper": 9090}
+    """The levels on the Table 1 bar (the built-in solver's counts) and their C3D20R DOF:
+    3 per node (corners and edge mid-points) less u_y on the symmetry plane."""
+    specs = {k: mesh_spec(k) for k in LEVELS}
+    assert {k: v.label() for k, v in specs.items()} == {
+        "tiny": "8x2x1", "coarse": "24x4x1", "medium": "48x4x1", "fine": "96x8x2",
+        "paper": "96x4x1"}
+    assert {k: v.dof for k, v in specs.items()} == {
+        "tiny": 452, "coarse": 2322, "medium": 4578, "fine": 27082, "paper": 9090}
+    assert not any(v.graded for v in specs.values())
 
 
 @pytest.mark.parametrize("bad", [(3, 2, 1), (2, 3, 1), (2, 2, 0), (0, 2, 1), (2.0, 2, 1),
@@ -169,7 +176,7 @@ def test_case_validation():
     with pytest.raises(MacroslipError):
         FECase("tip", amplitude=356.0)
     for kwargs in ({"model": "side"}, {"model": "tip", "substeps": 52},
-                   {"model": "tip", "stick_slope": 0.0}, {"model": "tip", "mesh": "fine"},
+                   {"model": "tip", "stick_slope": 0.0}, {"model": "tip", "mesh": "huge"},
                    {"model": "tip", "element": "C3D8"}, {"model": "tip", "max_iterations": 2}):
         with pytest.raises(ParameterError):
             FECase(**kwargs)

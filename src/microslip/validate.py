@@ -449,7 +449,7 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
     out_dir : path
         Output directory; the CalculiX job directories go to ``out_dir/jobs/<case>-<mesh>``.
     meshes : sequence of str or MeshSpec
-        Mesh levels (:data:`microslip.fe.mesh.MESHES`) or explicit MeshSpecs.
+        Mesh levels (:mod:`microslip.meshlevels`) or explicit MeshSpecs.
     models : sequence of str
         Load cases, ``"tip"`` and/or ``"centre"``.
     progress : bool
@@ -497,7 +497,7 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
     if amplitude is None:
         raise ParameterError(f"preset {preset_name!r} has no load amplitude")
     out = Path(out_dir)
-    specs = [(m if isinstance(m, str) else m.label(), mesh_spec(m)) for m in meshes]
+    specs = [(m if isinstance(m, str) else m.label(), mesh_spec(m, params)) for m in meshes]
     tasks = [
         _Task(FECase(model, params, amplitude, mesh=spec, stick_slope=stick_slope), name,
               out / "jobs" / f"{model}-{name}")

@@ -17,12 +17,11 @@ from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..fe.mesh import MESHES
 from ..io import write_loop_csv
 from ..loading import LOAD_CASES
+from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, parse_counts
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
-from ..solver.mesh import MESHES as BUILTIN_MESHES
 from ..solver.normal import NORMAL_CONTACTS
 from .common import (
     add_params,
@@ -38,6 +37,23 @@ from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displac
 __all__ = ["add_parser", "run"]
 
 
+
+#: --mesh help, shared with ``microslip validate``.
+MESH_HELP = (
+    f"mesh level, the same elements for both solvers (builtin C3D8I, calculix C3D20R): "
+    f"{', '.join(MESH_LEVELS)} are accuracy levels with counts from the geometry (on the "
+    f"Table 1 bar 24x4x1, 48x4x1, 96x8x2; a squat body, L < 20 t, gets graded layers), "
+    + ", ".join(f"{k} {'x'.join(map(str, v))}" for k, v in FIXED_COUNTS.items())
+    + ", or NXxNYxNZ counts (default coarse; docs/solver.md 8.4)")
+
+
+def mesh_level(text: str) -> str:
+    """argparse type: a mesh level of :mod:`microslip.meshlevels` or ``NXxNYxNZ``."""
+    if text in LEVELS or parse_counts(text) is not None:
+        return text
+    raise argparse.ArgumentTypeError(
+        f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
+
 def add_parser(sub: Any) -> None:
     p = sub.add_parser(
         "fe", help="finite-element run (built-in solver or CalculiX) of the tip or centre case",
@@ -52,15 +68,8 @@ def add_parser(sub: Any) -> None:
     add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
                             "step (docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
-    g.add_argument("--mesh", choices=sorted({m for e in SOLVERS.values() for m in e.meshes}),
-                   default="coarse",
-                   help="mesh level; calculix: " + ", ".join(
-                       f"{k} {v.label()} ({v.dof} DOF)" for k, v in MESHES.items())
-                   + "; builtin: " + ", ".join(
-                       f"{k} {'x'.join(map(str, v))}" for k, v in BUILTIN_MESHES.items())
-                   + " elements on the Table 1 bar (coarse, medium and fine are accuracy "
-                     "levels: other bodies get counts from their geometry, with layers "
-                     "through the thickness; default coarse)")
+    g.add_argument("--mesh", type=mesh_level, default="coarse", metavar="LEVEL",
+                   help=MESH_HELP)
     g.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
                    help=f"stick slope lambda of the friction law, N/mm^3 "
                    f"(default {DEFAULT_STICK_SLOPE:g})")

@@ -9,8 +9,8 @@ from typing import Any
 from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
-from ..fe.mesh import MESHES
 from .common import add_params, check_output_dir, number, params_from_args, print_json
+from .fe import MESH_HELP, mesh_level
 
 __all__ = ["add_parser", "run"]
 
@@ -25,9 +25,8 @@ def add_parser(sub: Any) -> None:
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     p.add_argument("--out", metavar="DIR", required=True, help="output directory")
     add_params(p, default_preset="table1")
-    p.add_argument("--mesh", choices=list(MESHES), action="append", metavar="LEVEL",
-                   help="mesh level, repeat for several: " + ", ".join(
-                       f"{k} ({v.dof} DOF)" for k, v in MESHES.items()) + " (default coarse)")
+    p.add_argument("--mesh", type=mesh_level, action="append", metavar="LEVEL",
+                   help="repeat for several; " + MESH_HELP)
     p.add_argument("--model", choices=list(LOAD_CASES), action="append",
                    help="load case, repeat for several (default: tip and centre)")
     p.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",

@@ -10,6 +10,7 @@ The paper validates its models against ANSYS contact simulations (Section 4, Tab
 Figs 8-9). This subpackage builds the same model for the open solver CalculiX (``ccx``),
 generated, run and read back from Python:
 
+- :mod:`microslip.meshlevels` (re-exported here): the mesh levels of both solvers;
 - :mod:`~microslip.fe.mesh`: structured C3D20 mesh of the bar on a rigid C3D8 base;
 - :mod:`~microslip.fe.case`: the validated load case (:class:`FECase`);
 - :mod:`~microslip.fe.deck`: the ``.inp`` deck, one tested function per keyword card;
@@ -23,6 +24,7 @@ Nothing here is imported by ``import microslip``; meshio is imported only by the
 from __future__ import annotations
 
 from ..loading import LOAD_CASES
+from ..meshlevels import LEVELS, MESH_LEVELS, level_counts
 from .case import ELEMENT_TYPES, FECase
 from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .deck import build_deck
@@ -35,7 +37,7 @@ from .errors import (
     SolverNotFoundError,
     SolverTimeoutError,
 )
-from .mesh import MESHES, BarMesh, MeshSpec, bar_mesh, mesh_spec
+from .mesh import BarMesh, MeshSpec, bar_mesh, mesh_spec
 from .readers import read_dat, read_frd, read_sta
 from .result import STATUS, ContactHistory, FELoopResult
 from .results import CalculixDetails, contact_status, read_results
@@ -47,8 +49,9 @@ __all__ = [
     "DEFAULT_STICK_SLOPE",
     "ELEMENT_TYPES",
     "INSTALL_HINT",
+    "LEVELS",
     "LOAD_CASES",
-    "MESHES",
+    "MESH_LEVELS",
     "SOLVERS",
     "STATUS",
     "BarMesh",
@@ -71,6 +74,7 @@ __all__ = [
     "contact_status",
     "default_timeout",
     "find_ccx",
+    "level_counts",
     "mesh_spec",
     "read_dat",
     "read_frd",

@@ -46,7 +46,8 @@ class FECase:
     amplitude : float
         F0 of F_T = F0 sin(2 pi t), N; below the macroslip force mu F_N.
     mesh : MeshSpec or str
-        Mesh level (see :data:`~microslip.fe.mesh.MESHES`) or an explicit MeshSpec.
+        Mesh level (:mod:`microslip.meshlevels`, the same counts as the built-in solver's on
+        this clamped zone) or an explicit MeshSpec.
     stick_slope : float
         lambda of the friction law, N/mm^3.
     normal_slope : float
@@ -66,7 +67,7 @@ class FECase:
     --------
     >>> c = FECase("tip")
     >>> c.mesh.label(), c.amplitude, c.substeps
-    ('20x2x1', 267.0, 50)
+    ('24x4x1', 267.0, 50)
     >>> FECase("tip", amplitude=400.0)
     Traceback (most recent call last):
     ...
@@ -95,7 +96,7 @@ class FECase:
                 f"amplitude {f0:g} N must be below mu F_N = "
                 f"{self.params.macroslip_force:g} N (macroslip)")
         object.__setattr__(self, "amplitude", f0)
-        object.__setattr__(self, "mesh", mesh_spec(self.mesh))
+        object.__setattr__(self, "mesh", mesh_spec(self.mesh, self.params))
         object.__setattr__(self, "stick_slope",
                            check_positive("stick_slope", self.stick_slope, "N/mm^3"))
         object.__setattr__(self, "normal_slope",

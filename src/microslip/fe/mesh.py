@@ -5,10 +5,12 @@ centre load on the plane x = L/2); y across the width, 0 <= y <= w; z through th
 0 <= z <= t. The bar's lower face z = 0 rests on the base, a one-layer slab of 8-node bricks
 under it, larger than the bar by one bar element all round and held fixed (the rigid clamp).
 
-The bar is meshed with 20-node serendipity bricks on a quadratic lattice: lattice point
-(i, j, k), 0 <= i <= 2 nx, 0 <= j <= 2 ny, 0 <= k <= 2 nz, carries a node when at most one of
-i, j, k is odd (corners and edge mid-points; no face or body centres). Element connectivity is
-in the CalculiX/Abaqus C3D20 order, which is also VTK's quadratic hexahedron order.
+The element counts and the node planes of a mesh level come from :mod:`microslip.meshlevels`,
+shared with the built-in solver (a squat bar is graded; mid-side nodes sit half-way between
+the corner planes). The bar is meshed with 20-node serendipity bricks on a quadratic lattice:
+lattice point (i, j, k), 0 <= i <= 2 nx, 0 <= j <= 2 ny, 0 <= k <= 2 nz, carries a node when
+at most one of i, j, k is odd (corners and edge mid-points; no face or body centres). Element
+connectivity is in the CalculiX/Abaqus C3D20 order, which is also VTK's quadratic hexahedron order.
 """
 
 from __future__ import annotations
@@ -20,9 +22,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
-from ..params import ClampParams
+from ..meshlevels import is_graded, level_axes, level_counts
+from ..params import ClampParams, preset
 
-__all__ = ["MESHES", "BarMesh", "MeshSpec", "bar_mesh", "mesh_spec"]
+__all__ = ["ELEMENT", "BarMesh", "MeshSpec", "bar_mesh", "mesh_spec"]
+
+#: The element type of the CalculiX bar (the default of :data:`~microslip.fe.case.ELEMENT_TYPES`).
+ELEMENT = "C3D20R"
 
 IntArray = NDArray[np.int64]
 FloatArray = NDArray[np.float64]
@@ -36,7 +42,8 @@ class MeshSpec:
     """Numbers of 20-node elements along the length, width and thickness of the bar.
 
     ``nx`` must be even (a node plane at L/2 carries the centre load) and ``ny`` even (a node
-    plane at w/2 carries the symmetry condition u_y = 0).
+    plane at w/2 carries the symmetry condition u_y = 0). ``graded``: node planes crowd
+    towards the loaded sections and the interface (:func:`~microslip.meshlevels.level_axes`).
 
     Examples
     --------
@@ -51,6 +58,7 @@ class MeshSpec:
     nx: int
     ny: int = 2
     nz: int = 1
+    graded: bool = False
 
     def __post_init__(self) -> None:
         for name, value, even, why in (("nx", self.nx, True, " (node plane at L/2)"),
@@ -89,24 +97,25 @@ class MeshSpec:
         return f"{self.nx}x{self.ny}x{self.nz}"
 
 
-#: Named mesh levels (free DOF of the bar): coarse, 1 076 (the tests); medium, 4 578; paper,
-#: 9 090 (9 573 with the constrained u_y; the paper quotes about 10 500 for its ANSYS model).
-MESHES: dict[str, MeshSpec] = {
-    "coarse": MeshSpec(20, 2, 1),
-    "medium": MeshSpec(48, 4, 1),
-    "paper": MeshSpec(96, 4, 1),
-}
+def mesh_spec(mesh: str | MeshSpec | tuple[int, int, int], params: ClampParams | None = None
+              ) -> MeshSpec:
+    """A :class:`MeshSpec` of a mesh level (:mod:`microslip.meshlevels`: the counts and the
+    grading of the clamped zone ``params``, default Table 1), of counts (nx, ny, nz)
+    (uniform), or a MeshSpec, returned as is.
 
-
-def mesh_spec(mesh: str | MeshSpec) -> MeshSpec:
-    """A :class:`MeshSpec` from a name in :data:`MESHES` (or a MeshSpec, returned as is)."""
+    >>> mesh_spec("coarse"), mesh_spec("paper").dof
+    (MeshSpec(nx=24, ny=4, nz=1, graded=False), 9090)
+    """
     if isinstance(mesh, MeshSpec):
         return mesh
+    if isinstance(mesh, str):
+        p = preset("table1") if params is None else params
+        return MeshSpec(*level_counts(p, mesh), graded=is_graded(p, mesh))
     try:
-        return MESHES[mesh]
-    except (KeyError, TypeError):
-        raise ParameterError(
-            f"unknown mesh {mesh!r}; choose one of {', '.join(MESHES)}") from None
+        nx, ny, nz = mesh
+    except (TypeError, ValueError):
+        raise ParameterError(f"mesh must be a level name or (nx, ny, nz), got {mesh!r}") from None
+    return MeshSpec(nx, ny, nz)
 
 
 #: Corner lattice offsets of a C3D20 element (nodes 1-8), then its edge mid-points (9-20).
@@ -209,10 +218,12 @@ class BarMesh:
         """
         i = self.load_plane(model)
         ny, nz = self.spec.ny, self.spec.nz
-        share = 1.0 / (ny * nz)
+        dy = np.diff(self.nodes[self.grid[0, ::2, 0] - 1, 1]) / self.width
+        dz = np.diff(self.nodes[self.grid[0, 0, ::2] - 1, 2]) / self.thickness
         acc: dict[int, float] = {}
         for ez in range(nz):
             for ey in range(ny):
+                share = float(dy[ey] * dz[ez]) if self.spec.graded else 1.0 / (ny * nz)
                 for offsets, w in ((_FACE_CORNERS, -share / 12.0), (_FACE_MIDSIDES, share / 3.0)):
                     for dj, dk in offsets:
                         n = int(self.grid[i, 2 * ey + dj, 2 * ez + dk])
@@ -229,6 +240,14 @@ class BarMesh:
         return ids[order].astype(np.int64), i[order].astype(np.int64), j[order].astype(np.int64)
 
 
+def _lattice(corners: FloatArray) -> FloatArray:
+    """Corner planes and the mid-planes between them (quadratic lattice), mm."""
+    out = np.empty(2 * corners.size - 1)
+    out[::2] = corners
+    out[1::2] = 0.5 * (corners[1:] + corners[:-1])
+    return out
+
+
 def bar_mesh(params: ClampParams, spec: MeshSpec | str = "coarse") -> BarMesh:
     """Mesh the bar of ``params`` (L, w, t) on its base.
 
@@ -242,7 +261,7 @@ def bar_mesh(params: ClampParams, spec: MeshSpec | str = "coarse") -> BarMesh:
     >>> round(float(w.sum()), 12)
     1.0
     """
-    spec = mesh_spec(spec)
+    spec = mesh_spec(spec, params)
     nx, ny, nz = spec.nx, spec.ny, spec.nz
     L, w, t = params.length, params.width, params.thickness
     shape = (2 * nx + 1, 2 * ny + 1, 2 * nz + 1)
@@ -252,8 +271,12 @@ def bar_mesh(params: ClampParams, spec: MeshSpec | str = "coarse") -> BarMesh:
     # number nodes with x fastest, then y, then z
     order = np.argwhere(present.transpose(2, 1, 0))[:, ::-1]
     grid[order[:, 0], order[:, 1], order[:, 2]] = np.arange(1, order.shape[0] + 1)
-    bar_xyz = np.column_stack([order[:, 0] * (L / (2 * nx)), order[:, 1] * (w / (2 * ny)),
-                               order[:, 2] * (t / (2 * nz))])
+    if spec.graded:
+        lattice = [_lattice(a) for a in level_axes(L, w, t, (nx, ny, nz), True)]
+        bar_xyz = np.column_stack([lattice[a][order[:, a]] for a in range(3)])
+    else:
+        bar_xyz = np.column_stack([order[:, 0] * (L / (2 * nx)), order[:, 1] * (w / (2 * ny)),
+                                   order[:, 2] * (t / (2 * nz))])
 
     ex, ey, ez = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
     ex, ey, ez = (a.transpose(2, 1, 0).ravel() for a in (ex, ey, ez))  # x fastest
@@ -263,6 +286,8 @@ def bar_mesh(params: ClampParams, spec: MeshSpec | str = "coarse") -> BarMesh:
     # base: one layer of C3D8, one bar element larger than the bar all round, below z = 0
     dx, dy = L / nx, w / ny
     bx = np.linspace(-dx, L + dx, nx + 3)
+    if spec.graded:
+        bx[1:-1] = lattice[0][::2]
     by = np.linspace(-dy, w + dy, ny + 3)
     bz = np.array([-t, 0.0])
     bgi, bgj, bgk = np.meshgrid(np.arange(bx.size), np.arange(by.size), np.arange(2), indexing="ij")

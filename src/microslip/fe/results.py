@@ -146,7 +146,8 @@ class CalculixDetails:
 
     def options(self) -> dict[str, Any]:
         c = self.case
-        return {"mesh": c.spec.label(), "element": c.element, "stick_slope": c.stick_slope,
+        return {"mesh": c.spec.label(), "graded": c.spec.graded, "element": c.element,
+                "stick_slope": c.stick_slope,
                 "normal_slope": c.normal_slope, "max_iterations": c.max_iterations,
                 "nlgeom": c.nlgeom}
 

@@ -23,6 +23,7 @@ from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import write_json
 from ..loading import load_case
+from ..meshlevels import parse_counts
 from ..params import ClampParams, preset
 from .constants import DEFAULT_STICK_SLOPE
 from .result import FELoopResult
@@ -40,7 +41,8 @@ class SolverEntry:
     name : str
     description : str
     meshes : tuple of str
-        Named mesh levels.
+        Named mesh levels (:data:`~microslip.meshlevels.LEVELS`, the same for both solvers;
+        ``"NXxNYxNZ"`` counts are taken too).
     elements : tuple of str
         Element types; the first is the default.
     options : tuple of str
@@ -138,19 +140,19 @@ def _calculix_fields(result: FELoopResult) -> FieldSeries:
 
 
 def _registry() -> Mapping[str, SolverEntry]:
+    from ..meshlevels import LEVELS
     from ..solver.element import ELEMENTS
-    from ..solver.mesh import MESHES as BUILTIN_MESHES
+    from ..solver.mesh import ELEMENT as BUILTIN_ELEMENT
     from .case import ELEMENT_TYPES
-    from .mesh import MESHES
 
     return MappingProxyType({
         "builtin": SolverEntry(
-            "builtin", "built-in frictional solver (docs/solver.md)", tuple(BUILTIN_MESHES),
-            ("C3D8I", *(e for e in ELEMENTS if e != "C3D8I")),
+            "builtin", "built-in frictional solver (docs/solver.md)", LEVELS,
+            (BUILTIN_ELEMENT, *(e for e in ELEMENTS if e != BUILTIN_ELEMENT)),
             ("linear_solver", "centre_direction", "newton", "pressure_law", "normal_contact",
              "normal_slope"), _run_builtin, _builtin_fields),
         "calculix": SolverEntry(
-            "calculix", "CalculiX ccx (docs/validation.md)", tuple(MESHES), ELEMENT_TYPES,
+            "calculix", "CalculiX ccx (docs/validation.md)", LEVELS, ELEMENT_TYPES,
             ("timeout", "threads", "reuse", "normal_slope", "executable"), _run_calculix,
             _calculix_fields),
     })
@@ -211,9 +213,9 @@ def run_loop(load: str, params: ClampParams | None = None, amplitude: float = 26
     if element is not None and element not in entry.elements:
         raise ParameterError(f"element {element} is not an element of the {solver} solver; "
                              f"choose one of {', '.join(entry.elements)}")
-    if isinstance(mesh, str) and mesh not in entry.meshes:
+    if isinstance(mesh, str) and mesh not in entry.meshes and parse_counts(mesh) is None:
         raise ParameterError(f"mesh {mesh} is not a mesh of the {solver} solver; choose one "
-                             f"of {', '.join(entry.meshes)}")
+                             f"of {', '.join(entry.meshes)} or NXxNYxNZ")
     job_dir = None if out is None else Path(out)
     result = entry.run(load, params or preset("table1"), amplitude, mesh,
                        element or entry.elements[0], stick_slope, substeps, strain_energy_kind,

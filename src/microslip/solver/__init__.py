@@ -23,7 +23,7 @@ from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pres
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .mesh import MESH_LEVELS, MESHES, BoxMesh, box_mesh, level_counts, mesh_from_spec
+from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
 from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .results import (
     BuiltinDetails,
@@ -56,8 +56,8 @@ __all__ = [
     "CENTRE_DIRECTIONS",
     "DEFAULT_MESH",
     "ELEMENTS",
+    "LEVELS",
     "LINEAR_SOLVERS",
-    "MESHES",
     "MESH_LEVELS",
     "NORMAL_CONTACTS",
     "BoxMesh",

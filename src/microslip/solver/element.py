@@ -176,15 +176,34 @@ def assemble_stiffness(mesh: BoxMesh, modulus: float, poisson_ratio: float,
                        kind: str = "C3D8") -> sp.csr_matrix:
     """Global stiffness matrix (3 n_nodes square, CSR, N/mm); dof 3 node + component.
 
-    All elements of a uniform box mesh are equal, so one element matrix is computed and
-    scattered by the connectivity (no Python loop over elements).
+    Every element is a box, so its matrix depends only on its sizes (dx, dy, dz): one matrix
+    is computed per distinct size (one for a uniform mesh, one per graded layer otherwise)
+    and scattered by the connectivity (no Python loop over elements).
     """
-    ke = element_stiffness(mesh.nodes[mesh.elements[:1]], modulus, poisson_ratio, kind)[0]
+    shape, first = _size_classes(mesh)
+    ke = element_stiffness(mesh.nodes[mesh.elements[first]], modulus, poisson_ratio, kind)
     edof = (3 * mesh.elements[:, :, None] + np.arange(3)).reshape(mesh.n_elements, 24)
     rows = np.repeat(edof, 24, axis=1).ravel()
     cols = np.tile(edof, (1, 24)).ravel()
-    data = np.tile(ke.ravel(), mesh.n_elements)
+    data = ke.reshape(first.size, -1)[shape].ravel()
     n = 3 * mesh.n_nodes
     k = sp.coo_matrix((data, (rows, cols)), shape=(n, n)).tocsr()
     k.sum_duplicates()
     return k
+
+
+def _size_classes(mesh: BoxMesh) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """The size class of every element (elements of equal dx, dy, dz share one) and the
+    first element of each class."""
+    gi, gj, gk = np.meshgrid(*(np.arange(n) for n in (mesh.nx, mesh.ny, mesh.nz)),
+                             indexing="ij")
+    keys = []
+    for g, steps, graded in zip((gi, gj, gk), mesh.steps(), mesh.graded, strict=True):
+        if graded:
+            _, cls = np.unique(np.round(steps / steps.max(), 12), return_inverse=True)
+            keys.append(cls[g.ravel()])
+        else:
+            keys.append(np.zeros(g.size, dtype=np.int64))
+    _, first, shape = np.unique(np.stack(keys, axis=1), axis=0, return_index=True,
+                                return_inverse=True)
+    return shape.ravel().astype(np.int64), first.astype(np.int64)

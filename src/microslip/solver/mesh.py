@@ -22,11 +22,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
+from ..meshlevels import LEVELS, MESH_LEVELS, MeshLevel, is_graded, level_axes, level_counts
 from ..params import ClampParams
 
 __all__ = [
+    "ELEMENT",
+    "LEVELS",
     "MAX_NODES",
-    "MESHES",
     "MESH_LEVELS",
     "BoxMesh",
     "MeshLevel",
@@ -40,72 +42,8 @@ FloatArray = NDArray[np.float64]
 
 #: Upper bound on the number of nodes of one mesh (memory guard: ~1e6 DOF).
 MAX_NODES = 350_000
-
-#: Named element counts ``(nx, ny, nz)`` along the length, width and thickness on the Table 1
-#: bar (element lengths 10.6, 5.3, 2.6 and 1.6 mm). ``coarse`` (625 DOF) is mesh-converged for
-#: the Table 1 tip loop to 0.2 %; ``medium`` (1 225 DOF) also for the centre loads to about
-#: 1 %; ``paper`` (9 016 DOF) is the size of the paper's ANSYS model (~10 500 DOF) and of the
-#: CalculiX ``paper`` mesh (9 090 DOF); see docs/solver.md. ``tiny`` and ``paper`` are these
-#: counts on any body; the accuracy levels ``coarse``, ``medium`` and ``fine`` take their
-#: counts from the geometry (:data:`MESH_LEVELS`, :func:`level_counts`), which gives these.
-MESHES: dict[str, tuple[int, int, int]] = {
-    "tiny": (8, 2, 1),
-    "coarse": (24, 4, 1),
-    "medium": (48, 4, 1),
-    "fine": (96, 8, 2),
-    "paper": (160, 6, 2),
-}
-
-
-@dataclass(frozen=True)
-class MeshLevel:
-    """An accuracy level: element sizes from the geometry of the clamped zone.
-
-    ``across`` elements over the width set the size h = w / across; the thickness gets
-    ceil(t / h) layers (at least one, at most ``max_layers``: the banded factorisation costs
-    the square of the layers), the length ceil(L / (aspect h)) elements (at least
-    ``min_along``, the Table 1 count, made even for the mid-length section). On the Table 1
-    bar this gives the counts of :data:`MESHES`; a thick block gets layers through its
-    thickness, and no body gets fewer elements than before the levels took the geometry.
-    """
-
-    across: int
-    aspect: float
-    min_along: int
-    max_layers: int
-
-    def counts(self, length: float, width: float, thickness: float) -> tuple[int, int, int]:
-        h = width / self.across
-        nz = min(self.max_layers, max(1, math.ceil(thickness / h - 1e-9)))
-        nx = max(self.min_along, math.ceil(length / (self.aspect * h) - 1e-9))
-        return nx + nx % 2, self.across, nz
-
-
-#: Accuracy levels of the built-in solver (element aspect dx / dy as on the Table 1 bar).
-MESH_LEVELS: dict[str, MeshLevel] = {
-    "coarse": MeshLevel(4, 5.0 / 3.0, 24, 4),
-    "medium": MeshLevel(4, 5.0 / 6.0, 48, 6),
-    "fine": MeshLevel(8, 5.0 / 6.0, 96, 8),
-}
-
-
-def level_counts(params: ClampParams, level: str) -> tuple[int, int, int]:
-    """Element counts (nx, ny, nz) of a mesh name for this clamped zone: an accuracy level of
-    :data:`MESH_LEVELS` from the geometry, or the fixed counts of ``tiny`` and ``paper``.
-
-    >>> from microslip import preset
-    >>> level_counts(preset("table1"), "fine"), level_counts(preset("table2-tip"), "coarse")
-    ((96, 8, 2), (24, 4, 2))
-    """
-    if level in MESH_LEVELS:
-        return MESH_LEVELS[level].counts(params.length, params.width, params.thickness)
-    try:
-        return MESHES[level]
-    except KeyError:
-        raise ParameterError(
-            f"unknown mesh {level!r}; choose one of {', '.join(MESHES)} or give (nx, ny, nz)"
-        ) from None
-
+#: The built-in solver's default element (:data:`~microslip.solver.element.ELEMENTS`).
+ELEMENT = "C3D8I"
 
 def _count(name: str, value: Any, lower: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
@@ -117,7 +55,8 @@ def _count(name: str, value: Any, lower: int) -> int:
 
 @dataclass(frozen=True, eq=False)
 class BoxMesh:
-    """Uniform structured mesh of 8-node hexahedra on a box ``L x w x t`` (mm).
+    """Structured mesh of 8-node box-shaped hexahedra on a box ``L x w x t`` (mm): uniform, or
+    graded (node planes at any increasing coordinates along each axis).
 
     Attributes
     ----------
@@ -130,6 +69,10 @@ class BoxMesh:
     elements : ndarray, shape (n_elements, 8)
         Node numbers of each element: the four nodes of its face ``z = z_k``
         counter-clockwise seen from +z, then the four of ``z = z_(k+1)``.
+    axes : tuple of 3 ndarrays
+        Node coordinates along x (nx + 1), y (ny + 1) and z (nz + 1), mm.
+    graded : tuple of 3 bool
+        Whether each axis is graded (False: equal elements, sizes exactly L / nx, ...).
     """
 
     length: float
@@ -140,6 +83,8 @@ class BoxMesh:
     nz: int
     nodes: FloatArray = field(repr=False)
     elements: IntArray = field(repr=False)
+    axes: tuple[FloatArray, FloatArray, FloatArray] = field(repr=False)
+    graded: tuple[bool, bool, bool] = (False, False, False)
 
     @property
     def n_nodes(self) -> int:
@@ -156,8 +101,17 @@ class BoxMesh:
 
     @property
     def spacing(self) -> tuple[float, float, float]:
-        """Element size (dx, dy, dz), mm."""
-        return self.length / self.nx, self.width / self.ny, self.thickness / self.nz
+        """Smallest element size (dx, dy, dz), mm (the element size of a uniform mesh)."""
+        return tuple(float(np.min(s)) for s in self.steps())  # type: ignore[return-value]
+
+    def steps(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Element sizes along x, y and z, mm (equal on an axis that is not graded)."""
+        sizes = []
+        for a, n, size, g in zip(self.axes, (self.nx, self.ny, self.nz),
+                                 (self.length, self.width, self.thickness), self.graded,
+                                 strict=True):
+            sizes.append(np.diff(a) if g else np.full(n, size / n))
+        return sizes[0], sizes[1], sizes[2]
 
     def node_id(self, i: Any, j: Any, k: Any) -> IntArray:
         """Node numbers of grid indices ``(i, j, k)`` (broadcast)."""
@@ -178,10 +132,10 @@ class BoxMesh:
         and interior nodes A of one face element. The weights add up to the face's area.
         """
         i, j, k = _face_grid(self, face)
-        dx, dy, dz = self.spacing
-        wi = _trib(self.nx, dx) if i.size > 1 else np.ones(1)
-        wj = _trib(self.ny, dy) if j.size > 1 else np.ones(1)
-        wk = _trib(self.nz, dz) if k.size > 1 else np.ones(1)
+        dx, dy, dz = self.steps()
+        wi = _trib(dx) if i.size > 1 else np.ones(1)
+        wj = _trib(dy) if j.size > 1 else np.ones(1)
+        wk = _trib(dz) if k.size > 1 else np.ones(1)
         return np.asarray((wi[:, None, None] * wj[None, :, None] * wk[None, None, :]).ravel(),
                           dtype=float)
 
@@ -192,7 +146,8 @@ class BoxMesh:
 
     def describe(self) -> dict[str, Any]:
         """Plain summary for reports (sizes in mm)."""
-        return {"nx": self.nx, "ny": self.ny, "nz": self.nz, "nodes": self.n_nodes,
+        return {"nx": self.nx, "ny": self.ny, "nz": self.nz, "graded": any(self.graded),
+                "nodes": self.n_nodes,
                 "elements": self.n_elements, "length_mm": self.length,
                 "width_mm": self.width, "thickness_mm": self.thickness}
 
@@ -220,15 +175,18 @@ def _face_grid(mesh: BoxMesh, face: str) -> tuple[IntArray, IntArray, IntArray]:
     raise ParameterError(f"unknown face {face!r}; choose one of {', '.join(FACES)}")
 
 
-def _trib(n: int, h: float) -> FloatArray:
-    w = np.full(n + 1, h)
-    w[0] = w[-1] = 0.5 * h
+def _trib(h: FloatArray) -> FloatArray:
+    """Tributary lengths of the nodes of a line of elements of sizes ``h``."""
+    w = np.zeros(h.size + 1)
+    w[:-1] += 0.5 * h
+    w[1:] += 0.5 * h
     return w
 
 
-def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz: int
-             ) -> BoxMesh:
-    """Build a :class:`BoxMesh`.
+def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz: int,
+             axes: tuple[Any, Any, Any] | None = None) -> BoxMesh:
+    """Build a :class:`BoxMesh`, uniform or with the node coordinates ``axes`` = (x, y, z)
+    (increasing, from 0 to the box size; None on an axis: uniform along it).
 
     Examples
     --------
@@ -237,6 +195,9 @@ def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz
     (30, 8, 9)
     >>> abs(float(m.face_weights("bottom").sum()) - 254.0 * 25.4) < 1e-9
     True
+    >>> g = box_mesh(4.0, 1.0, 1.0, 2, 1, 1, axes=([0.0, 3.0, 4.0], None, None))
+    >>> g.face_weights("bottom").tolist()
+    [0.75, 0.75, 1.0, 1.0, 0.25, 0.25]
     """
     nx = _count("nx", nx, 1)
     ny = _count("ny", ny, 1)
@@ -244,9 +205,27 @@ def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz
     n_nodes = (nx + 1) * (ny + 1) * (nz + 1)
     if n_nodes > MAX_NODES:
         raise ParameterError(f"mesh {nx}x{ny}x{nz} has {n_nodes} nodes; at most {MAX_NODES}")
-    x = np.linspace(0.0, length, nx + 1)
-    y = np.linspace(0.0, width, ny + 1)
-    z = np.linspace(0.0, thickness, nz + 1)
+    given = (None, None, None) if axes is None else axes
+    coords, graded = [], []
+    for name, size, n, a in zip("xyz", (length, width, thickness), (nx, ny, nz), given,
+                                strict=True):
+        uniform = np.linspace(0.0, size, n + 1)
+        if a is None:
+            coords.append(uniform)
+            graded.append(False)
+            continue
+        c = np.asarray(a, dtype=float)
+        if (c.shape != (n + 1,) or not np.all(np.diff(c) > 0.0)
+                or not math.isclose(c[0], 0.0, abs_tol=1e-12 * size)
+                or not math.isclose(c[-1], size, rel_tol=1e-12)):
+            raise ParameterError(f"the {name} coordinates must increase from 0 to {size:g} mm "
+                                 f"in {n + 1} nodes")
+        c = c.copy()
+        c[0], c[-1] = 0.0, size
+        same = bool(np.allclose(c, uniform, rtol=0.0, atol=1e-12 * size))
+        coords.append(uniform if same else c)
+        graded.append(not same)
+    x, y, z = coords
     gx, gy, gz = np.meshgrid(x, y, z, indexing="ij")
     nodes = np.stack([gx.ravel(), gy.ravel(), gz.ravel()], axis=1)
     gi, gj, gk = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
@@ -255,12 +234,16 @@ def box_mesh(length: float, width: float, thickness: float, nx: int, ny: int, nz
     n0 = (i * (ny + 1) + j) * (nz + 1) + k
     base = np.stack([n0, n0 + si, n0 + si + sj, n0 + sj], axis=1)
     elements = np.concatenate([base, base + 1], axis=1).astype(np.int64)
-    return BoxMesh(float(length), float(width), float(thickness), nx, ny, nz, nodes, elements)
+    for a in (x, y, z):
+        a.flags.writeable = False
+    return BoxMesh(float(length), float(width), float(thickness), nx, ny, nz, nodes, elements,
+                   (x, y, z), (graded[0], graded[1], graded[2]))
 
 
 def mesh_from_spec(params: ClampParams, spec: Any) -> BoxMesh:
-    """A mesh of the clamped zone from a name in :data:`MESHES` (:func:`level_counts`),
-    ``(nx, ny, nz)`` or a mesh.
+    """A mesh of the clamped zone from a mesh level or ``"NXxNYxNZ"``
+    (:mod:`microslip.meshlevels`: counts and node planes from the geometry, graded on a squat
+    body, the same as CalculiX's), from counts ``(nx, ny, nz)`` (uniform), or a mesh.
 
     A given :class:`BoxMesh` must have the size of the clamped zone (L, w, t of ``params``).
 
@@ -276,15 +259,19 @@ def mesh_from_spec(params: ClampParams, spec: Any) -> BoxMesh:
                 f"mesh size {spec.length:g} x {spec.width:g} x {spec.thickness:g} mm does not "
                 f"match the clamped zone {dims[0]:g} x {dims[1]:g} x {dims[2]:g} mm")
         return spec
+    dims = (params.length, params.width, params.thickness)
     if isinstance(spec, str):
         counts = level_counts(params, spec)
-    else:
-        try:
-            counts = tuple(spec)
-        except TypeError:
-            raise ParameterError(
-                f"mesh must be a name ({', '.join(MESHES)}) or (nx, ny, nz), got {spec!r}"
-            ) from None
-        if len(counts) != 3:
-            raise ParameterError(f"mesh must be (nx, ny, nz), got {spec!r}")
-    return box_mesh(params.length, params.width, params.thickness, *counts)
+        for name, n in zip(("nx", "ny", "nz"), counts, strict=True):
+            _count(name, n, 1)
+        graded = is_graded(params, spec)
+        return box_mesh(*dims, *counts, axes=level_axes(*dims, counts, graded))
+    try:
+        counts = tuple(spec)
+    except TypeError:
+        raise ParameterError(
+            f"mesh must be a level ({', '.join(LEVELS)}), NXxNYxNZ or (nx, ny, nz), "
+            f"got {spec!r}") from None
+    if len(counts) != 3:
+        raise ParameterError(f"mesh must be (nx, ny, nz), got {spec!r}")
+    return box_mesh(*dims, *counts)

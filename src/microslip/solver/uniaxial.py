@@ -45,7 +45,7 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     amplitude : float
         F0, N; below mu F_N.
     mesh : str, (nx, ny, nz), BoxMesh or FrictionModel
-        Mesh name (:data:`~microslip.solver.mesh.MESHES`), element counts, a mesh, or a model
+        Mesh level (:mod:`microslip.meshlevels`), element counts, a mesh, or a model
         already built (then ``stick_slope``, ``element``, ``linear_solver`` are its own).
     stick_slope : float
         lambda, N/mm^3.
