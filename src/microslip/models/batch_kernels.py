@@ -208,7 +208,7 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
         lo = c * CHUNK
         m = min(CHUNK, ncase - lo)
         f0 = np.empty(m)
-        st = np.empty((m, 5))
+        st = np.empty((m, 6))
         cs = np.empty((m, 8))
         doms = np.empty((m, 14))
         d = np.zeros(m)
@@ -231,7 +231,7 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
                 cs[k, 4 + i] = cp[i]
             for i in range(14):
                 doms[k, i] = dom[i]
-            for i in range(5):
+            for i in range(6):
                 st[k, i] = state[i]
         fr_prev = 0.0
         for i in range(1, n + 1):
@@ -240,13 +240,14 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
                 f = f0[k] * fr
                 fp = f0[k] * fr_prev
                 dm = doms[k]
-                dn, ra, dpn, rap, a, dd, _, g = tip_layer_step(
-                    f, fp, (st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4]),
+                dn, ra, dpn, rap, a, da, dd, _, g = tip_layer_step(
+                    f, fp, (st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4], st[k, 5]),
                     (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3]),
                     (cs[k, 4], cs[k, 5], cs[k, 6], cs[k, 7]), flags, plain,
                     (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9],
                      dm[10], dm[11], dm[12], dm[13]), code, data)
-                st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4] = dn, ra, dpn, rap, a
+                st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4], st[k, 5] = (dn, ra, dpn, rap,
+                                                                              a, da)
                 gmin[k] = min(gmin[k], g)
                 q[k] += (fp + f) * (dd - d[k])
                 d[k] = dd
@@ -271,7 +272,7 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
         lo = c * CHUNK
         m = min(CHUNK, ncase - lo)
         f0 = np.empty(m)
-        st = np.empty((m, 11))
+        st = np.empty((m, 14))
         cs = np.empty((m, 10))
         doms = np.empty((m, 28))
         d = np.zeros(m)
@@ -295,7 +296,7 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
             for i in range(14):
                 doms[k, i] = dt[i]
                 doms[k, 14 + i] = dc[i]
-            for i in range(11):
+            for i in range(14):
                 st[k, i] = state[i]
         fr_prev = 0.0
         for i in range(1, n + 1):
@@ -306,18 +307,19 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
                 s = st[k]
                 dm = doms[k]
                 r = centre_layer_step(
-                    f, fp, (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10]),
+                    f, fp, (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10],
+                            s[11], s[12], s[13]),
                     (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3], cs[k, 4]),
                     (cs[k, 5], cs[k, 6], cs[k, 7], cs[k, 8], cs[k, 9]), flags, plain,
                     (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9],
                      dm[10], dm[11], dm[12], dm[13]),
                     (dm[14], dm[15], dm[16], dm[17], dm[18], dm[19], dm[20], dm[21], dm[22],
                      dm[23], dm[24], dm[25], dm[26], dm[27]), code, data, symmetric, 0)
-                for t in range(11):
+                for t in range(14):
                     s[t] = r[t]
-                gmin[k] = min(gmin[k], min(r[14], r[15]))
-                q[k] += (fp + f) * (r[11] - d[k])
-                d[k] = r[11]
+                gmin[k] = min(gmin[k], min(r[17], r[18]))
+                q[k] += (fp + f) * (r[14] - d[k])
+                d[k] = r[14]
             _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
             fr_prev = fr
         _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,

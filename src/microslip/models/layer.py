@@ -17,6 +17,10 @@ F(a) = f for the slip front by Newton's method inside a bracket that every evalu
 narrows (bisection when a step leaves it), warm-started from the previous increment's front:
 two or three evaluations per increment instead of the 64 of plain bisection, and the same
 root to rounding.
+
+numba's on-disk cache keys a compiled function on its own file only, and the functions here
+are inlined into :mod:`~microslip.models.layered` and the batch kernels: after editing this
+file, touch ``layered.py`` and ``batch_kernels.py`` (or remove ``__pycache__/*.nbi``).
 """
 
 from __future__ import annotations
@@ -71,7 +75,7 @@ def _segment(x, xi):
     return min(max(lo - 1, 0), x.shape[0] - 2)
 
 
-@njit(cache=True, fastmath=False)
+@njit(cache=True, fastmath=False, inline="always")
 def law_eval(code, data, xi):
     """The law at xi: p (mean 1), dp/dxi (0 at a kink's apex), P = integral_0^xi p and
     PP = integral_0^xi P; a power law costs one ``pow``."""
@@ -135,7 +139,7 @@ def domain_total(dom):
     return dom[11]
 
 
-@njit(cache=True, fastmath=False)
+@njit(cache=True, fastmath=False, inline="always")
 def domain_law(dom, code, data, s):
     """At distance s from the loaded section: q (N/mm), dq/ds (N/mm^2), Q = integral_0^s q
     (N) and R = integral_0^s Q (N mm); one evaluation of the law."""
@@ -147,7 +151,7 @@ def domain_law(dom, code, data, s):
             limit * span * (big_pp - pp0 - p0 * (xi - xi0)))
 
 
-@njit(cache=True, fastmath=False)
+@njit(cache=True, fastmath=False, inline="always")
 def domain_force(dom, code, data, a):
     """F(a) = Q(a) + (q(a)/lambda) tanh(lambda (L - a)), the load that puts the slip front
     at a, and dF/da."""
@@ -159,7 +163,7 @@ def domain_force(dom, code, data, a):
     return big_q + q / lam * t, q * t * t + dq * t / lam
 
 
-@njit(cache=True, fastmath=False)
+@njit(cache=True, fastmath=False, inline="always")
 def front(dom, code, data, f, guess):
     """The slip front a in (0, L] under the force f > onset, and dF/da near it.
 
@@ -196,7 +200,7 @@ def front(dom, code, data, f, guess):
     return a, slope
 
 
-@njit(cache=True, fastmath=False)
+@njit(cache=True, fastmath=False, inline="always")
 def domain_point(dom, code, data, f, guess):
     """(a, d, dd/dF) of the virgin curve at force f: slip front (0 while stuck), displacement
     of the loaded section (mm) and the curve's compliance (mm/N, for the centre split)."""
@@ -245,30 +249,33 @@ def split_point(dom1, dom2, code, data, f, guess1, guess2, share):
 
 @njit(cache=True, fastmath=False)
 def domain_curve(dom, code, data, force):
-    """(a, d) of one domain's virgin curve at every force of a 1-D array, each front
-    warm-started from the previous one as the models' steps do (so that the same forces give
-    the same numbers bit for bit)."""
+    """(a, d) of one domain's virgin curve at every force of a 1-D array, each front search
+    started from the extrapolation of the two before, as the models' steps do (so that the
+    same forces give the same numbers bit for bit)."""
     n = force.shape[0]
     a = np.empty(n)
     d = np.empty(n)
-    guess = 0.0
+    last = change = 0.0
     for i in range(n):
-        a[i], d[i], _ = domain_point(dom, code, data, force[i], guess)
-        guess = a[i]
+        a[i], d[i], _ = domain_point(dom, code, data, force[i], last + change)
+        change = a[i] - last
+        last = a[i]
     return a, d
 
 
 @njit(cache=True, fastmath=False)
 def split_curve(dom1, dom2, code, data, force):
-    """(a_1, a_2, d) of two domains in parallel at every force (:func:`split_point`, warm
-    started as :func:`domain_curve`)."""
+    """(a_1, a_2, d) of two domains in parallel at every force (:func:`split_point`, started
+    as :func:`domain_curve`)."""
     n = force.shape[0]
     a1 = np.empty(n)
     a2 = np.empty(n)
     d = np.empty(n)
-    g1 = g2 = share = 0.0
+    g1 = g2 = share = c1 = c2 = cs = 0.0
     for i in range(n):
-        a1[i], a2[i], d[i], share = split_point(dom1, dom2, code, data, force[i], g1, g2,
-                                                share if share > 0.0 else force[i] / 2.0)
-        g1, g2 = a1[i], a2[i]
+        a1[i], a2[i], d[i], new = split_point(dom1, dom2, code, data, force[i], g1 + c1,
+                                              g2 + c2,
+                                              share + cs if share > 0.0 else force[i] / 2.0)
+        c1, c2, cs = a1[i] - g1, a2[i] - g2, new - share
+        g1, g2, share = a1[i], a2[i], new
     return a1, a2, d
