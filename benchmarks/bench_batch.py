@@ -8,6 +8,12 @@ amplitudes evenly spaced from 100 N to 8000 N, 1000 increments, consistent Poiss
 length updates, secant U):
 
 * batch engine (numba), 1 and 2 threads;
+* the same on a contact (issue 11): shear layer of stick slope 1e5 N/mm^3 with the body's
+  shear lag and the parabolic pressure law (``Contact.layer(1e5, "parabolic")``), 1 and 2
+  threads, the same cases and the same definition of a case-increment (target: >= 1e9 on 2
+  cores with these options on), and the time of one full single loop on that contact
+  (``microslip.damping``: backbone, Masing loop and energies, 1000 increments, after
+  warm-up; target < 1 ms), tip and centre;
 * the single-loop API, ``microslip.damping`` once per case;
 * a plain-Python loop of the same arithmetic (the kernel's ``py_func`` run by the
   interpreter; it still calls the compiled step function per case-increment);
@@ -36,10 +42,12 @@ import numpy as np
 
 from microslip import damping, preset
 from microslip.batch import batch_damping
-from microslip.models import batch_kernels
+from microslip.models import Contact, batch_kernels
 
 HERE = Path(__file__).resolve().parent
 PRESET = "table2-tip"
+#: The contact of the issue-11 rows: a finite stick slope, shear lag, parabolic pressure.
+LAYER = Contact.layer(1e5, "parabolic")
 
 
 def amplitudes(cases: int) -> np.ndarray:
@@ -56,12 +64,22 @@ def best(fn: Callable[[], object], repeats: int) -> float:
 
 
 def rate_batch(cases: int, n: int, threads: int | None, backend: str, repeats: int,
-               model: str = "tip") -> float:
+               model: str = "tip", contact: Contact | None = None) -> float:
     p = preset(PRESET if model == "tip" else "table2-centre")
     a = amplitudes(cases)
-    batch_damping(model, p, a[:10], n, backend=backend, threads=threads)  # compile / load
-    t = best(lambda: batch_damping(model, p, a, n, backend=backend, threads=threads), repeats)
+    batch_damping(model, p, a[:10], n, backend=backend, threads=threads,
+                  contact=contact)  # compile / load
+    t = best(lambda: batch_damping(model, p, a, n, backend=backend, threads=threads,
+                                   contact=contact), repeats)
     return cases * n / t
+
+
+def loop_time(model: str, n: int, repeats: int) -> float:
+    """Seconds of one ``microslip.damping`` on :data:`LAYER` at 0.8 mu F_N, after warm-up."""
+    p = preset(PRESET if model == "tip" else "table2-centre")
+    f0 = 0.8 * p.macroslip_force
+    damping(model, p, f0, n, contact=LAYER)
+    return best(lambda: damping(model, p, f0, n, contact=LAYER), repeats)
 
 
 def rate_single_loop(cases: int, n: int) -> float:
@@ -140,6 +158,12 @@ def main() -> int:
                  f"{big} cases"))
     rows.append(("  (centre model, 2 threads)", rate_batch(big, n, 2, "numba", repeats,
                                                        "centre"), f"{big} cases"))
+    layer_cases = max(big // 20, 1000)
+    layer_rows = [(f"batch engine on layer + parabolic law, {t} thread{'s' * (t > 1)}",
+                   rate_batch(layer_cases, n, t, "numba", repeats, contact=LAYER),
+                   f"{layer_cases} cases") for t in (1, 2)]
+    rows.extend(layer_rows)
+    loops = {m: loop_time(m, n, 20 if args.quick else 100) for m in ("tip", "centre")}
     rows.append(("single-loop API (microslip.damping)", rate_single_loop(20, n), "20 cases"))
     rows.append(("plain-Python loop, same arithmetic", rate_python(10, n), "10 cases"))
     with tempfile.TemporaryDirectory() as tmp:
@@ -159,6 +183,14 @@ def main() -> int:
     print(f"{'':{width}}  case-increments/s")
     for name, rate, note in rows:
         print(f"{name:{width}}  {rate:12.3e}   {note}")
+    print(f"single loop on layer + parabolic law (microslip.damping, {n} increments, best "
+          "after warm-up), target < 1 ms:")
+    for m, t in loops.items():
+        print(f"  {m:7s} {1e3 * t:8.3f} ms   {'met' if t < 1e-3 else 'NOT met'}")
+    layer2 = layer_rows[1][1]
+    print(f"batch engine on layer + parabolic law, 2 threads: {layer2:.3e} case-increments/s, "
+          f"target >= 1e9: {'met' if layer2 >= 1e9 else 'NOT met'} (rigid tip, 2 threads: "
+          f"{rows[1][1]:.3e})")
     print(f"load average at the end: {', '.join(f'{x:.2f}' for x in os.getloadavg())} "
           "(other processes on the machine slow every row)")
     if args.quick:

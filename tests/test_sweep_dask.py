@@ -57,6 +57,20 @@ def test_cluster_run_loses_no_result_and_matches_local(tmp_path: Path) -> None:
     assert remote.read_bytes() == local.read_bytes()
 
 
+def test_cluster_sweep_on_a_contact_matches_local(tmp_path: Path) -> None:
+    """A stick slope and a pressure law reach the workers (the layer kernel runs there)."""
+    args = ["sweep", "--model", "centre", "--amplitude-range", "50", "300", "--cases", "40",
+            "--increments", "100", "--chunk-size", "16", "--stick-slope", "1e4",
+            "--pressure-law", "power:2:3", "--no-progress"]
+    local = tmp_path / "local.csv"
+    assert main([*args, "--out", str(local)]) == 0
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        remote = tmp_path / "remote.csv"
+        assert main([*args, "--out", str(remote), "--scheduler", cluster.scheduler_address]) == 0
+    assert remote.read_bytes() == local.read_bytes()
+
+
 def test_unreachable_scheduler_is_one_line(tmp_path: Path,
                                            capsys: pytest.CaptureFixture[str]) -> None:
     import dask

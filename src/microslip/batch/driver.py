@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, STRAIN_ENERGY_CODES
 from ..errors import MacroslipError, ParameterError
 from ..models import check_increments, get_model
+from ..models.contact import Contact, check_reading, check_strain_energy
 from ..named import result
 from ..options import ModelOptions
 from ..params import ClampParams
@@ -70,6 +71,8 @@ class BatchInput:
     strain_energy_kind : str
     where : tuple of int
         (index of the first case among all cases, number of cases), for messages.
+    contact : Contact or None
+        The interface under every case (None: the paper's rigid foundation).
     """
 
     model: str
@@ -86,6 +89,7 @@ class BatchInput:
     options: ModelOptions
     strain_energy_kind: str
     where: tuple[int, int | None] = (0, None)
+    contact: Contact | None = None
 
     @property
     def size(self) -> int:
@@ -214,11 +218,14 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
                   amplitude: ArrayLike, increments: int = 1000,
                   options: ModelOptions | None = None,
                   strain_energy: str = DEFAULT_STRAIN_ENERGY, *,
-                  where: tuple[int, int | None] = (0, None)) -> BatchInput:
+                  where: tuple[int, int | None] = (0, None),
+                  contact: Contact | None = None) -> BatchInput:
     """Validate a batch once, vectorised, and flatten it for a kernel.
 
     ``where`` = (index of the first case among all cases, number of cases) lets a caller
     that splits a larger study into batches name the case globally in an error.
+    ``contact``: the interface under every case (stick slope, shear lag, pressure law);
+    None or a rigid one: the paper's foundation.
 
     Raises
     ------
@@ -239,6 +246,12 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
             f"{', '.join(STRAIN_ENERGY)}"
         )
     n = check_increments(increments)
+    if contact is not None and not isinstance(contact, Contact):
+        raise ParameterError(f"contact must be a Contact, got {type(contact).__name__}")
+    layer = None if contact is None or contact.is_rigid else contact
+    if layer is not None:
+        check_strain_energy(layer, strain_energy)
+        check_reading(opt, len(spec.domains))
     values = _param_values(params)
     arrays = {k: _as_float(k, values[k]) for k in PARAM_FIELDS}
     amp = _as_float("amplitude", amplitude)
@@ -278,7 +291,8 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
             f"microslip needs 0 < amplitude < {rule}"
         )
     return BatchInput(model=spec.name, shape=tuple(shape), amplitude=amp_f, **flat_params,
-                      increments=n, options=opt, strain_energy_kind=strain_energy, where=where)
+                      increments=n, options=opt, strain_energy_kind=strain_energy, where=where,
+                      contact=layer)
 
 
 @contextlib.contextmanager
@@ -298,8 +312,9 @@ def _numba_threads(threads: int | None) -> Iterator[None]:
         numba.set_num_threads(before)
 
 
-def _kernel(model: str, backend: str) -> Callable[..., None]:
-    k: Any = get_model(model).batch_kernel  # a numba dispatcher
+def _kernel(model: str, backend: str, layer: bool) -> Callable[..., None]:
+    spec = get_model(model)
+    k: Any = spec.layer_kernel if layer else spec.batch_kernel  # a numba dispatcher
     return k.py_func if backend == "python" else k
 
 
@@ -312,10 +327,13 @@ def run_batch(inp: BatchInput, *, backend: str | None = None,
     size = inp.size
     out = [np.empty(size) for _ in range(5)]
     opt = inp.options
-    args = (inp.amplitude, inp.length, inp.width, inp.thickness, inp.modulus,
-            inp.poisson_ratio, inp.friction, inp.normal_force, inp.increments, *opt.codes,
-            STRAIN_ENERGY_CODES[inp.strain_energy_kind])
-    kernel = _kernel(inp.model, be)
+    args: tuple[Any, ...] = (
+        inp.amplitude, inp.length, inp.width, inp.thickness, inp.modulus, inp.poisson_ratio,
+        inp.friction, inp.normal_force, inp.increments, *opt.codes,
+        STRAIN_ENERGY_CODES[inp.strain_energy_kind])
+    if inp.contact is not None:
+        args = (*args, *inp.contact.kernel_args)
+    kernel = _kernel(inp.model, be, inp.contact is not None)
     if size:
         with _numba_threads(threads if be == "numba" else None):
             kernel(*args, *out)
@@ -344,7 +362,8 @@ def batch_damping(model: str, params: ClampParams | Mapping[str, ArrayLike],
                   amplitude: ArrayLike, increments: int = 1000,
                   options: ModelOptions | None = None,
                   strain_energy: str = DEFAULT_STRAIN_ENERGY, *,
-                  backend: str | None = None, threads: int | None = None) -> BatchResult:
+                  backend: str | None = None, threads: int | None = None,
+                  contact: Contact | None = None) -> BatchResult:
     """W_d, U and eta of many cases at once, without storing any loop.
 
     The batch equivalent of :func:`microslip.damping`: for every case it runs the model's
@@ -371,6 +390,13 @@ def batch_damping(model: str, params: ClampParams | Mapping[str, ArrayLike],
         Default: numba.
     threads : int, optional
         Threads of the numba backend (default: all).
+    contact : Contact, optional
+        The interface under every case (:class:`~microslip.models.contact.Contact`: stick
+        slope, shear lag, pressure law); default the paper's rigid foundation. On a contact
+        each case runs its model's compiled layer step
+        (:mod:`~microslip.models.layered`), the one :func:`microslip.first_loading` runs,
+        so the numbers are those of :func:`microslip.damping` with the same contact, bit for
+        bit; strain energy ``stored`` and the centre model's ``paper`` reading are refused.
 
     Returns
     -------
@@ -392,7 +418,8 @@ def batch_damping(model: str, params: ClampParams | Mapping[str, ArrayLike],
     >>> np.round(r.loss_factor / exact, 12).tolist()
     [1.0, 1.0, 1.0]
     """
-    inp = prepare_batch(model, params, amplitude, increments, options, strain_energy)
+    inp = prepare_batch(model, params, amplitude, increments, options, strain_energy,
+                        contact=contact)
     return run_batch(inp, backend=backend, threads=threads)
 
 

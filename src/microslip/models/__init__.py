@@ -18,6 +18,10 @@ and adding one :class:`ModelSpec` entry, which must provide:
   :func:`~microslip.models.batch_kernels.tip_kernel`; both call the model's one scalar
   step function (state in, state out, a per-case constants tuple), so the physics is
   written once;
+* ``layer_backbone`` and ``layer_kernel``: the same two on a contact (shear layer and
+  pressure law, :mod:`~microslip.models.layered`), taking after the options' codes the
+  contact's :attr:`~microslip.models.contact.Contact.kernel_args`; both call the model's one
+  compiled layer step;
 * ``stored_energy``: the compiled elastic energy of a state (what strain energy ``stored``
   reports);
 * ``exact``: the closed forms of its rigid-foundation limit (:class:`RigidLimit`).
@@ -56,9 +60,10 @@ from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude
 from ..results import Backbone
-from .batch_kernels import centre_kernel, tip_kernel
+from .batch_kernels import centre_kernel, centre_layer_kernel, tip_kernel, tip_layer_kernel
 from .centre import centre_backbone, centre_step, centre_stored_energy
-from .contact import DEFAULT_CONTACT, Contact, on_contact
+from .contact import DEFAULT_CONTACT, Contact, check_reading
+from .layered import centre_layer_backbone, tip_layer_backbone
 from .tip import tip_backbone, tip_step, tip_stored_energy
 
 __all__ = [
@@ -109,6 +114,8 @@ class ModelSpec:
     reading: Callable[[ModelOptions], str | None]
     backbone: Callable[..., tuple[np.ndarray, ...]]
     batch_kernel: Callable[..., None]
+    layer_backbone: Callable[..., tuple[np.ndarray, ...]]
+    layer_kernel: Callable[..., None]
     stored_energy: Callable[..., float]
     exact: RigidLimit
 
@@ -140,6 +147,8 @@ MODELS: dict[str, ModelSpec] = {
         reading=_no_reading,
         backbone=tip_backbone,
         batch_kernel=tip_kernel,
+        layer_backbone=tip_layer_backbone,
+        layer_kernel=tip_layer_kernel,
         stored_energy=tip_stored_energy,
         exact=RigidLimit(closedform.tip_displacement, closedform.tip_slip_length,
                          closedform.tip_dissipated_energy, closedform.tip_stored_energy),
@@ -154,6 +163,8 @@ MODELS: dict[str, ModelSpec] = {
         reading=_centre_reading,
         backbone=centre_backbone,
         batch_kernel=centre_kernel,
+        layer_backbone=centre_layer_backbone,
+        layer_kernel=centre_layer_kernel,
         stored_energy=centre_stored_energy,
         exact=RigidLimit(closedform.centre_displacement, closedform.centre_slip_length,
                          closedform.centre_dissipated_energy, closedform.centre_stored_energy),
@@ -243,8 +254,9 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     The recurrence is the model's one compiled step function (tip: Eqs 2-10,
     :func:`~microslip.models.tip.tip_step`; centre: Eqs 11-18,
     :func:`~microslip.models.centre.centre_step`), the same the batch engine runs. On a
-    contact that is not rigid, the exact shear-layer curve with the recurrence's corrections
-    (:func:`~microslip.models.contact.on_contact`).
+    contact that is not rigid, the exact shear-layer curve with the recurrence's corrections,
+    the model's compiled layer step (:mod:`~microslip.models.layered`), also the batch
+    engine's.
 
     Raises
     ------
@@ -258,22 +270,23 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     f0 = check_amplitude(amplitude)
     n = check_increments(increments)
     check_below_macroslip(model, params, f0, opt)
-
-    rigid = _rigid_loading(spec, params, f0, n, opt)
     if contact is None or contact.is_rigid:
-        return rigid
-    plain = ModelOptions(poisson="off", length_update=False, centre=opt.centre)
-    return on_contact(rigid, _rigid_loading(spec, params, f0, n, plain), contact,
-                      spec.load_case)
+        return _loading(spec, params, f0, n, opt, None)
+    check_reading(opt, len(spec.domains))
+    return _loading(spec, params, f0, n, opt, contact)
 
 
-def _rigid_loading(spec: ModelSpec, params: ClampParams, f0: float, n: int,
-                   opt: ModelOptions) -> Backbone:
+def _loading(spec: ModelSpec, params: ClampParams, f0: float, n: int, opt: ModelOptions,
+             contact: Contact | None) -> Backbone:
     model = spec.name
     p = params
-    forces, disp, stored, slip, width, thickness = spec.backbone(
-        f0, n, p.length, p.width, p.thickness, p.modulus, p.poisson_ratio, p.friction,
-        p.normal_force, *opt.codes)
+    args = (f0, n, p.length, p.width, p.thickness, p.modulus, p.poisson_ratio, p.friction,
+            p.normal_force, *opt.codes)
+    if contact is None:
+        forces, disp, stored, slip, width, thickness = spec.backbone(*args)
+    else:
+        forces, disp, stored, slip, width, thickness = spec.layer_backbone(
+            *args, *contact.kernel_args)
     section_ok = np.all(width > 0) and np.all(thickness > 0)
     if not (np.all(np.isfinite(disp)) and section_ok):
         hint = (" (the paper-literal Poisson update shrinks the section at every increment; "

@@ -37,9 +37,10 @@ from numba import njit, prange
 
 from ..energy import masing_energies
 from .centre import centre_constants, centre_flags, centre_step, centre_stored_energy
+from .layered import centre_layer_setup, centre_layer_step, tip_layer_setup, tip_layer_step
 from .tip import tip_constants, tip_flags, tip_step, tip_stored_energy
 
-__all__ = ["CHUNK", "centre_kernel", "tip_kernel"]
+__all__ = ["CHUNK", "centre_kernel", "centre_layer_kernel", "tip_kernel", "tip_layer_kernel"]
 
 #: Cases per chunk (one thread works on one chunk at a time; the state fits in L1).
 CHUNK = 256
@@ -187,5 +188,139 @@ def centre_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, f
             fr_prev = fr
         for k in range(m):
             stored[k] = centre_stored_energy(f0[k], dt[k], dc[k])
+        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
+                   out_d0, out_w, out_u, out_eta, out_section)
+
+
+@njit(parallel=True, cache=True, fastmath=False, nogil=True)
+def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio, friction,
+                     normal_force, n, poisson_code, length_update, reading, kind, stick_slope,
+                     shear_lag, code, data, symmetric, out_d0, out_w, out_u, out_eta,
+                     out_section):
+    """Tip model on a contact (:func:`~microslip.models.layered.tip_layer_step`) and Masing
+    energies for every case; arguments as for :func:`tip_kernel`, then the contact's
+    :attr:`~microslip.models.contact.Contact.kernel_args` (one contact for the batch). The
+    stored energy is NaN (strain energy ``stored`` is refused on a contact)."""
+    ncase = amplitude.shape[0]
+    nchunk = (ncase + CHUNK - 1) // CHUNK
+    k0 = (n + 1) // 2
+    for c in prange(nchunk):
+        lo = c * CHUNK
+        m = min(CHUNK, ncase - lo)
+        f0 = np.empty(m)
+        st = np.empty((m, 6))
+        cs = np.empty((m, 8))
+        doms = np.empty((m, 14))
+        d = np.zeros(m)
+        q = np.zeros(m)
+        gmin = np.ones(m)
+        q_k0 = np.zeros(m)
+        d_km1 = np.zeros(m)
+        d_k0 = np.zeros(m)
+        stored = np.full(m, np.nan)
+        flags = plain = (0.0, 0.0, 0.0)
+        for k in range(m):
+            j = lo + k
+            f0[k] = amplitude[j]
+            flags, plain, cc, cp, dom, state = tip_layer_setup(
+                length[j], width[j], thickness[j], modulus[j], poisson_ratio[j], friction[j],
+                normal_force[j], poisson_code, length_update, reading, stick_slope, shear_lag,
+                code, data)
+            for i in range(4):
+                cs[k, i] = cc[i]
+                cs[k, 4 + i] = cp[i]
+            for i in range(14):
+                doms[k, i] = dom[i]
+            for i in range(6):
+                st[k, i] = state[i]
+        fr_prev = 0.0
+        for i in range(1, n + 1):
+            fr = i / n
+            for k in range(m):
+                f = f0[k] * fr
+                fp = f0[k] * fr_prev
+                dm = doms[k]
+                dn, ra, dpn, rap, a, da, dd, _, g = tip_layer_step(
+                    f, fp, (st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4], st[k, 5]),
+                    (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3]),
+                    (cs[k, 4], cs[k, 5], cs[k, 6], cs[k, 7]), flags, plain,
+                    (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9],
+                     dm[10], dm[11], dm[12], dm[13]), code, data)
+                st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4], st[k, 5] = (dn, ra, dpn, rap,
+                                                                              a, da)
+                gmin[k] = min(gmin[k], g)
+                q[k] += (fp + f) * (dd - d[k])
+                d[k] = dd
+            _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
+            fr_prev = fr
+        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
+                   out_d0, out_w, out_u, out_eta, out_section)
+
+
+@njit(parallel=True, cache=True, fastmath=False, nogil=True)
+def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio,
+                        friction, normal_force, n, poisson_code, length_update, reading, kind,
+                        stick_slope, shear_lag, code, data, symmetric, out_d0, out_w, out_u,
+                        out_eta, out_section):
+    """Centre model (physical reading) on a contact
+    (:func:`~microslip.models.layered.centre_layer_step`); arguments as for
+    :func:`tip_layer_kernel`."""
+    ncase = amplitude.shape[0]
+    nchunk = (ncase + CHUNK - 1) // CHUNK
+    k0 = (n + 1) // 2
+    for c in prange(nchunk):
+        lo = c * CHUNK
+        m = min(CHUNK, ncase - lo)
+        f0 = np.empty(m)
+        st = np.empty((m, 14))
+        cs = np.empty((m, 10))
+        doms = np.empty((m, 28))
+        d = np.zeros(m)
+        q = np.zeros(m)
+        gmin = np.ones(m)
+        q_k0 = np.zeros(m)
+        d_km1 = np.zeros(m)
+        d_k0 = np.zeros(m)
+        stored = np.full(m, np.nan)
+        flags = plain = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        for k in range(m):
+            j = lo + k
+            f0[k] = amplitude[j]
+            flags, plain, cc, cp, dt, dc, state = centre_layer_setup(
+                length[j], width[j], thickness[j], modulus[j], poisson_ratio[j], friction[j],
+                normal_force[j], poisson_code, length_update, reading, stick_slope, shear_lag,
+                code, data)
+            for i in range(5):
+                cs[k, i] = cc[i]
+                cs[k, 5 + i] = cp[i]
+            for i in range(14):
+                doms[k, i] = dt[i]
+                doms[k, 14 + i] = dc[i]
+            for i in range(14):
+                st[k, i] = state[i]
+        fr_prev = 0.0
+        for i in range(1, n + 1):
+            fr = i / n
+            for k in range(m):
+                f = f0[k] * fr
+                fp = f0[k] * fr_prev
+                s = st[k]
+                dm = doms[k]
+                r = centre_layer_step(
+                    f, fp, (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10],
+                            s[11], s[12], s[13]),
+                    (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3], cs[k, 4]),
+                    (cs[k, 5], cs[k, 6], cs[k, 7], cs[k, 8], cs[k, 9]), flags, plain,
+                    (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9],
+                     dm[10], dm[11], dm[12], dm[13]),
+                    (dm[14], dm[15], dm[16], dm[17], dm[18], dm[19], dm[20], dm[21], dm[22],
+                     dm[23], dm[24], dm[25], dm[26], dm[27]), code, data, symmetric, 0)
+                for t in range(14):
+                    s[t] = r[t]
+                gmin[k] = min(gmin[k], min(r[17], r[18]))
+                q[k] += (fp + f) * (r[14] - d[k])
+                d[k] = r[14]
+            _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
+            fr_prev = fr
         _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
                    out_d0, out_w, out_u, out_eta, out_section)

@@ -3,9 +3,10 @@
 The paper's tip and centre models sit on a rigid Coulomb foundation under uniform pressure.
 A :class:`Contact` replaces that foundation by the elastic shear layer of
 :mod:`microslip.models.interface` (the contact's stick slope in series with the body's shear
-lag) and lets the pressure follow a law q(x). :func:`on_contact` turns a model's rigid
-backbone into the backbone on that contact, keeping the model's Poisson and length
-corrections (ModelOptions) exactly as the paper's recurrence applies them.
+lag) and lets the pressure follow a law q(x). The model's backbone on that contact
+(:mod:`microslip.models.layered`, one compiled step per model, run by the single loop and
+the batch engine alike) keeps the model's Poisson and length corrections (ModelOptions)
+exactly as the paper's recurrence applies them.
 
 How the corrections are kept: both updates change the rigid-foundation displacement by a
 factor c(F) = d_corrected(F) / d_uncorrected(F) = 1 + O(nu F / (E A), d / L), a few 1e-5 for
@@ -14,6 +15,9 @@ exact shear-layer curve d_layer(F) times the same factor. In the rigid limit d_l
 closed form d_uncorrected, so the paper's corrected recurrence is recovered exactly (to
 rounding); with a finite layer the factor's dependence on the layer is of second order in
 quantities of 1e-5.
+
+The stored energy (the bar's elastic energy) has no counterpart on a layer: it is NaN, and the
+``stored`` strain-energy definition is refused on such a contact.
 
 This module may import ``interface``, ``options``, ``params``, ``results`` and ``errors``.
 """
@@ -26,11 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
-from ..results import Backbone
-from .interface import PRESSURE_LAWS, PressureLaw, pressure_law, virgin_curve
+from ..options import ModelOptions
+from .interface import PRESSURE_LAWS, PressureLaw, pressure_law
 
-__all__ = ["DEFAULT_CONTACT", "RIGID_ONLY_ENERGIES", "Contact", "check_strain_energy",
-           "energy_defined", "on_contact"]
+__all__ = ["DEFAULT_CONTACT", "RIGID_ONLY_ENERGIES", "Contact", "check_reading",
+           "check_strain_energy", "energy_defined"]
 
 
 @dataclass(frozen=True)
@@ -77,6 +81,14 @@ class Contact:
     def law_name(self) -> str:
         return "uniform" if self.law is None else self.law.name
 
+    @property
+    def kernel_args(self) -> tuple[float, int, int, np.ndarray, int]:
+        """What the compiled layer models take (:mod:`microslip.models.layered`):
+        ``stick_slope, shear_lag, law code, law data, symmetric``."""
+        law = self.law if self.law is not None else pressure_law("uniform")
+        return float(self.stick_slope), int(self.shear_lag), law.code, law.data, \
+            int(law.symmetric)
+
     def summary(self) -> dict[str, object]:
         """JSON form; the stick slope as a number in N/mm^3 (None when rigid)."""
         return {"stick_slope_N_per_mm3": None if math.isinf(self.stick_slope)
@@ -105,44 +117,12 @@ def check_strain_energy(contact: Contact | None, kind: str) -> None:
             "contact with a stick slope or pressure law use secant, backbone or branch")
 
 
-def on_contact(rigid: Backbone, uncorrected: Backbone, contact: Contact,
-               load_case: str) -> Backbone:
-    """The backbone of ``rigid``'s model on ``contact`` (see the module notes).
-
-    ``rigid`` is the model's backbone with its options' corrections, ``uncorrected`` the same
-    model with both updates off at the same forces; ``load_case`` names the loading of
-    :mod:`~microslip.models.interface` (``tip`` or ``centre``). The stored energy (the bar's
-    elastic energy) has no counterpart computed here: it is NaN, and the ``stored``
-    strain-energy definition is refused for such a backbone.
-    """
-    if rigid.options is not None and rigid.options.centre != "physical" \
-            and len(rigid.domains) > 1:
+def check_reading(options: ModelOptions | None, domains: int) -> None:
+    """Refuse, in one line, the paper's reading of the centre model on a contact."""
+    if options is not None and options.centre != "physical" and domains > 1:
         raise ParameterError(
             "a contact stiffness or pressure law needs the physical centre reading (each half "
             "carries F/2); the paper reading of Eq. 11 has no shear-layer counterpart")
-    if rigid.params is None:
-        raise ParameterError("on_contact needs a model's backbone (one that carries its params)")
-    f = np.asarray(rigid.force, dtype=float)
-    slip, d = virgin_curve(load_case, rigid.params, f, stick_slope=contact.stick_slope,
-                           shear_lag=contact.shear_lag, law=contact.law)
-    return Backbone(
-        model=rigid.model,
-        force=f,
-        displacement=d * _factor(rigid.displacement, uncorrected.displacement),
-        domains=rigid.domains,
-        slip_length=slip.T * _factor(rigid.slip_length, uncorrected.slip_length),
-        width=rigid.width,
-        thickness=rigid.thickness,
-        stored_energy=np.full(f.shape, np.nan),
-        params=rigid.params,
-        options=rigid.options,
-    )
-
-
-def _factor(corrected: np.ndarray, plain: np.ndarray) -> np.ndarray:
-    """corrected / plain where plain > 0, else 1: what the paper's updates change."""
-    base = np.asarray(plain, dtype=float)
-    return np.divide(corrected, base, out=np.ones_like(base), where=base > 0.0)
 
 
 def pressure_law_names() -> tuple[str, ...]:

@@ -31,13 +31,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ParameterError
 from ..params import ClampParams
+from . import layer as kernel
 
 __all__ = [
     "PRESSURE_LAWS",
@@ -60,7 +61,10 @@ class PressureLaw:
 
     ``shape(xi)`` is p(xi) for xi = x / L in [0, 1] (x from one end of the clamped zone),
     ``cumulative(xi)`` its integral from 0 and ``second(xi)`` the integral of that; the line
-    friction limit is q(x) = (mu F_N / L) p(x / L), so the total is always mu F_N.
+    friction limit is q(x) = (mu F_N / L) p(x / L), so the total is always mu F_N. All three
+    evaluate the compiled law ``(code, data)`` of :mod:`microslip.models.layer`, the one the
+    models run (build a law with :func:`power_law`, :func:`table_law` or
+    :func:`pressure_law`).
     """
 
     name: str
@@ -70,11 +74,31 @@ class PressureLaw:
     description: str
     #: p(xi) = p(1 - xi): the two halves of a centre-loaded bar are mirror images.
     symmetric: bool = True
+    #: The compiled form: law code (:data:`microslip.models.layer.LAW_UNIFORM`, ...) and data.
+    code: int = kernel.LAW_UNIFORM
+    data: FloatArray = field(default_factory=lambda: np.zeros((1, 1)), compare=False)
+
+
+def _compiled_law(name: str, code: int, data: FloatArray, description: str,
+                  symmetric: bool = True) -> PressureLaw:
+    """A :class:`PressureLaw` whose NumPy functions evaluate the compiled ``(code, data)``."""
+    data = np.ascontiguousarray(data, dtype=np.float64)
+    data.setflags(write=False)
+
+    def values(which: int) -> Callable[[FloatArray], FloatArray]:
+        def evaluate(xi: FloatArray) -> FloatArray:
+            x = np.asarray(xi, dtype=np.float64)
+            flat = np.ascontiguousarray(x.reshape(-1))
+            return kernel.law_values(which, code, data, flat).reshape(x.shape)
+        return evaluate
+
+    return PressureLaw(name, values(0), values(2), values(3), description, symmetric, code,
+                       data)
 
 
 def _uniform() -> PressureLaw:
-    return PressureLaw("uniform", lambda x: np.ones_like(x), lambda x: x + 0.0,
-                       lambda x: 0.5 * x * x, "uniform pressure F_N / (L w) (the paper's)")
+    return _compiled_law("uniform", kernel.LAW_UNIFORM, np.zeros((1, 1)),
+                         "uniform pressure F_N / (L w) (the paper's)")
 
 
 def power_law(exponent: float = 2.0, edge_ratio: float = 2.0) -> PressureLaw:
@@ -91,22 +115,11 @@ def power_law(exponent: float = 2.0, edge_ratio: float = 2.0) -> PressureLaw:
         raise ParameterError(f"pressure-law edge ratio must be >= 1, got {edge_ratio!r}")
     b = r - 1.0
     c = 1.0 / (1.0 + b / (n + 1.0))
-
-    def shape(x: FloatArray) -> FloatArray:
-        return c * (1.0 + b * np.abs(2.0 * x - 1.0) ** n)
-
-    def cumulative(x: FloatArray) -> FloatArray:
-        # with z = 2 xi - 1: integral_-1^z |z|^n dz = (1 + sgn z |z|^(n+1)) / (n+1)
-        z = 2.0 * x - 1.0
-        return c * (x + 0.5 * b * (1.0 + np.sign(z) * np.abs(z) ** (n + 1.0)) / (n + 1.0))
-
-    def second(x: FloatArray) -> FloatArray:
-        z = 2.0 * x - 1.0
-        inner = (x + 0.5 * (np.abs(z) ** (n + 2.0) - 1.0) / (n + 2.0)) / (n + 1.0)
-        return c * (0.5 * x * x + 0.5 * b * inner)
-
-    return PressureLaw(f"power(n={n:g}, edge_ratio={r:g})", shape, cumulative, second,
-                       f"p = c (1 + {b:g} |2x/L - 1|^{n:g}), edges {r:g} x the middle")
+    # P, PP: with z = 2 xi - 1, exact polynomials in |z| (models/layer.py)
+    return _compiled_law(f"power(n={n:g}, edge_ratio={r:g})", kernel.LAW_POWER,
+                         np.array([[c, b, n, n if n.is_integer() and n <= kernel.WHOLE_EXPONENTS
+                                    else 0.0]]),
+                         f"p = c (1 + {b:g} |2x/L - 1|^{n:g}), edges {r:g} x the middle")
 
 
 def table_law(position: ArrayLike, pressure: ArrayLike, length: float) -> PressureLaw:
@@ -140,26 +153,12 @@ def table_law(position: ArrayLike, pressure: ArrayLike, length: float) -> Pressu
     big_pp = np.concatenate(([0.0], np.cumsum(big_p[:-1] * h + p[:-1] * h**2 / 2
                                               + slope * h**3 / 6)))
 
-    def local(xi: FloatArray) -> tuple[NDArray[np.intp], FloatArray]:
-        j = np.clip(np.searchsorted(x, xi, side="right") - 1, 0, x.size - 2)
-        return j, xi - x[j]
-
-    def shape(xi: FloatArray) -> FloatArray:
-        j, e = local(xi)
-        return p[j] + slope[j] * e
-
-    def cumulative(xi: FloatArray) -> FloatArray:
-        j, e = local(xi)
-        return big_p[j] + p[j] * e + slope[j] * e**2 / 2
-
-    def second(xi: FloatArray) -> FloatArray:
-        j, e = local(xi)
-        return big_pp[j] + big_p[j] * e + p[j] * e**2 / 2 + slope[j] * e**3 / 6
-
     mirrored = np.interp(1.0 - x, x, p)
-    return PressureLaw(f"table({x.size} points)", shape, cumulative, second,
-                       "piecewise-linear pressure from a table", symmetric=bool(
-                           np.allclose(mirrored, p, rtol=1e-12, atol=1e-12)))
+    data = np.zeros((5, x.size))
+    data[0], data[1], data[2, :-1], data[3], data[4] = x, p, slope, big_p, big_pp
+    return _compiled_law(f"table({x.size} points)", kernel.LAW_TABLE, data,
+                         "piecewise-linear pressure from a table", symmetric=bool(
+                             np.allclose(mirrored, p, rtol=1e-12, atol=1e-12)))
 
 
 def read_pressure_table(path: str, length: float) -> PressureLaw:
@@ -207,11 +206,8 @@ def layer_stiffness(params: ClampParams, stick_slope: float, *, shear_lag: bool 
     """
     if not stick_slope > 0.0:
         raise ParameterError(f"stick slope must be > 0 N/mm^3, got {stick_slope!r}")
-    compliance = 1.0 / (stick_slope * params.width)
-    if shear_lag:
-        shear_modulus = params.modulus / (2.0 * (1.0 + params.poisson_ratio))
-        compliance += params.thickness / (3.0 * shear_modulus * params.width)
-    return math.inf if compliance == 0.0 else 1.0 / compliance
+    return float(kernel.layer_k(params.width, params.thickness, params.modulus,
+                                params.poisson_ratio, float(stick_slope), int(shear_lag)))
 
 
 @dataclass(frozen=True)
@@ -222,6 +218,7 @@ class Domain:
     ``axial`` E A (N), ``k`` the layer stiffness per unit length (N/mm^2, inf: rigid),
     ``limit`` mu F_N of the whole clamped zone (N), ``span`` its length L (mm); the line
     friction limit is q = (limit / span) p(xi) with s the distance from the loaded section.
+    The arithmetic is :mod:`microslip.models.layer`'s, on :attr:`constants`.
     """
 
     length: float
@@ -234,47 +231,30 @@ class Domain:
     direction: float
 
     @property
-    def lam(self) -> float:
-        return math.sqrt(self.k / self.axial) if math.isfinite(self.k) else math.inf
-
-    def _xi(self, s: FloatArray) -> FloatArray:
-        return self.xi0 + self.direction * s / self.span
-
-    def q(self, s: FloatArray) -> FloatArray:
-        return self.limit / self.span * self.law.shape(self._xi(s))
-
-    def Q(self, s: FloatArray) -> FloatArray:
-        """Friction limit integrated from the loaded section to s, N."""
-        p0 = self.law.cumulative(np.full_like(s, self.xi0))
-        return self.limit * self.direction * (self.law.cumulative(self._xi(s)) - p0)
-
-    def R(self, s: FloatArray) -> FloatArray:
-        """integral_0^s Q, N mm."""
-        xi = self._xi(s)
-        x0 = np.full_like(s, self.xi0)
-        p0 = self.law.cumulative(x0)
-        return self.limit * self.span * (self.law.second(xi) - self.law.second(x0)
-                                         - p0 * (xi - x0))
+    def constants(self) -> tuple[float, ...]:
+        """The compiled domain (:func:`microslip.models.layer.domain_constants`)."""
+        return tuple(kernel.domain_constants(self.length, self.axial, self.k, self.limit,
+                                             self.span, self.xi0, self.direction,
+                                             self.law.code, self.law.data))
 
     @property
     def total(self) -> float:
         """The domain's macroslip force, N."""
-        return float(self.Q(np.array([self.length]))[0])
+        return float(self.constants[11])
 
-    def force(self, a: FloatArray) -> FloatArray:
+    @property
+    def onset(self) -> float:
+        """F(0), the load at which the domain starts to slip, N."""
+        return float(self.constants[12])
+
+    def force(self, a: ArrayLike) -> FloatArray:
         """F(a): the load that puts the slip front at a."""
-        if math.isinf(self.lam):
-            return self.Q(a)
-        return self.Q(a) + self.q(a) / self.lam * np.tanh(self.lam * (self.length - a))
-
-    def displacement(self, a: FloatArray, f: FloatArray) -> FloatArray:
-        """d at the loaded section for slip front a under force f."""
-        layer = 0.0 if math.isinf(self.k) else self.q(a) / self.k
-        return layer + (f * a - self.R(a)) / self.axial
+        dom, law = self.constants, self.law
+        return np.array([kernel.domain_force(dom, law.code, law.data, float(x))[0]
+                         for x in np.atleast_1d(np.asarray(a, dtype=float))])
 
     def stuck_stiffness(self) -> float:
-        return math.inf if math.isinf(self.lam) else self.axial * self.lam * math.tanh(
-            self.lam * self.length)
+        return float(self.constants[13])
 
 
 def tip_domain(params: ClampParams, k: float, law: PressureLaw) -> Domain:
@@ -294,29 +274,20 @@ def centre_domains(params: ClampParams, k: float, law: PressureLaw) -> tuple[Dom
     return domain(1.0), domain(-1.0)
 
 
-def slip_front(bar: Domain, force: ArrayLike, iterations: int = 64) -> FloatArray:
-    """The slip front a(F) in [0, L] by bisection on the monotone F(a) (a = 0 before slip)."""
-    f = np.asarray(force, dtype=float)
-    lo = np.zeros_like(f)
-    hi = np.full_like(f, bar.length)
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        below = bar.force(mid) < f
-        lo = np.where(below, mid, lo)
-        hi = np.where(below, hi, mid)
-    a = 0.5 * (lo + hi)
-    return np.where(f <= bar.force(np.zeros_like(f)), 0.0, a)
+def slip_front(bar: Domain, force: ArrayLike) -> FloatArray:
+    """The slip front a(F) in [0, L] (a = 0 before slip), :func:`~microslip.models.layer.front`."""
+    return backbone_force(bar, force, check=False)[0]
 
 
-def backbone_force(bar: Domain, force: ArrayLike) -> tuple[FloatArray, FloatArray]:
+def backbone_force(bar: Domain, force: ArrayLike, *,
+                   check: bool = True) -> tuple[FloatArray, FloatArray]:
     """(slip front a, displacement d) of the virgin curve at the forces given, mm."""
     f = np.asarray(force, dtype=float)
-    if np.any(f >= bar.total):
+    if check and np.any(f >= bar.total):
         raise ParameterError(f"force must stay below the macroslip force {bar.total:g} N")
-    a = slip_front(bar, f)
-    stuck = a <= 0.0
-    d = np.where(stuck, f / bar.stuck_stiffness(), bar.displacement(a, f))
-    return a, d
+    flat = np.ascontiguousarray(f.reshape(-1))
+    a, d = kernel.domain_curve(bar.constants, bar.law.code, bar.law.data, flat)
+    return a.reshape(f.shape), d.reshape(f.shape)
 
 
 def tip_backbone(params: ClampParams, force: ArrayLike, *, stick_slope: float = math.inf,
@@ -334,22 +305,20 @@ LOADINGS: dict[str, Callable[[ClampParams, float, PressureLaw], tuple[Domain, ..
 }
 
 
-def _split(domains: tuple[Domain, ...], f: FloatArray, law: PressureLaw) -> list[FloatArray]:
-    """Share of the load carried by each parallel domain (equal displacement of all)."""
+def _curve(domains: tuple[Domain, ...], f: FloatArray,
+           law: PressureLaw) -> tuple[FloatArray, FloatArray]:
+    """(slip of each domain, d) with the load shared by equal displacement of all domains."""
     if len(domains) == 1:
-        return [f]
-    if law.symmetric:
-        return [f / len(domains)] * len(domains)
+        a, d = backbone_force(domains[0], f, check=False)
+        return a[None, :], d
     first, second = domains
-    lo, hi = np.zeros_like(f), f.copy()
-    for _ in range(60):  # d_1(F_1) - d_2(F - F_1) grows with F_1
-        mid = 0.5 * (lo + hi)
-        d1 = backbone_force(first, mid)[1]
-        d2 = backbone_force(second, f - mid)[1]
-        lo = np.where(d1 < d2, mid, lo)
-        hi = np.where(d1 < d2, hi, mid)
-    share = 0.5 * (lo + hi)
-    return [share, f - share]
+    if law.symmetric:
+        share = f / len(domains)
+        (a1, d), (a2, _) = (backbone_force(first, share, check=False),
+                            backbone_force(second, share, check=False))
+        return np.array([a1, a2]), d
+    a1, a2, d = kernel.split_curve(first.constants, second.constants, law.code, law.data, f)
+    return np.array([a1, a2]), d
 
 
 def virgin_curve(loading: str, params: ClampParams, force: ArrayLike, *,
@@ -366,17 +335,14 @@ def virgin_curve(loading: str, params: ClampParams, force: ArrayLike, *,
         raise ParameterError(
             f"unknown loading {loading!r}; choose one of {', '.join(LOADINGS)}") from None
     law = law or _uniform()
-    f = np.asarray(force, dtype=float)
+    f = np.ascontiguousarray(np.asarray(force, dtype=float).reshape(-1))
     domains = build(params, layer_stiffness(params, stick_slope, shear_lag=shear_lag), law)
     limit = sum(d.total for d in domains)
     if np.any(f >= limit) or np.any(f < 0.0):
         raise ParameterError(
             f"force must lie in [0, {limit:g}) N (below the macroslip force), got "
             f"{float(np.max(f)):g} N")
-    shares = _split(domains, f, law)
-    results = [backbone_force(dom, share) for dom, share in zip(domains, shares, strict=True)]
-    slip = np.array([a for a, _ in results])
-    return slip, results[0][1]
+    return _curve(domains, f, law)
 
 
 def masing_dissipation(loading: str, params: ClampParams, amplitude: float, *,
@@ -413,8 +379,7 @@ def _slip_onset(loading: str, params: ClampParams, *, stick_slope: float, shear_
                                 law)
     if math.isinf(domains[0].k):
         return 0.0
-    zero = np.zeros(1)
-    onsets = [float(d.force(zero)[0]) for d in domains]
+    onsets = [d.onset for d in domains]
     # Before slip the domains share the load in proportion to their stuck stiffnesses.
     stiff = np.array([d.stuck_stiffness() for d in domains])
     return float(min(o * stiff.sum() / k for o, k in zip(onsets, stiff, strict=True)))

@@ -14,14 +14,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..batch import PARAM_FIELDS, batch_damping, default_backend, prepare_batch
+from ..batch import batch_damping, default_backend, prepare_batch
 from ..batch.driver import run_batch
 from ..cluster import map_on_cluster
-from ..energy import damping_from_backbone
 from ..errors import ParameterError
-from ..models import first_loading
+from ..models.contact import Contact
 from ..options import ModelOptions
-from ..params import ClampParams
 from ..progress import progress_bar
 from .failures import case_failures
 from .parameters import PARAMETERS, FloatArray
@@ -158,11 +156,6 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
                 masks[i] = ok
                 why.update(reasons)
     be = default_backend() if backend is None else backend
-    if spec.contact is not None:
-        if scheduler is not None:
-            raise ParameterError("a sweep on a contact with a stick slope or pressure law runs "
-                                 "case by case in this process; leave out --scheduler")
-        be = "per case (shear-layer model)"
     out = [np.empty(spec.size) for _ in range(4)]
     t0 = time.perf_counter()
     with progress_bar(spec.size, f"{spec.model} sweep", enabled=progress, unit="case") as bar:
@@ -180,14 +173,12 @@ def run_sweep(spec: SweepSpec, *, chunk_size: int = DEFAULT_CHUNK,
         for i in sorted(set(range(len(chunks))) - set(todo)):  # every case failed
             store(i, tuple(np.empty(0) for _ in range(4)))
         inputs = [_chunk_inputs(spec, *chunks[i], masks[i]) for i in todo]
-        if spec.contact is not None:
-            _run_on_contact(spec, inputs, lambda j, res: store(todo[j], res))
-        elif scheduler is None:
+        if scheduler is None:
             _run_local(spec, [chunks[i][0] for i in todo], inputs, be, threads,
                        lambda j, res: store(todo[j], res))
         else:
             payloads = [(spec.model, *inp, spec.increments, spec.options,
-                         spec.strain_energy, be, 1) for inp in inputs]
+                         spec.strain_energy, be, 1, spec.contact) for inp in inputs]
             map_on_cluster(_chunk_task, payloads, scheduler, retries=retries,
                            on_result=lambda j, res: store(todo[j], res))
     elapsed = time.perf_counter() - t0
@@ -217,37 +208,16 @@ def _run_local(spec: SweepSpec, starts: Sequence[int],
     (``starts``: the index of each chunk's first case, for error messages)."""
     for i, (lo, (params, amp)) in enumerate(zip(starts, inputs, strict=True)):
         inp = prepare_batch(spec.model, params, amp, spec.increments, spec.options,
-                            spec.strain_energy, where=(lo, spec.size))
+                            spec.strain_energy, where=(lo, spec.size), contact=spec.contact)
         r = run_batch(inp, backend=backend, threads=threads)
         store(i, (r.peak_displacement, r.dissipated_energy, r.strain_energy, r.loss_factor))
 
 
-def _run_on_contact(spec: SweepSpec,
-                    inputs: Sequence[tuple[dict[str, FloatArray | float], FloatArray | float]],
-                    store: Callable[[int, tuple[FloatArray, ...]], None]) -> None:
-    """Every case through :func:`microslip.models.first_loading` on the spec's contact (the
-    batch engine has the rigid foundation only); same columns as the batch engine."""
-    for i, (params, amp) in enumerate(inputs):
-        amps = np.atleast_1d(np.asarray(amp, dtype=float))
-        m = max([amps.size] + [np.size(v) for v in params.values()])
-        amps = np.broadcast_to(amps, (m,))
-        cols = {k: np.broadcast_to(np.asarray(v, dtype=float), (m,)) for k, v in params.items()}
-        res = [np.empty(m) for _ in range(4)]
-        for j in range(m):
-            p = ClampParams(**{k: float(cols[k][j]) for k in PARAM_FIELDS})
-            bb = first_loading(spec.model, p, float(amps[j]), spec.increments, spec.options,
-                               spec.contact)
-            r = damping_from_backbone(bb, spec.strain_energy)
-            for o, v in zip(res, (r.peak_displacement, r.dissipated_energy, r.strain_energy,
-                                  r.loss_factor), strict=True):
-                o[j] = v
-        store(i, tuple(res))
-
-
 def _chunk_task(model: str, params: dict[str, Any], amplitude: Any, increments: int,
                 options: ModelOptions, strain_energy: str, backend: str | None,
-                threads: int | None) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+                threads: int | None, contact: Contact | None = None
+                ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """One independent chunk of a sweep (also the Dask task)."""
     r = batch_damping(model, params, amplitude, increments, options, strain_energy,
-                      backend=backend, threads=threads)
+                      backend=backend, threads=threads, contact=contact)
     return (r.peak_displacement, r.dissipated_energy, r.strain_energy, r.loss_factor)

@@ -76,8 +76,8 @@ class SweepSpec:
     strain_energy : str
     contact : Contact or None
         The interface under the bar (stick slope, shear lag, pressure law); None: the
-        paper's rigid foundation, computed by the batch engine. Any other contact is
-        computed case by case (:func:`microslip.models.first_loading`).
+        paper's rigid foundation. Either way the batch engine computes every case, on a
+        contact with the model's compiled layer step (:mod:`microslip.models.layered`).
     """
 
     model: str
