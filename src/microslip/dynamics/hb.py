@@ -54,15 +54,17 @@ def from_time(values: Array, harmonics: int) -> Array:
 class Residual:
     """The harmonic-balance residual (N) and its derivatives at one point.
 
-    Attributes: ``r`` (n_eq,), ``dx`` (n_eq, n_eq) = dr/dX (N/mm), ``dw`` (n_eq,) = dr/dw
-    (N·s), ``dxi`` (n_eq,) = dr/dxi (N·s), xi being the mass-proportional negative damping
-    of the extended periodic motion concept.
+    Attributes: ``r`` (n_eq,), ``jac`` (n_eq, n_eq + 1) = [dr/dX | dr/dw], of which ``dx``
+    (n_eq, n_eq) = dr/dX (N/mm) and ``dw`` (n_eq,) = dr/dw (N·s) are views, ``dxi``
+    (n_eq,) = dr/dxi (N·s), xi being the mass-proportional negative damping of the
+    extended periodic motion concept.
     """
 
-    __slots__ = ("dw", "dx", "dxi", "r")
+    __slots__ = ("dw", "dx", "dxi", "jac", "r")
 
-    def __init__(self, r: Array, dx: Array, dw: Array, dxi: Array) -> None:
-        self.r, self.dx, self.dw, self.dxi = r, dx, dw, dxi
+    def __init__(self, r: Array, jac: Array, dxi: Array) -> None:
+        self.r, self.jac, self.dxi = r, jac, dxi
+        self.dx, self.dw = jac[:, :-1], jac[:, -1]
 
 
 class HarmonicBalance:
@@ -143,16 +145,16 @@ class HarmonicBalance:
         """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
         (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s)."""
         n = self.size
-        r, dyn, dw, dxi = np.empty(n), np.empty((n, n)), np.empty(n), np.empty(n)
+        r, jac, dxi = np.empty(n), np.empty((n, n + 1)), np.empty(n)
         balance_kernel(np.ascontiguousarray(x, dtype=np.float64), float(omega), float(xi),
                        np.ascontiguousarray(load, dtype=np.float64), self._k, self._m,
                        self._c, self._mc, *self._compiled, self._synth, self._analysis,
-                       r, dyn, dw, dxi)
+                       r, jac, dxi)
         for operator, idx, b, block in self._links:
             force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
             r[idx] += b @ force
-            dyn[block] += b @ dforce @ b.T
-        return Residual(r, dyn, dw, dxi)
+            jac[block] += b @ dforce @ b.T
+        return Residual(r, jac, dxi)
 
     def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
                         ) -> tuple[Array, Array]:

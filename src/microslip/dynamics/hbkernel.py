@@ -22,9 +22,9 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
                    kk: np.ndarray, mm: np.ndarray, cc: np.ndarray, mc: np.ndarray,
                    weights: np.ndarray, phi: np.ndarray, ck: np.ndarray, ckp: np.ndarray,
                    offsets: np.ndarray, synth: np.ndarray, analysis: np.ndarray,
-                   r: np.ndarray, dx: np.ndarray, dw: np.ndarray, dxi: np.ndarray) -> None:
-    """Residual ``r`` (N, (n,)), ``dx`` = dr/dx (N/mm, (n, n)), ``dw`` = dr/dw and ``dxi``
-    = dr/dxi (N·s, (n,)) at coefficients ``x`` (mm), written into the given arrays.
+                   r: np.ndarray, jac: np.ndarray, dxi: np.ndarray) -> None:
+    """Residual ``r`` (N, (n,)), ``jac`` = [dr/dx | dr/dw] (N/mm and N·s, (n, n + 1)) and
+    ``dxi`` = dr/dxi (N·s, (n,)) at coefficients ``x`` (mm), written into the given arrays.
 
     ``kk``, ``mm``, ``cc``, ``mc``: the (n, n) matrices ``K``, ``M k^2``, ``C d/dtheta`` and
     ``M d/dtheta`` of :class:`~.hb.HarmonicBalance` (N/mm); ``weights`` (joints, dofs) the
@@ -35,7 +35,7 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
     Notes
     -----
     ``r = (K - w^2 M k^2 + w (C - xi M) d/dtheta) x - P + sum_j B_j F_j(B_j^T x)``,
-    ``B_j = w_j kron I_h``; ``dx`` the bracket plus ``B_j dF_j/dU B_j^T``.
+    ``B_j = w_j kron I_h``; dr/dx the bracket plus ``B_j dF_j/dU B_j^T``.
     """
     n = x.size
     h = synth.shape[1]
@@ -48,14 +48,14 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
         mci = 0.0
         for j in range(n):
             a = kk[i, j] - w2 * mm[i, j] + omega * cc[i, j] - wxi * mc[i, j]
-            dx[i, j] = a
+            jac[i, j] = a
             xj = x[j]
             ri += a * xj
             mi += mm[i, j] * xj
             ci += cc[i, j] * xj
             mci += mc[i, j] * xj
         r[i] = ri
-        dw[i] = -2.0 * omega * mi + ci - xi * mci
+        jac[i, n] = -2.0 * omega * mi + ci - xi * mci
         dxi[i] = -omega * mci
     dofs = weights.shape[1]
     u = np.empty(h)
@@ -85,4 +85,4 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
                     continue
                 for a in range(h):
                     for b in range(h):
-                        dx[d * h + a, e * h + b] += we * dforce[a, b]
+                        jac[d * h + a, e * h + b] += we * dforce[a, b]
