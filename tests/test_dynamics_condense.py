@@ -44,7 +44,7 @@ def test_condensed_residual_vanishes_at_the_full_solution_and_rebuilds_it(planar
     assert condensable(hb)
     load = hb.excitation(np.full(s.dofs, 40.0), 1.0)
     w = 2 * np.pi * 0.95 * float(s.linear_frequencies(stuck=True)[0])
-    x = response._solve_at(hb, load, w, hb.stuck_guess(w, load))
+    x, _ = response._solve_at(response._Full(hb, load), w, hb.stuck_guess(w, load))
     c = Condensed(hb, load)
     u = c.joints(x)
     r, _ = c.residual(np.append(u, w))
@@ -70,6 +70,27 @@ def test_condensed_jacobian_matches_finite_differences():
         if np.allclose(fwd, bwd, rtol=0, atol=1e-6 * np.abs(jac).max()):  # no kink
             np.testing.assert_allclose(jac[:, i], 0.5 * (fwd + bwd), rtol=0,
                                        atol=1e-6 * np.abs(jac).max())
+
+
+def test_condensed_amplitude_is_that_of_the_rebuilt_coefficients_and_its_gradient():
+    s = chain()
+    hb = HarmonicBalance(s, 3, 64)
+    load = hb.excitation(np.full(s.dofs, 40.0), 1.0)
+    c = Condensed(hb, load)
+    rng = np.random.default_rng(2)
+    w = 2 * np.pi * float(s.linear_frequencies(stuck=True)[0])
+    y = np.append(2e-3 * rng.standard_normal(c.size), w)
+    a, grad = c.amplitude(y)
+    assert a == pytest.approx(hb.amplitude(c.coefficients(y[:-1], w))[0], rel=1e-13)
+    for i in range(y.size):
+        step = 1e-7 * (w if i == c.size else 2e-3)
+        e = np.zeros(y.size)
+        e[i] = step
+        fwd = (c.amplitude(y + e)[0] - a) / step
+        bwd = (a - c.amplitude(y - e)[0]) / step
+        if abs(fwd - bwd) <= 1e-6 * np.abs(grad).max():  # no kink
+            assert grad[i] == pytest.approx(0.5 * (fwd + bwd), rel=0,
+                                            abs=1e-6 * np.abs(grad).max())
 
 
 def test_condensed_frequency_response_is_the_full_one(monkeypatch):

@@ -91,3 +91,30 @@ def test_seven_harmonics_against_time_integration_to_steady_state():
     for i in range(0, r.frequency.size, 25):
         s = steady_state(structure, force, float(r.frequency[i]), periods=150, steps=500)
         assert s.amplitude == pytest.approx(r.amplitude[i], rel=1e-3)
+
+
+@pytest.mark.parametrize("force", [20.0, 50.0])
+def test_the_located_peak_is_where_the_slope_changes_sign(force):
+    """dA/dw (implicit function theorem at the solved balance) is > 0 just below the
+    located peak and < 0 just above it, 1e-10 of the frequency away, and A there is not
+    below any continuation point: the tip joint's peak is a corner of A(w), where dA/dw
+    jumps (the smooth peak is checked against Duffing's closed form in test_dynamics_hb)."""
+    from microslip import preset
+    from microslip.dynamics import clamp_joint
+
+    s = one_mode(1000.0, 1.0, 0.002, clamp_joint("tip", preset("table1"), 1e5))
+    band = (0.8 * float(s.linear_frequencies(stuck=False)[0]),
+            float(s.linear_frequencies(stuck=True)[0]) / 0.8)
+    r = frequency_response(s, force, ONE, band, 5, 64)
+    hb = HarmonicBalance(s, 5, 64)
+    load = hb.excitation(ONE, force)
+    assert 0 < int(np.argmax(r.amplitude)) < r.amplitude.size - 1
+    assert r.peak_amplitude >= r.amplitude.max()
+
+    def slope(f):
+        j = int(np.searchsorted(r.frequency, f))
+        x = solve_at(hb, load, 2 * np.pi * f, r.coefficients[j])
+        res = hb.residual(x, 2 * np.pi * f, load)
+        return hb.amplitude(x)[1] @ np.linalg.solve(res.dx, -res.dw)
+
+    assert slope(r.peak_frequency * (1 - 1e-10)) > 0.0 > slope(r.peak_frequency * (1 + 1e-10))

@@ -140,6 +140,37 @@ class Condensed:
         jac[:, -1] = self._vector((dg @ fk)[:, :, 0] - dup, np.zeros(nb))
         return r, jac
 
+    def amplitude(self, y: Array) -> tuple[float, Array]:
+        """First-harmonic amplitude (mm) of the output coordinate o . x at ``y = [u, w]``
+        and its gradient in y.
+
+        Notes
+        -----
+        With Z = Z_1 symmetric and v = Z^-1 o: ``q = o . (c_1 - i s_1) = v^T (P_1 - B f_1)``
+        (f_1 = F_c1 - i F_s1 the joints' first force harmonic), ``dq/du = -v^T B df_1/du``,
+        ``dq/dw = -v^T Z' x_1``; A = |q|, dA = Re(conj(q) dq) / A.
+        """
+        u, omega = y[:-1], float(y[-1])
+        force = np.empty(self.size)
+        dforce = np.zeros((self.size, self.size))
+        for operator, part in self._slices:
+            force[part], dforce[part, part] = self.hb.joint_harmonics(operator, u[part])
+        cos, sin = self._cos[0], self._sin[0]
+        f1 = force[cos] - 1j * force[sin]
+        z = self._k - omega**2 * self._m + 1j * omega * self._c
+        dz = -2.0 * omega * self._m + 1j * self._c
+        rhs = np.column_stack([self.hb.structure.output, self._p[0, :, 0] - self._b @ f1])
+        sol = np.linalg.solve(z, rhs.astype(np.complex128))
+        v, x1 = sol[:, 0], sol[:, 1]
+        q = complex(v @ rhs[:, 1])
+        a = abs(q)
+        grad = np.zeros(self.size + 1)
+        if a > 0.0:
+            dq_du = -(v @ self._b) @ (dforce[cos] - 1j * dforce[sin])
+            grad[:-1] = (q.conjugate() * dq_du).real / a
+            grad[-1] = (q.conjugate() * -(v @ dz @ x1)).real / a
+        return a, grad
+
     def joints(self, x: Array) -> Array:
         """The joints' harmonics u = B^T x of full coefficients ``x`` (mm)."""
         h = 2 * self.hb.harmonics + 1

@@ -73,12 +73,12 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
             y = y + step
             return y, bool(np.all(np.isfinite(y))), jac
         previous = size
-        norm0 = float(np.linalg.norm(r))
+        norm0 = float(r @ r)
         lam = 1.0
         for _ in range(10):
             trial = y + lam * step
             r_new, jac_new = fun(trial)
-            if np.linalg.norm(r_new) <= norm0 or lam * size < tol:
+            if float(r_new @ r_new) <= norm0 or lam * size < tol:
                 break
             lam *= 0.5
         y, r, jac = trial, r_new, jac_new
@@ -142,11 +142,15 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
     while len(points) < max_points:
         y_pred = y + h * t
         row = t / scale**2
+        n = y.size - 1
 
-        def corrector(z: Array, y_pred: Array = y_pred, row: Array = row
+        def corrector(z: Array, y_pred: Array = y_pred, row: Array = row, n: int = n
                       ) -> tuple[Array, Array]:
             r, j = fun(z)
-            return np.append(r, row @ (z - y_pred)), np.vstack([j, row])
+            r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1))
+            r_aug[:n], r_aug[n] = r, row @ (z - y_pred)
+            j_aug[:n], j_aug[n] = j, row
+            return r_aug, j_aug
 
         y_new, ok, jac = newton(corrector, y_pred, scale, tol)
         t_new = t

@@ -17,9 +17,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
-from .operators import HystereticOperator
+from .hbkernel import balance_kernel
+from .operators import HystereticOperator, IwanOperator
 from .operators2d import CircularIwan
-from .structure import SI_PER_MM, Structure
+from .structure import SI_PER_MM, JointLink, Structure
 
 __all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
 
@@ -53,15 +54,17 @@ def from_time(values: Array, harmonics: int) -> Array:
 class Residual:
     """The harmonic-balance residual (N) and its derivatives at one point.
 
-    Attributes: ``r`` (n_eq,), ``dx`` (n_eq, n_eq) = dr/dX (N/mm), ``dw`` (n_eq,) = dr/dw
-    (N·s), ``dxi`` (n_eq,) = dr/dxi (N·s), xi being the mass-proportional negative damping
-    of the extended periodic motion concept.
+    Attributes: ``r`` (n_eq,), ``jac`` (n_eq, n_eq + 1) = [dr/dX | dr/dw], of which ``dx``
+    (n_eq, n_eq) = dr/dX (N/mm) and ``dw`` (n_eq,) = dr/dw (N·s) are views, ``dxi``
+    (n_eq,) = dr/dxi (N·s), xi being the mass-proportional negative damping of the
+    extended periodic motion concept.
     """
 
-    __slots__ = ("dw", "dx", "dxi", "r")
+    __slots__ = ("dw", "dx", "dxi", "jac", "r")
 
-    def __init__(self, r: Array, dx: Array, dw: Array, dxi: Array) -> None:
-        self.r, self.dx, self.dw, self.dxi = r, dx, dw, dxi
+    def __init__(self, r: Array, jac: Array, dxi: Array) -> None:
+        self.r, self.jac, self.dxi = r, jac, dxi
+        self.dx, self.dw = jac[:, :-1], jac[:, -1]
 
 
 class HarmonicBalance:
@@ -104,11 +107,18 @@ class HarmonicBalance:
         # the AFT's two transforms as matrices (small: a product beats an FFT call)
         self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)  # (N, h)
         self._analysis = np.ascontiguousarray(from_time(np.eye(samples), harmonics).T)
-        # joint j's harmonics U = B_j^T x (direction-major), its force enters as B_j F
-        # (B_j = W_j kron I_h, W_j the (n_dof, directions) participation), kept only on
-        # the rows of the DOFs the joint touches
+        # the 1-D Iwan joints go into the compiled residual (:mod:`.hbkernel`), any other
+        # joint j is added in Python: its harmonics U = B_j^T x (direction-major), its force
+        # enters as B_j F (B_j = W_j kron I_h, W_j the (n_dof, directions) participation),
+        # kept only on the rows of the DOFs the joint touches
+        compiled = [isinstance(link.operator, IwanOperator) and link.directions == 1
+                    for link in structure.joints]
+        self._compiled = _compiled_joints(
+            [link for link, c in zip(structure.joints, compiled, strict=True) if c],
+            structure.dofs)
         self._links = tuple(_condensed(link.operator, link.weights, h)
-                            for link in structure.joints)
+                            for link, c in zip(structure.joints, compiled, strict=True)
+                            if not c)
 
     @property
     def size(self) -> int:
@@ -134,19 +144,17 @@ class HarmonicBalance:
     def residual(self, x: Array, omega: float, load: Array, xi: float = 0.0) -> Residual:
         """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
         (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s)."""
-        dyn = self._k - omega**2 * self._m + omega * self._c
-        if xi:
-            dyn -= (omega * xi) * self._mc
-        r = dyn @ x - load
+        n = self.size
+        r, jac, dxi = np.empty(n), np.empty((n, n + 1)), np.empty(n)
+        balance_kernel(np.ascontiguousarray(x, dtype=np.float64), float(omega), float(xi),
+                       np.ascontiguousarray(load, dtype=np.float64), self._k, self._m,
+                       self._c, self._mc, *self._compiled, self._synth, self._analysis,
+                       r, jac, dxi)
         for operator, idx, b, block in self._links:
             force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
             r[idx] += b @ force
-            dyn[block] += b @ dforce @ b.T
-        dw = (-2.0 * omega) * (self._m @ x) + self._c @ x
-        if xi:
-            dw -= xi * (self._mc @ x)
-        dxi = -omega * (self._mc @ x)
-        return Residual(r, dyn, dw, dxi)
+            jac[block] += b @ dforce @ b.T
+        return Residual(r, jac, dxi)
 
     def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
                         ) -> tuple[Array, Array]:
@@ -178,6 +186,25 @@ class HarmonicBalance:
             grad[:, 1] = out * (c / a)
             grad[:, 2] = out * (s / a)
         return a, grad.ravel()
+
+
+def _compiled_joints(links: list[JointLink], dofs: int) -> tuple[Array, Array, Array, Array,
+                                                                  NDArray[np.int64]]:
+    """The 1-D Iwan joints ``links`` as :func:`~.hbkernel.balance_kernel` takes them:
+    weights (joints, dofs), and every joint's ascending phi (mm) and running sums of k and
+    k phi concatenated, with the offsets of the phi."""
+    weights = np.zeros((len(links), dofs))
+    phi, ck, ckp, offsets = [], [], [], [0]
+    for j, link in enumerate(links):
+        weights[j] = link.participation
+        p, c, cp = link.operator.ascending  # type: ignore[union-attr]
+        phi.append(p)
+        ck.append(c)
+        ckp.append(cp)
+        offsets.append(offsets[-1] + p.size)
+    def flat(parts: list[Array]) -> Array:
+        return np.ascontiguousarray(np.concatenate(parts) if parts else np.zeros(0))
+    return weights, flat(phi), flat(ck), flat(ckp), np.array(offsets, dtype=np.int64)
 
 
 def _condensed(operator: HystereticOperator | CircularIwan, weights: Array, h: int

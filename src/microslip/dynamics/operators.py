@@ -130,10 +130,10 @@ class IwanOperator:
         return np.asarray(np.sign(a) * mag)
 
     @cached_property
-    def _ascending(self) -> tuple[NDArray[np.float64], NDArray[np.float64],
+    def ascending(self) -> tuple[NDArray[np.float64], NDArray[np.float64],
                                   NDArray[np.float64]]:
-        """phi ascending and the running sums of k and k phi over it (from 0), the
-        periodic kernel's view of the elements."""
+        """phi ascending (mm) and the running sums of k and k phi over it (from 0; N/mm,
+        N), the periodic kernel's view of the elements."""
         order = np.argsort(self.slip, kind="stable")
         k, phi = self.stiffness[order], self.slip[order]
         ck = np.concatenate([[0.0], np.cumsum(k)])
@@ -155,7 +155,7 @@ class IwanOperator:
             raise ParameterError(f"basis must have shape ({x.size}, m), got {basis.shape}")
         f = np.zeros(x.size)
         jb = np.zeros(basis.shape)
-        periodic_kernel(x, *self._ascending, int(np.argmax(np.abs(x))), basis, f, jb)
+        periodic_kernel(x, *self.ascending, int(np.argmax(np.abs(x))), basis, f, jb)
         return f, jb
 
     def periodic_harmonics(self, u: NDArray[np.float64], synth: NDArray[np.float64],
@@ -167,7 +167,7 @@ class IwanOperator:
         coefficients -> samples, ``analysis`` (m, N) samples -> coefficients)."""
         force = np.zeros(u.size)
         dforce = np.zeros((u.size, u.size))
-        periodic_harmonics_kernel(u, synth, analysis, *self._ascending, force, dforce)
+        periodic_harmonics_kernel(u, synth, analysis, *self.ascending, force, dforce)
         return force, dforce
 
     def force_history(self, x: NDArray[np.float64],

@@ -10,7 +10,6 @@ import math
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..named import result
@@ -102,12 +101,13 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
                              f"{frequency_range!r}")
     hb = HarmonicBalance(structure, harmonics, samples)
     load = hb.excitation(shape, force)
-    x0 = _solve_at(hb, load, lo, hb.stuck_guess(lo, load))
-    if x0 is None:
+    system = Condensed(hb, load) if condensable(hb) else _Full(hb, load)
+    start = _solve_at(system, lo, system.joints(hb.stuck_guess(lo, load)))
+    if start is None:
         raise ParameterError(f"no harmonic-balance solution found at {frequency_range[0]:g} "
                              "Hz; start the frequency range elsewhere")
-    system = Condensed(hb, load) if condensable(hb) else _Full(hb, load)
-    a_ref = max(system.reach(system.joints(x0)), 1e-300)
+    u0 = start[0]
+    a_ref = max(system.reach(u0), 1e-300)
 
     def rescale(y: Array, scale: Array) -> Array:
         out = scale.copy()
@@ -118,19 +118,19 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
     scale[-1] = hi - lo
     direction = np.zeros(system.size + 1)
     direction[-1] = 1.0
-    curve = arclength(system.residual, np.append(system.joints(x0), lo), direction, step,
+    curve = arclength(system.residual, np.append(u0, lo), direction, step,
                       lambda y: y[-1] >= hi, scale, rescale, tol=TOLERANCE,
                       max_points=max_points)
-    omega = np.array(curve.points[:, -1])
-    coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in curve.points])
-    coeffs[0] = x0
-    if curve.success and omega.size > 1 and omega[-1] > hi:  # end exactly at MAX
-        u = (hi - omega[-2]) / (omega[-1] - omega[-2])
-        end = _solve_at(hb, load, hi, (1.0 - u) * coeffs[-2] + u * coeffs[-1])
+    points = np.array(curve.points)
+    if curve.success and len(points) > 1 and points[-1, -1] > hi:  # end exactly at MAX
+        u = (hi - points[-2, -1]) / (points[-1, -1] - points[-2, -1])
+        end = _solve_at(system, hi, (1.0 - u) * points[-2, :-1] + u * points[-1, :-1])
         if end is not None:
-            coeffs[-1], omega[-1] = end, hi
+            points[-1] = np.append(end[0], hi)
+    omega = points[:, -1]
+    coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in points])
     amps = np.array([hb.amplitude(x)[0] for x in coeffs])
-    peak_a, peak_w = _peak(hb, load, coeffs, omega, amps)
+    peak_a, peak_w = _peak(system, points, amps)
     return FrequencyResponse(force=float(force), frequency=omega / (2.0 * np.pi),
                              amplitude=amps, coefficients=coeffs, peak_amplitude=peak_a,
                              peak_frequency=peak_w / (2.0 * np.pi), harmonics=harmonics,
@@ -145,13 +145,19 @@ class _Full:
 
     def residual(self, y: Array) -> tuple[Array, Array]:
         res = self.hb.residual(y[:-1], float(y[-1]), self.load)
-        return res.r, np.column_stack([res.dx, res.dw])
+        return res.r, res.jac
 
     def joints(self, x: Array) -> Array:
         return x
 
     def coefficients(self, x: Array, omega: float) -> Array:
         return x
+
+    def amplitude(self, y: Array) -> tuple[float, Array]:
+        """First-harmonic amplitude (mm) of the output coordinate and its gradient in
+        ``y = [x, w]``."""
+        a, grad = self.hb.amplitude(y[:-1])
+        return a, np.append(grad, 0.0)
 
     def reach(self, x: Array) -> float:
         """The amplitude the continuation's norm scales the unknowns by (that of the
@@ -161,40 +167,98 @@ class _Full:
         return float(np.hypot(out @ q[:, 1], out @ q[:, 2]))
 
 
-def _solve_at(hb: HarmonicBalance, load: Array, omega: float, guess: Array) -> Array | None:
-    """Coefficients (mm) at the fixed frequency ``omega`` (rad/s), or None."""
-    def fun(x: Array) -> tuple[Array, Array]:
-        res = hb.residual(x, omega, load)
-        return res.r, res.dx
+def _solve_at(system: _Full | Condensed, omega: float, guess: Array
+              ) -> tuple[Array, Array] | None:
+    """The system's unknowns at the fixed frequency ``omega`` (rad/s) and ``[dR/du | dR/dw]``
+    at Newton's last iterate (one step from them), or None."""
+    last = []
+
+    def fun(u: Array) -> tuple[Array, Array]:
+        r, jac = system.residual(np.append(u, omega))
+        last.append(jac)
+        return r, jac[:, :-1]
 
     scale = np.full(guess.size, max(float(np.max(np.abs(guess))), 1e-300))
-    x, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=50)
-    return x if ok else None
+    u, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=50)
+    return (u, last[-1]) if ok else None
 
 
-def _peak(hb: HarmonicBalance, load: Array, coeffs: Array, omega: Array, amps: Array
-          ) -> tuple[float, float]:
-    """Largest first-harmonic amplitude (mm) and its frequency (rad/s)."""
+class _Point:
+    """A solution at one frequency: w (rad/s), unknowns u, amplitude A (mm), dA/dw and
+    du/dw along the curve."""
+
+    def __init__(self, system: _Full | Condensed, omega: float, u: Array, jac: Array
+                 ) -> None:
+        self.omega, self.u = omega, u
+        self.dudw = -np.linalg.solve(jac[:, :-1], jac[:, -1])
+        self.a, grad = system.amplitude(np.append(u, omega))
+        self.slope = float(grad[:-1] @ self.dudw + grad[-1])
+
+
+def _peak(system: _Full | Condensed, points: Array, amps: Array) -> tuple[float, float]:
+    """Largest first-harmonic amplitude (mm) and its frequency (rad/s).
+
+    Notes
+    -----
+    The sign change of dA/dw between the neighbours of the largest continuation point,
+    bracketed down to 1e-13 of the frequency. A(w) is piecewise smooth (an Iwan joint's
+    elements start to slip one by one) and its peak is often a corner where dA/dw jumps, so
+    each round tries the two points that are exact for the two cases: where the tangent
+    lines of A at the bracket's ends cross (a corner) and where the secant of dA/dw
+    vanishes (a smooth maximum), then halves the bracket if they did not. Each point is
+    solved by Newton from the tangent predictor of the nearer end, its slope taken with
+    the Jacobian of Newton's last iterate.
+    """
+    omega = points[:, -1]
     i = int(np.argmax(amps))
     if i == 0 or i == amps.size - 1 or not omega[i - 1] < omega[i] < omega[i + 1]:
         return float(amps[i]), float(omega[i])
 
-    def solve(w: float) -> Array:
-        j = i - 1 if w < omega[i] else i
-        u = (w - omega[j]) / (omega[j + 1] - omega[j])
-        x = _solve_at(hb, load, w, (1.0 - u) * coeffs[j] + u * coeffs[j + 1])
-        if x is None:
+    def solve(w: float, near: _Point) -> _Point:
+        found = _solve_at(system, w, near.u + near.dudw * (w - near.omega))
+        if found is None:
             raise ParameterError(f"harmonic balance did not converge at {w / 2 / np.pi:g} Hz "
                                  "while locating the peak")
-        return x
+        return _Point(system, w, *found)
 
-    def slope(w: float) -> float:
-        x = solve(w)
-        res = hb.residual(x, w, load)
-        _, grad = hb.amplitude(x)
-        return float(grad @ np.linalg.solve(res.dx, -res.dw))
+    def at(j: int) -> _Point:
+        y = points[j]
+        return _Point(system, float(y[-1]), y[:-1], system.residual(y)[1])
 
-    if slope(omega[i - 1]) * slope(omega[i + 1]) > 0.0:
+    lo, hi = at(i - 1), at(i + 1)
+    for p in (lo, hi):
+        if p.slope == 0.0:
+            return p.a, p.omega
+    if not lo.slope > 0.0 > hi.slope:
         return float(amps[i]), float(omega[i])
-    w = float(brentq(slope, omega[i - 1], omega[i + 1], xtol=1e-13 * omega[i], rtol=1e-14))
-    return hb.amplitude(solve(w))[0], w
+    xtol = 1e-13 * omega[i]
+    while hi.omega - lo.omega > xtol:
+        width = hi.omega - lo.omega
+        for rule in (_corner, _secant, _middle):
+            if rule is _middle and hi.omega - lo.omega <= 0.5 * width:
+                continue
+            w = rule(lo, hi)
+            if not lo.omega < w < hi.omega:
+                w = _middle(lo, hi)
+            p = solve(w, lo if w - lo.omega < hi.omega - w else hi)
+            if p.slope == 0.0:
+                return p.a, p.omega
+            lo, hi = (p, hi) if p.slope > 0.0 else (lo, p)
+            if hi.omega - lo.omega <= xtol:
+                break
+    best = lo if lo.a >= hi.a else hi
+    return best.a, best.omega
+
+
+def _corner(lo: _Point, hi: _Point) -> float:
+    """Where the tangent lines of A at ``lo`` and ``hi`` cross (rad/s)."""
+    return (hi.a - lo.a + lo.slope * lo.omega - hi.slope * hi.omega) / (lo.slope - hi.slope)
+
+
+def _secant(lo: _Point, hi: _Point) -> float:
+    """Where the secant of dA/dw between ``lo`` and ``hi`` vanishes (rad/s)."""
+    return lo.omega + lo.slope * (hi.omega - lo.omega) / (lo.slope - hi.slope)
+
+
+def _middle(lo: _Point, hi: _Point) -> float:
+    return 0.5 * (lo.omega + hi.omega)
