@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, STRAIN_ENERGY_CODES
 from ..errors import MacroslipError, ParameterError
-from ..models import check_increments, get_model
+from ..models import check_increments, check_small_strain, get_model
 from ..models.contact import Contact, check_reading, check_strain_energy
 from ..named import result
 from ..options import ModelOptions
@@ -290,6 +290,8 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
             f"normal_force {flat_params['normal_force'][i]:g} N){_case(i, size, where)}; "
             f"microslip needs 0 < amplitude < {rule}"
         )
+    check_small_strain(amp_f, flat_params["width"], flat_params["thickness"],
+                       flat_params["modulus"], where=lambda i: _case(i, size, where))
     return BatchInput(model=spec.name, shape=tuple(shape), amplitude=amp_f, **flat_params,
                       increments=n, options=opt, strain_energy_kind=strain_energy, where=where,
                       contact=layer)

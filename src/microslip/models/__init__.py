@@ -69,12 +69,14 @@ from .tip import tip_backbone, tip_step, tip_stored_energy
 __all__ = [
     "DEFAULT_CONTACT",
     "MAX_INCREMENTS",
+    "MAX_STRAIN",
     "MODELS",
     "Contact",
     "ModelSpec",
     "RigidLimit",
     "centre_step",
     "check_increments",
+    "check_small_strain",
     "first_loading",
     "get_model",
     "macroslip_force",
@@ -83,6 +85,13 @@ __all__ = [
 
 #: Upper bound on the number of increments of one backbone (memory guard).
 MAX_INCREMENTS = 10_000_000
+
+#: Largest mean axial strain F0 / (E w t) of the clamped zone the models accept. They are
+#: small-strain elastic bars whose Poisson and length updates are first-order terms; far
+#: beyond any elastic metal strain (~0.5 %) those terms stop being small, and at strains
+#: above about 10 (E = 1000 MPa on a 1 mm^2 section, F0 = 20 kN) the loop turned inside out
+#: (negative W_d). 10 % keeps every physical clamp and refuses the nonsense.
+MAX_STRAIN = 0.1
 
 
 @dataclass(frozen=True)
@@ -222,6 +231,23 @@ def check_below_macroslip(model: str, params: ClampParams, amplitude: float,
         )
 
 
+def check_small_strain(amplitude: Any, width: Any, thickness: Any, modulus: Any,
+                       where: Callable[[int], str] = lambda i: "") -> None:
+    """Refuse amplitudes whose mean axial strain F0 / (E w t) reaches :data:`MAX_STRAIN`
+    (scalars or equal-length arrays; ``where(i)`` names case i in the message)."""
+    amp = np.atleast_1d(np.asarray(amplitude, dtype=float))
+    limit = MAX_STRAIN * np.asarray(modulus) * np.asarray(width) * np.asarray(thickness)
+    limit = np.broadcast_to(limit, amp.shape)
+    bad = amp >= limit
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ParameterError(
+            f"amplitude {amp[i]:g} N strains the clamped zone by F0/(E w t) = "
+            f"{amp[i] / limit[i] * MAX_STRAIN:.3g}, beyond the small-strain models' "
+            f"{MAX_STRAIN:g}{where(i)}; microslip needs amplitude < {limit[i]:.6g} N here"
+        )
+
+
 def first_loading(model: str, params: ClampParams, amplitude: float, increments: int = 1000,
                   options: ModelOptions | None = None,
                   contact: Contact | None = None) -> Backbone:
@@ -270,6 +296,7 @@ def first_loading(model: str, params: ClampParams, amplitude: float, increments:
     f0 = check_amplitude(amplitude)
     n = check_increments(increments)
     check_below_macroslip(model, params, f0, opt)
+    check_small_strain(f0, params.width, params.thickness, params.modulus)
     if contact is None or contact.is_rigid:
         return _loading(spec, params, f0, n, opt, None)
     check_reading(opt, len(spec.domains))
