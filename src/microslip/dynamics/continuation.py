@@ -17,10 +17,13 @@ from scipy.linalg.lapack import dgesv
 
 from ..named import result
 
-__all__ = ["Curve", "arclength", "newton"]
+__all__ = ["Corrector", "Curve", "arclength", "newton"]
 
 Array = NDArray[np.float64]
 Fun = Callable[[Array], tuple[Array, Array]]
+#: ``(y_pred, row, scale, tol) -> (y, converged, [dR/dy; row])``: Newton on the
+#: pseudo-arclength system ``[R(y); row . (y - y_pred)] = 0`` from ``y_pred``.
+Corrector = Callable[[Array, Array, Array, float], tuple[Array, bool, Array]]
 
 #: Newton iterations at most per corrector.
 MAX_ITERATIONS = 12
@@ -112,7 +115,7 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
               stop: Callable[[Array], bool], scale: Array,
               rescale: Callable[[Array, Array], Array] | None = None, *,
               tol: float = 1e-10, min_step: float | None = None,
-              max_points: int = 10_000) -> Curve:
+              max_points: int = 10_000, corrector: Corrector | None = None) -> Curve:
     """Pseudo-arclength continuation from the solution ``y0`` of ``fun(y)[0] = 0``.
 
     Parameters
@@ -135,6 +138,10 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
         Smallest step before giving up (default step / 1024).
     max_points : int
         Largest number of points.
+    corrector : callable, optional
+        A compiled equivalent of the default corrector, :func:`newton` (``MAX_ITERATIONS``)
+        on ``fun`` augmented by the arclength row (e.g.
+        :meth:`~.hb.HarmonicBalance.corrector`); same algorithm, same results.
 
     Notes
     -----
@@ -152,12 +159,10 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
     points = [y.copy()]
     h = step
     n = y.size - 1
-    while len(points) < max_points:
-        y_pred = y + h * t
-        row = t / scale**2
 
-        def corrector(z: Array, y_pred: Array = y_pred, row: Array = row
-                      ) -> tuple[Array, Array]:
+    def augmented(y_pred: Array, row: Array, scale: Array, tol: float
+                  ) -> tuple[Array, bool, Array]:
+        def aug(z: Array) -> tuple[Array, Array]:
             r, j = fun(z)
             r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1))
             r_aug[:n] = r
@@ -165,8 +170,12 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
             j_aug[:n] = j
             j_aug[n] = row
             return r_aug, j_aug
+        return newton(aug, y_pred, scale, tol)
 
-        y_new, ok, jac = newton(corrector, y_pred, scale, tol)
+    correct = augmented if corrector is None else corrector
+    while len(points) < max_points:
+        y_pred = y + h * t
+        y_new, ok, jac = correct(y_pred, t / scale**2, scale, tol)
         t_new = t
         if ok:
             t_new = _tangent(jac[:-1], t, scale)

@@ -13,11 +13,13 @@ Units: the residual is in N (force harmonics), coefficients in mm, frequency in 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
-from .hbkernel import balance_kernel
+from .hbkernel import balance_kernel, corrector_kernel
 from .operators import HystereticOperator, IwanOperator
 from .operators2d import CircularIwan
 from .structure import SI_PER_MM, JointLink, Structure
@@ -155,6 +157,28 @@ class HarmonicBalance:
             r[idx] += b @ force
             jac[block] += b @ dforce @ b.T
         return Residual(r, jac, dxi)
+
+    def corrector(self, load: Array, max_iter: int
+                  ) -> Callable[[Array, Array, Array, float], tuple[Array, bool, Array]] | None:
+        """The compiled pseudo-arclength corrector of the balance in ``y = [x, w]`` under
+        the excitation ``load`` (N), as :func:`~.continuation.arclength` takes it, or None
+        if some joint is evaluated in Python (then :func:`~.continuation.newton` runs)."""
+        if self._links:
+            return None
+        load = np.ascontiguousarray(load, dtype=np.float64)
+        args = (self._k, self._m, self._c, self._mc, *self._compiled, self._synth,
+                self._analysis)
+
+        def correct(y_pred: Array, row: Array, scale: Array, tol: float
+                    ) -> tuple[Array, bool, Array]:
+            y, jac = np.empty(y_pred.size), np.empty((y_pred.size, y_pred.size))
+            try:
+                ok = corrector_kernel(y_pred, row, scale, tol, max_iter, load, *args, y, jac)
+            except np.linalg.LinAlgError:  # a singular Jacobian: no convergence
+                return y_pred, False, jac
+            return y, bool(ok), jac
+
+        return correct
 
     def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
                         ) -> tuple[Array, Array]:
