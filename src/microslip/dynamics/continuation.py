@@ -103,8 +103,14 @@ def _tangent(jac: Array, previous: Array, scale: Array) -> Array:
     aug = np.empty((n + 1, n + 1))
     aug[:n] = jac
     aug[n] = previous / scale**2
-    rhs = np.zeros(n + 1)
-    rhs[n] = 1.0
+    return _oriented(aug, scale)
+
+
+def _oriented(aug: Array, scale: Array) -> Array:
+    """The unit tangent (weighted norm) t with ``aug t = [0, ..., 0, 1]``, ``aug`` the
+    Jacobian with the previous tangent's row ``previous / scale^2`` appended."""
+    rhs = np.zeros(aug.shape[0])
+    rhs[-1] = 1.0
     t, info = _solve(aug, rhs)
     if info != 0:
         raise np.linalg.LinAlgError("Singular matrix")
@@ -178,7 +184,7 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
         y_new, ok, jac = correct(y_pred, t / scale**2, scale, tol)
         t_new = t
         if ok:
-            t_new = _tangent(jac[:-1], t, scale)
+            t_new = _oriented(jac, scale)  # its last row is t / scale^2
             # a kink of the curve (an element starting to slip) turns the tangent at any h
             ok = (float((t_new / scale) @ (t / scale)) > np.cos(np.pi / 6.0)
                   or h <= KINK_STEP * step)

@@ -198,6 +198,13 @@ class HarmonicBalance:
         f, jac = operator.periodic_force(self._synth @ u)
         return a @ f, a @ jac @ self._synth
 
+    def amplitudes(self, xs: Array) -> Array:
+        """First-harmonic amplitudes (mm) of the output coordinate at the coefficient
+        vectors ``xs`` (m, n) (:meth:`amplitude` without its gradient, all at once)."""
+        q = xs.reshape(len(xs), self.structure.dofs, 2 * self.harmonics + 1)
+        out = self.structure.output
+        return np.asarray(np.hypot(q[:, :, 1] @ out, q[:, :, 2] @ out))
+
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
         h = 2 * self.harmonics + 1

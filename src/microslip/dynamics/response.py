@@ -130,7 +130,7 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
             points[-1] = np.append(end[0], hi)
     omega = points[:, -1]
     coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in points])
-    amps = np.array([hb.amplitude(x)[0] for x in coeffs])
+    amps = hb.amplitudes(coeffs)
     peak_a, peak_w = _peak(system, points, amps)
     return FrequencyResponse(force=float(force), frequency=omega / (2.0 * np.pi),
                              amplitude=amps, coefficients=coeffs, peak_amplitude=peak_a,
