@@ -28,6 +28,10 @@ Corrector = Callable[[Array, Array, Array, float], tuple[Array, bool, Array]]
 #: Newton iterations at most per corrector.
 MAX_ITERATIONS = 12
 
+#: Contraction below which Newton's error estimate is trusted, and halvings of a step that
+#: increases the residual (shared with the compiled corrector, :mod:`.hbkernel`).
+CONTRACTION, MAX_HALVINGS = 0.5, 10
+
 #: Relative step below which a sharp turn of the tangent is accepted as a kink of the curve.
 KINK_STEP = 1.0 / 64.0
 
@@ -56,12 +60,12 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
     """Solve the square system ``fun(y) = (r, dr/dy) = 0`` from ``y0``.
 
     Converged when the error left after a Newton step, estimated from the contraction
-    ``theta = |dy_k| / |dy_k-1|`` as ``|dy_k| theta / (1 - theta)`` (``theta < 1/2``),
-    or the step itself, is below ``tol`` in the norm ``max |dy / scale|``; that last step is
-    taken without evaluating ``fun`` again (Deuflhard's a-posteriori estimate for a
-    contracting Newton iteration). A step that increases the residual norm is halved (up
-    to 10 times). Returns the solution, whether it converged, and the Jacobian at the last
-    iterate evaluated (one step from the solution).
+    ``theta = |dy_k| / |dy_k-1|`` as ``|dy_k| theta / (1 - theta)`` (``theta <
+    CONTRACTION``), or the step itself, is below ``tol`` in the norm ``max |dy / scale|``;
+    that last step is taken without evaluating ``fun`` again (Deuflhard's a-posteriori
+    estimate for a contracting Newton iteration). A step that increases the residual norm
+    is halved (up to ``MAX_HALVINGS`` times). Returns the solution, whether it converged,
+    and the Jacobian at the last iterate evaluated (one step from the solution).
     """
     y = np.array(y0, dtype=np.float64)
     r, jac = fun(y)
@@ -72,13 +76,13 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
             return y, False, jac
         size = float(np.max(np.abs(step / scale)))
         theta = size / previous if previous > 0.0 else 1.0
-        if size < tol or (theta < 0.5 and size * theta / (1.0 - theta) < tol):
+        if size < tol or (theta < CONTRACTION and size * theta / (1.0 - theta) < tol):
             y = y + step
             return y, bool(np.all(np.isfinite(y))), jac
         previous = size
         norm0 = float(r @ r)
         lam = 1.0
-        for _ in range(10):
+        for _ in range(MAX_HALVINGS):
             trial = y + lam * step
             r_new, jac_new = fun(trial)
             if float(r_new @ r_new) <= norm0 or lam * size < tol:

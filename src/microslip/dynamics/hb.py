@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
+from .continuation import CONTRACTION, MAX_HALVINGS
 from .hbkernel import balance_kernel, corrector_kernel
 from .operators import HystereticOperator, IwanOperator
 from .operators2d import CircularIwan
@@ -173,7 +174,8 @@ class HarmonicBalance:
                     ) -> tuple[Array, bool, Array]:
             y, jac = np.empty(y_pred.size), np.empty((y_pred.size, y_pred.size))
             try:
-                ok = corrector_kernel(y_pred, row, scale, tol, max_iter, load, *args, y, jac)
+                ok = corrector_kernel(y_pred, row, scale, tol, max_iter, CONTRACTION,
+                                      MAX_HALVINGS, load, *args, y, jac)
             except np.linalg.LinAlgError:  # a singular Jacobian: no convergence
                 return y_pred, False, jac
             return y, bool(ok), jac

@@ -105,16 +105,18 @@ def _augmented(y: np.ndarray, y_pred: np.ndarray, row: np.ndarray, load: np.ndar
 
 @njit(cache=True, fastmath=False, nogil=True)
 def corrector_kernel(y_pred: np.ndarray, row: np.ndarray, scale: np.ndarray, tol: float,
-                     max_iter: int, load: np.ndarray, kk: np.ndarray, mm: np.ndarray,
-                     cc: np.ndarray, mc: np.ndarray, weights: np.ndarray, phi: np.ndarray,
-                     ck: np.ndarray, ckp: np.ndarray, offsets: np.ndarray,
-                     synth: np.ndarray, analysis: np.ndarray, y_out: np.ndarray,
-                     jac_out: np.ndarray) -> bool:
+                     max_iter: int, contraction: float, halvings: int, load: np.ndarray,
+                     kk: np.ndarray, mm: np.ndarray, cc: np.ndarray, mc: np.ndarray,
+                     weights: np.ndarray, phi: np.ndarray, ck: np.ndarray, ckp: np.ndarray,
+                     offsets: np.ndarray, synth: np.ndarray, analysis: np.ndarray,
+                     y_out: np.ndarray, jac_out: np.ndarray) -> bool:
     """Newton's method on the pseudo-arclength system ``[R(y); row . (y - y_pred)] = 0``
     from ``y_pred``, R the balance of :func:`balance_kernel` alone (no other joints):
     line for line :func:`~.continuation.newton` (same convergence estimate, halving and
-    tolerance), compiled. Writes the solution into ``y_out`` and the augmented Jacobian at
-    the last iterate evaluated into ``jac_out``; returns whether it converged. Raises
+    tolerance; its ``CONTRACTION`` and ``MAX_HALVINGS`` come in as ``contraction`` and
+    ``halvings``, not as globals, which a cached compilation would freeze), compiled.
+    Writes the solution into ``y_out`` and the augmented Jacobian at the last iterate
+    evaluated into ``jac_out``; returns whether it converged. Raises
     ``np.linalg.LinAlgError`` on a singular Jacobian (the caller's non-convergence)."""
     m = y_pred.size
     y = y_pred.copy()
@@ -127,7 +129,7 @@ def corrector_kernel(y_pred: np.ndarray, row: np.ndarray, scale: np.ndarray, tol
         step = np.linalg.solve(jac, -r)
         size = np.max(np.abs(step / scale))
         theta = size / previous if previous > 0.0 else 1.0
-        if size < tol or (theta < 0.5 and size * theta / (1.0 - theta) < tol):
+        if size < tol or (theta < contraction and size * theta / (1.0 - theta) < tol):
             y_out[:] = y + step
             jac_out[:] = jac
             return bool(np.all(np.isfinite(y_out)))
@@ -135,7 +137,7 @@ def corrector_kernel(y_pred: np.ndarray, row: np.ndarray, scale: np.ndarray, tol
         norm0 = r @ r
         lam = 1.0
         trial = y
-        for _ in range(10):
+        for _ in range(halvings):
             trial = y + lam * step
             _augmented(trial, y_pred, row, *args, r_new, jac_new, dxi)
             if r_new @ r_new <= norm0 or lam * size < tol:
