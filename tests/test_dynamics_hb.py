@@ -169,3 +169,15 @@ def test_bad_balance_settings_are_refused():
         HarmonicBalance(duffing(), 7, 15)
     with pytest.raises(ParameterError, match="harmonics must be"):
         HarmonicBalance(duffing(), 0)
+
+
+def test_amplitudes_at_once_are_the_amplitudes_one_by_one():
+    """:meth:`HarmonicBalance.amplitudes` against :meth:`amplitude` on random coefficients
+    of a 3-DOF structure with a mixed output coordinate."""
+    structure = Structure(mass=np.eye(3), stiffness=4e6 * np.eye(3), damping=np.eye(3),
+                          joints=(JointLink(jenkins(300.0, 5.0), np.array([1.0, 0.0, 0.0])),),
+                          output=np.array([0.3, -1.0, 2.0]))
+    hb = HarmonicBalance(structure, 3, 16)
+    xs = np.random.default_rng(1).normal(size=(5, hb.size))
+    one_by_one = [hb.amplitude(x)[0] for x in xs]
+    assert np.allclose(hb.amplitudes(xs), one_by_one, rtol=1e-15, atol=0.0)

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from microslip.dynamics import jenkins
-from microslip.dynamics.continuation import newton
+from microslip import preset
+from microslip.dynamics import clamp_joint, jenkins
+from microslip.dynamics.continuation import MAX_ITERATIONS, arclength, newton
 from microslip.dynamics.hb import HarmonicBalance
 from microslip.dynamics.response import frequency_response
 from microslip.dynamics.structure import one_mode
@@ -118,3 +119,60 @@ def test_the_located_peak_is_where_the_slope_changes_sign(force):
         return hb.amplitude(x)[1] @ np.linalg.solve(res.dx, -res.dw)
 
     assert slope(r.peak_frequency * (1 - 1e-10)) > 0.0 > slope(r.peak_frequency * (1 + 1e-10))
+
+
+def _tip_balance():
+    structure = one_mode(1000.0, 1.0, 0.002, clamp_joint("tip", preset("table1"), 1e5))
+    hb = HarmonicBalance(structure, 7, 128)
+    return hb, hb.excitation(ONE, 50.0)
+
+
+def test_the_compiled_corrector_is_python_newton_on_the_augmented_system():
+    """Corrector by corrector from predictors far off the curve (steps that need halving,
+    some that fail), the compiled Newton agrees with :func:`newton` to rounding."""
+    hb, load = _tip_balance()
+    compiled = hb.corrector(load, MAX_ITERATIONS)
+    assert compiled is not None
+    n = hb.size
+    w0 = 2 * np.pi * 1400.0
+    x0 = solve_at(hb, load, w0, hb.stuck_guess(w0, load))
+    scale = np.append(np.full(n, 0.005), 2 * np.pi * 1000.0)
+    rng = np.random.default_rng(3)
+    outcomes = set()
+    for _ in range(40):
+        y_pred = np.append(x0, w0) + rng.normal(size=n + 1) * scale * rng.choice([0.01, 0.3, 1])
+        row = rng.normal(size=n + 1) / scale**2 * np.eye(n + 1)[-1]  # frequency fixed
+        row += rng.normal(size=n + 1) / scale**2 * 0.1
+
+        def aug(z, y_pred=y_pred, row=row):
+            res = hb.residual(z[:-1], z[-1], load)
+            return np.append(res.r, row @ (z - y_pred)), np.vstack([res.jac, row])
+
+        y_py, ok_py, jac_py = newton(aug, y_pred, scale, 1e-10)
+        y_c, ok_c, jac_c = compiled(y_pred, row, scale, 1e-10)
+        assert ok_c == ok_py
+        outcomes.add(ok_py)
+        # the same iterates, converged or not (a failed one ends on the same last iterate)
+        assert np.max(np.abs((y_c - y_py) / scale)) < 1e-9
+        assert np.allclose(jac_c, jac_py, rtol=1e-9, atol=0.0)
+    assert outcomes == {True, False}  # both branches exercised
+
+
+def test_the_compiled_continuation_gives_the_python_one():
+    """The whole curve with the compiled corrector and with the Python one: same points."""
+    hb, load = _tip_balance()
+    lo, hi = 2 * np.pi * 900.0, 2 * np.pi * 2000.0
+    x0 = solve_at(hb, load, lo, hb.stuck_guess(lo, load))
+    scale = np.append(np.full(hb.size, np.hypot(x0[1], x0[2])), hi - lo)
+    direction = np.eye(hb.size + 1)[-1]
+
+    def fun(y):
+        res = hb.residual(y[:-1], y[-1], load)
+        return res.r, res.jac
+
+    curves = [arclength(fun, np.append(x0, lo), direction, 0.02, lambda y: y[-1] >= hi,
+                        scale, tol=1e-10, corrector=c)
+              for c in (None, hb.corrector(load, MAX_ITERATIONS))]
+    assert curves[0].success and curves[1].success
+    assert curves[0].points.shape == curves[1].points.shape
+    assert np.max(np.abs((curves[0].points - curves[1].points) / scale)) < 1e-10

@@ -13,16 +13,24 @@ from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg.lapack import dgesv
 
 from ..named import result
 
-__all__ = ["Curve", "arclength", "newton"]
+__all__ = ["Corrector", "Curve", "arclength", "newton"]
 
 Array = NDArray[np.float64]
 Fun = Callable[[Array], tuple[Array, Array]]
+#: ``(y_pred, row, scale, tol) -> (y, converged, [dR/dy; row])``: Newton on the
+#: pseudo-arclength system ``[R(y); row . (y - y_pred)] = 0`` from ``y_pred``.
+Corrector = Callable[[Array, Array, Array, float], tuple[Array, bool, Array]]
 
 #: Newton iterations at most per corrector.
 MAX_ITERATIONS = 12
+
+#: Contraction below which Newton's error estimate is trusted, and halvings of a step that
+#: increases the residual (shared with the compiled corrector, :mod:`.hbkernel`).
+CONTRACTION, MAX_HALVINGS = 0.5, 10
 
 #: Relative step below which a sharp turn of the tangent is accepted as a kink of the curve.
 KINK_STEP = 1.0 / 64.0
@@ -52,30 +60,29 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
     """Solve the square system ``fun(y) = (r, dr/dy) = 0`` from ``y0``.
 
     Converged when the error left after a Newton step, estimated from the contraction
-    ``theta = |dy_k| / |dy_k-1|`` as ``|dy_k| theta / (1 - theta)`` (``theta < 1/2``),
-    or the step itself, is below ``tol`` in the norm ``max |dy / scale|``; that last step is
-    taken without evaluating ``fun`` again (Deuflhard's a-posteriori estimate for a
-    contracting Newton iteration). A step that increases the residual norm is halved (up
-    to 10 times). Returns the solution, whether it converged, and the Jacobian at the last
-    iterate evaluated (one step from the solution).
+    ``theta = |dy_k| / |dy_k-1|`` as ``|dy_k| theta / (1 - theta)`` (``theta <
+    CONTRACTION``), or the step itself, is below ``tol`` in the norm ``max |dy / scale|``;
+    that last step is taken without evaluating ``fun`` again (Deuflhard's a-posteriori
+    estimate for a contracting Newton iteration). A step that increases the residual norm
+    is halved (up to ``MAX_HALVINGS`` times). Returns the solution, whether it converged,
+    and the Jacobian at the last iterate evaluated (one step from the solution).
     """
     y = np.array(y0, dtype=np.float64)
     r, jac = fun(y)
     previous = 0.0  # the size of the last full step, 0 before the first
     for _ in range(max_iter):
-        try:
-            step = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
+        step, info = _solve(jac, -r)
+        if info != 0:  # singular
             return y, False, jac
         size = float(np.max(np.abs(step / scale)))
         theta = size / previous if previous > 0.0 else 1.0
-        if size < tol or (theta < 0.5 and size * theta / (1.0 - theta) < tol):
+        if size < tol or (theta < CONTRACTION and size * theta / (1.0 - theta) < tol):
             y = y + step
             return y, bool(np.all(np.isfinite(y))), jac
         previous = size
         norm0 = float(r @ r)
         lam = 1.0
-        for _ in range(10):
+        for _ in range(MAX_HALVINGS):
             trial = y + lam * step
             r_new, jac_new = fun(trial)
             if float(r_new @ r_new) <= norm0 or lam * size < tol:
@@ -87,20 +94,38 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
     return y, False, jac
 
 
+def _solve(a: Array, b: Array) -> tuple[Array, int]:
+    """``a^-1 b`` by LAPACK's dgesv (a third of np.linalg.solve's overhead on the small
+    systems here) and its ``info`` (> 0: ``a`` is singular)."""
+    _, _, x, info = dgesv(a, b)
+    return x, int(info)
+
+
 def _tangent(jac: Array, previous: Array, scale: Array) -> Array:
     """Unit tangent (weighted norm) of the curve, oriented like ``previous``."""
-    aug = np.vstack([jac, previous / scale**2])
+    n = jac.shape[0]
+    aug = np.empty((n + 1, n + 1))
+    aug[:n] = jac
+    aug[n] = previous / scale**2
+    return _oriented(aug, scale)
+
+
+def _oriented(aug: Array, scale: Array) -> Array:
+    """The unit tangent (weighted norm) t with ``aug t = [0, ..., 0, 1]``, ``aug`` the
+    Jacobian with the previous tangent's row ``previous / scale^2`` appended."""
     rhs = np.zeros(aug.shape[0])
     rhs[-1] = 1.0
-    t = np.linalg.solve(aug, rhs)
-    return np.asarray(t / np.linalg.norm(t / scale))
+    t, info = _solve(aug, rhs)
+    if info != 0:
+        raise np.linalg.LinAlgError("Singular matrix")
+    return np.asarray(t / np.sqrt(np.sum((t / scale) ** 2)))
 
 
 def arclength(fun: Fun, y0: Array, direction: Array, step: float,
               stop: Callable[[Array], bool], scale: Array,
               rescale: Callable[[Array, Array], Array] | None = None, *,
               tol: float = 1e-10, min_step: float | None = None,
-              max_points: int = 10_000) -> Curve:
+              max_points: int = 10_000, corrector: Corrector | None = None) -> Curve:
     """Pseudo-arclength continuation from the solution ``y0`` of ``fun(y)[0] = 0``.
 
     Parameters
@@ -123,6 +148,10 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
         Smallest step before giving up (default step / 1024).
     max_points : int
         Largest number of points.
+    corrector : callable, optional
+        A compiled equivalent of the default corrector, :func:`newton` (``MAX_ITERATIONS``)
+        on ``fun`` augmented by the arclength row (e.g.
+        :meth:`~.hb.HarmonicBalance.corrector`); same algorithm, same results.
 
     Notes
     -----
@@ -139,23 +168,27 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
     t = _tangent(jac, direction, scale)
     points = [y.copy()]
     h = step
-    while len(points) < max_points:
-        y_pred = y + h * t
-        row = t / scale**2
-        n = y.size - 1
+    n = y.size - 1
 
-        def corrector(z: Array, y_pred: Array = y_pred, row: Array = row, n: int = n
-                      ) -> tuple[Array, Array]:
+    def augmented(y_pred: Array, row: Array, scale: Array, tol: float
+                  ) -> tuple[Array, bool, Array]:
+        def aug(z: Array) -> tuple[Array, Array]:
             r, j = fun(z)
             r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1))
-            r_aug[:n], r_aug[n] = r, row @ (z - y_pred)
-            j_aug[:n], j_aug[n] = j, row
+            r_aug[:n] = r
+            r_aug[n] = row @ (z - y_pred)
+            j_aug[:n] = j
+            j_aug[n] = row
             return r_aug, j_aug
+        return newton(aug, y_pred, scale, tol)
 
-        y_new, ok, jac = newton(corrector, y_pred, scale, tol)
+    correct = augmented if corrector is None else corrector
+    while len(points) < max_points:
+        y_pred = y + h * t
+        y_new, ok, jac = correct(y_pred, t / scale**2, scale, tol)
         t_new = t
         if ok:
-            t_new = _tangent(jac[:-1], t, scale)
+            t_new = _oriented(jac, scale)  # its last row is t / scale^2
             # a kink of the curve (an element starting to slip) turns the tangent at any h
             ok = (float((t_new / scale) @ (t / scale)) > np.cos(np.pi / 6.0)
                   or h <= KINK_STEP * step)

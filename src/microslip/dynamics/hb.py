@@ -13,11 +13,14 @@ Units: the residual is in N (force harmonics), coefficients in mm, frequency in 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ParameterError
-from .hbkernel import balance_kernel
+from .continuation import CONTRACTION, MAX_HALVINGS
+from .hbkernel import balance_kernel, corrector_kernel
 from .operators import HystereticOperator, IwanOperator
 from .operators2d import CircularIwan
 from .structure import SI_PER_MM, JointLink, Structure
@@ -156,6 +159,29 @@ class HarmonicBalance:
             jac[block] += b @ dforce @ b.T
         return Residual(r, jac, dxi)
 
+    def corrector(self, load: Array, max_iter: int
+                  ) -> Callable[[Array, Array, Array, float], tuple[Array, bool, Array]] | None:
+        """The compiled pseudo-arclength corrector of the balance in ``y = [x, w]`` under
+        the excitation ``load`` (N), as :func:`~.continuation.arclength` takes it, or None
+        if some joint is evaluated in Python (then :func:`~.continuation.newton` runs)."""
+        if self._links:
+            return None
+        load = np.ascontiguousarray(load, dtype=np.float64)
+        args = (self._k, self._m, self._c, self._mc, *self._compiled, self._synth,
+                self._analysis)
+
+        def correct(y_pred: Array, row: Array, scale: Array, tol: float
+                    ) -> tuple[Array, bool, Array]:
+            y, jac = np.empty(y_pred.size), np.empty((y_pred.size, y_pred.size))
+            try:
+                ok = corrector_kernel(y_pred, row, scale, tol, max_iter, CONTRACTION,
+                                      MAX_HALVINGS, load, *args, y, jac)
+            except np.linalg.LinAlgError:  # a singular Jacobian: no convergence
+                return y_pred, False, jac
+            return y, bool(ok), jac
+
+        return correct
+
     def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
                         ) -> tuple[Array, Array]:
         """A joint's force harmonics (N, (d (2H + 1),)) and their derivative in its
@@ -173,6 +199,13 @@ class HarmonicBalance:
             return (a @ f).T.ravel(), df.reshape(2 * h, 2 * h)
         f, jac = operator.periodic_force(self._synth @ u)
         return a @ f, a @ jac @ self._synth
+
+    def amplitudes(self, xs: Array) -> Array:
+        """First-harmonic amplitudes (mm) of the output coordinate at the coefficient
+        vectors ``xs`` (m, n) (:meth:`amplitude` without its gradient, all at once)."""
+        q = xs.reshape(len(xs), self.structure.dofs, 2 * self.harmonics + 1)
+        out = self.structure.output
+        return np.asarray(np.hypot(q[:, :, 1] @ out, q[:, :, 2] @ out))
 
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""

@@ -86,3 +86,68 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
                 for a in range(h):
                     for b in range(h):
                         jac[d * h + a, e * h + b] += we * dforce[a, b]
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _augmented(y: np.ndarray, y_pred: np.ndarray, row: np.ndarray, load: np.ndarray,
+               kk: np.ndarray, mm: np.ndarray, cc: np.ndarray, mc: np.ndarray,
+               weights: np.ndarray, phi: np.ndarray, ck: np.ndarray, ckp: np.ndarray,
+               offsets: np.ndarray, synth: np.ndarray, analysis: np.ndarray,
+               r: np.ndarray, jac: np.ndarray, dxi: np.ndarray) -> None:
+    """``[R(y); row . (y - y_pred)]`` and its Jacobian ``[dR/dy; row]`` into ``r``, ``jac``
+    (R the balance at ``y = [x, w]``, without negative damping)."""
+    n = y.size - 1
+    balance_kernel(y[:n], y[n], 0.0, load, kk, mm, cc, mc, weights, phi, ck, ckp, offsets,
+                   synth, analysis, r[:n], jac[:n], dxi)
+    r[n] = row @ (y - y_pred)
+    jac[n] = row
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def corrector_kernel(y_pred: np.ndarray, row: np.ndarray, scale: np.ndarray, tol: float,
+                     max_iter: int, contraction: float, halvings: int, load: np.ndarray,
+                     kk: np.ndarray, mm: np.ndarray, cc: np.ndarray, mc: np.ndarray,
+                     weights: np.ndarray, phi: np.ndarray, ck: np.ndarray, ckp: np.ndarray,
+                     offsets: np.ndarray, synth: np.ndarray, analysis: np.ndarray,
+                     y_out: np.ndarray, jac_out: np.ndarray) -> bool:
+    """Newton's method on the pseudo-arclength system ``[R(y); row . (y - y_pred)] = 0``
+    from ``y_pred``, R the balance of :func:`balance_kernel` alone (no other joints):
+    line for line :func:`~.continuation.newton` (same convergence estimate, halving and
+    tolerance; its ``CONTRACTION`` and ``MAX_HALVINGS`` come in as ``contraction`` and
+    ``halvings``, not as globals, which a cached compilation would freeze), compiled.
+    Writes the solution into ``y_out`` and the augmented Jacobian at the last iterate
+    evaluated into ``jac_out``; returns whether it converged. Raises
+    ``np.linalg.LinAlgError`` on a singular Jacobian (the caller's non-convergence)."""
+    m = y_pred.size
+    y = y_pred.copy()
+    r, jac, dxi = np.empty(m), np.empty((m, m)), np.empty(m - 1)
+    r_new, jac_new = np.empty(m), np.empty((m, m))
+    args = (load, kk, mm, cc, mc, weights, phi, ck, ckp, offsets, synth, analysis)
+    _augmented(y, y_pred, row, *args, r, jac, dxi)
+    previous = 0.0
+    for _ in range(max_iter):
+        step = np.linalg.solve(jac, -r)
+        size = np.max(np.abs(step / scale))
+        theta = size / previous if previous > 0.0 else 1.0
+        if size < tol or (theta < contraction and size * theta / (1.0 - theta) < tol):
+            y_out[:] = y + step
+            jac_out[:] = jac
+            return bool(np.all(np.isfinite(y_out)))
+        previous = size
+        norm0 = r @ r
+        lam = 1.0
+        trial = y
+        for _ in range(halvings):
+            trial = y + lam * step
+            _augmented(trial, y_pred, row, *args, r_new, jac_new, dxi)
+            if r_new @ r_new <= norm0 or lam * size < tol:
+                break
+            lam *= 0.5
+        y = trial
+        r, r_new = r_new, r
+        jac, jac_new = jac_new, jac
+        if not np.all(np.isfinite(r)):
+            break
+    y_out[:] = y
+    jac_out[:] = jac
+    return False

@@ -15,7 +15,7 @@ from ..errors import ParameterError
 from ..named import result
 from ..solver.solve import single_threaded_blas
 from .condense import Condensed, condensable
-from .continuation import arclength, newton
+from .continuation import MAX_ITERATIONS, arclength, newton
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
 from .structure import Structure
 
@@ -118,9 +118,10 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
     scale[-1] = hi - lo
     direction = np.zeros(system.size + 1)
     direction[-1] = 1.0
+    corrector = hb.corrector(load, MAX_ITERATIONS) if isinstance(system, _Full) else None
     curve = arclength(system.residual, np.append(u0, lo), direction, step,
                       lambda y: y[-1] >= hi, scale, rescale, tol=TOLERANCE,
-                      max_points=max_points)
+                      max_points=max_points, corrector=corrector)
     points = np.array(curve.points)
     if curve.success and len(points) > 1 and points[-1, -1] > hi:  # end exactly at MAX
         u = (hi - points[-2, -1]) / (points[-1, -1] - points[-2, -1])
@@ -129,7 +130,7 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
             points[-1] = np.append(end[0], hi)
     omega = points[:, -1]
     coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in points])
-    amps = np.array([hb.amplitude(x)[0] for x in coeffs])
+    amps = hb.amplitudes(coeffs)
     peak_a, peak_w = _peak(system, points, amps)
     return FrequencyResponse(force=float(force), frequency=omega / (2.0 * np.pi),
                              amplitude=amps, coefficients=coeffs, peak_amplitude=peak_a,
