@@ -28,9 +28,9 @@ from typing import Any
 import numpy as np
 
 from microslip import closedform, preset
+from microslip.blas import single_threaded_blas
 from microslip.params import ClampParams
 from microslip.solver import available_linear_solvers, build_model, solve_uniaxial
-from microslip.solver.solve import single_threaded_blas
 
 P = preset("table1")
 F0 = 267.0

@@ -17,9 +17,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
+from ..blas import single_threaded_blas
 from ..errors import ParameterError
 from ..named import result
-from ..solver.solve import single_threaded_blas
 from .continuation import newton
 from .describing import DEFAULT_SAMPLES, describing_function
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance

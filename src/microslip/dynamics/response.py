@@ -11,9 +11,9 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ..blas import single_threaded_blas
 from ..errors import ParameterError
 from ..named import result
-from ..solver.solve import single_threaded_blas
 from .condense import Condensed, condensable
 from .continuation import MAX_ITERATIONS, arclength, newton
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance

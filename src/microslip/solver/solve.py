@@ -24,9 +24,7 @@ default), and a backtracking line search on |r| guards the step. Units: N, mm, M
 
 from __future__ import annotations
 
-import contextlib
 import time
-from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,6 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ..blas import single_threaded_blas
 from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..models.interface import PressureLaw
@@ -353,23 +352,6 @@ class History:
     def displacement(self, component: str) -> FloatArray:
         """Work-conjugate displacement of the ``tip`` or ``centre`` load, mm."""
         return {"tip": self.d_tip, "centre": self.d_centre}[component]
-
-
-@contextlib.contextmanager
-def single_threaded_blas() -> Iterator[None]:
-    """Limit BLAS/LAPACK to one thread while the solver runs (if threadpoolctl is installed).
-
-    The banded factorisations are small (n b^2 ~ 1e6-1e8 flops); threading them costs more
-    in synchronisation than it gains (measured 0.96 ms vs 0.14 ms for 625 dofs), and on a
-    shared machine it can cost 10-40x.
-    """
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:
-        yield
-        return
-    with threadpool_limits(limits=1, user_api="blas"):
-        yield
 
 
 class Simulation:
