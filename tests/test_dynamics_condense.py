@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from microslip import preset
-from microslip.dynamics import clamp_joint, response
+from microslip.dynamics import clamp_joint, condense, response
 from microslip.dynamics.condense import Condensed, condensable
 from microslip.dynamics.hb import HarmonicBalance
 from microslip.dynamics.operators2d import circular
@@ -16,10 +16,11 @@ from microslip.dynamics.structure import JointLink, Structure
 TIP = clamp_joint("tip", preset("table1"), 1e5, elements=60)
 
 
-def chain(n: int = 4, planar: bool = False) -> Structure:
-    """A fixed-free chain of n masses (0.1 kg, 4e7 N/m, C = 1e-5 K); a tip joint from DOF
-    1 to the ground and one between the last two DOFs (two-directional if ``planar``: the
-    second direction on DOF 0)."""
+def chain(n: int = 4, planar: bool = False, dashpot: float = 0.0) -> Structure:
+    """A fixed-free chain of n masses (0.1 kg, 4e7 N/m, C = 1e-5 K, plus ``dashpot`` N s/m
+    from DOF 0 to the ground: damping no longer proportional); a tip joint from DOF 1 to
+    the ground and one between the last two DOFs (two-directional if ``planar``: the second
+    direction on DOF 0)."""
     k = 4e7
     kk = (np.diag(np.full(n, 2 * k)) - np.diag(np.full(n - 1, k), 1)
           - np.diag(np.full(n - 1, k), -1))
@@ -33,15 +34,20 @@ def chain(n: int = 4, planar: bool = False) -> Structure:
         last = JointLink(circular(TIP), w)
     else:
         last = JointLink(TIP, second)
-    return Structure(mass=0.1 * np.eye(n), damping=1e-5 * kk, stiffness=kk,
+    cc = 1e-5 * kk
+    cc[0, 0] += dashpot
+    return Structure(mass=0.1 * np.eye(n), damping=cc, stiffness=kk,
                      joints=(JointLink(TIP, np.eye(n)[1]), last), output=np.eye(n)[-1])
 
 
-@pytest.mark.parametrize("planar", [False, True])
-def test_condensed_residual_vanishes_at_the_full_solution_and_rebuilds_it(planar):
-    s = chain(planar=planar)
+@pytest.mark.parametrize(("planar", "dashpot"), [(False, 0.0), (True, 0.0), (False, 200.0)])
+def test_condensed_residual_vanishes_at_the_full_solution_and_rebuilds_it(planar, dashpot):
+    """Proportional damping (modal sums) and not (a solve per harmonic)."""
+    s = chain(planar=planar, dashpot=dashpot)
     hb = HarmonicBalance(s, 5, 64)
     assert condensable(hb)
+    modes = condense._modes(s.stiffness, s.mass, s.damping)
+    assert (modes is None) == (dashpot > 0.0)
     load = hb.excitation(np.full(s.dofs, 40.0), 1.0)
     w = 2 * np.pi * 0.95 * float(s.linear_frequencies(stuck=True)[0])
     x, _ = response._solve_at(response._Full(hb, load), w, hb.stuck_guess(w, load))
@@ -70,6 +76,24 @@ def test_condensed_jacobian_matches_finite_differences():
         if np.allclose(fwd, bwd, rtol=0, atol=1e-6 * np.abs(jac).max()):  # no kink
             np.testing.assert_allclose(jac[:, i], 0.5 * (fwd + bwd), rtol=0,
                                        atol=1e-6 * np.abs(jac).max())
+
+
+def test_condensed_modal_sums_are_the_solves_per_harmonic(monkeypatch):
+    s = chain(planar=True)
+    hb = HarmonicBalance(s, 3, 64)
+    load = hb.excitation(np.full(s.dofs, 40.0), 1.0)
+    rng = np.random.default_rng(3)
+    modal = Condensed(hb, load)
+    monkeypatch.setattr(condense, "_modes", lambda k, m, c: None)
+    solved = Condensed(hb, load)
+    y = np.append(2e-3 * rng.standard_normal(modal.size), 0.0)
+    for f in (0.3, 1.0, 2.5):
+        y[-1] = 2 * np.pi * f * float(s.linear_frequencies(stuck=True)[0])
+        (r, jac), (r_ref, jac_ref) = modal.residual(y), solved.residual(y)
+        np.testing.assert_allclose(r, r_ref, rtol=0, atol=1e-13 * np.abs(r_ref).max())
+        np.testing.assert_allclose(jac, jac_ref, rtol=0, atol=1e-13 * np.abs(jac_ref).max())
+        x, x_ref = modal.coefficients(y[:-1], y[-1]), solved.coefficients(y[:-1], y[-1])
+        np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-13 * np.abs(x_ref).max())
 
 
 def test_condensed_amplitude_is_that_of_the_rebuilt_coefficients_and_its_gradient():

@@ -10,7 +10,11 @@ is, wherever the structure's dynamic stiffness D(w) is invertible,
 and ``x = D^-1 (P - B F(u))``. D is block-diagonal over the harmonics: for k >= 1 the complex
 ``Z_k = K - k^2 w^2 M + i k w C`` acting on ``c_k - i s_k``, for k = 0 the stiffness K; so
 G is one small complex matrix per harmonic (joint coordinates x joint coordinates) and
-``dG/dw = -(Z^-1 B)^T Z' (Z^-1 B)`` for symmetric matrices. Used when the joints have fewer
+``dG/dw = -(Z^-1 B)^T Z' (Z^-1 B)`` for symmetric matrices. With M positive definite and
+C diagonal in the undamped modes Phi (``Phi^T M Phi = I``, ``Phi^T K Phi = diag(w_j^2)``,
+proportional damping) ``Z_k^-1 = Phi diag(1 / (w_j^2 - k^2 w^2 + i k w c_j)) Phi^T``
+exactly, and G, its derivative and the forced response are modal sums (no solve per
+frequency); otherwise Z_k is solved per harmonic. Used when the joints have fewer
 coordinates than the structure has DOFs and D(w) is invertible for every w > 0 (K and C
 symmetric positive definite); the joint forces are the same ``joint_harmonics`` calls.
 
@@ -21,6 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg import eigh
 
 from .hb import HarmonicBalance
 from .structure import SI_PER_MM
@@ -28,6 +33,11 @@ from .structure import SI_PER_MM
 __all__ = ["Condensed", "condensable"]
 
 Array = NDArray[np.float64]
+Complex = NDArray[np.complex128]
+
+#: Largest modal coupling ``|Phi^T C Phi|`` off the diagonal, relative to the largest modal
+#: damping, for the damping to count as proportional (rounding of exactly proportional C).
+PROPORTIONAL = 1e-12
 
 
 def _definite(a: Array) -> bool:
@@ -83,6 +93,14 @@ class Condensed:
         self._zero = np.ix_(start, start)
         self._diagonal = (np.arange(self.size), np.arange(self.size))
         self._cos, self._sin, self._start = cos, sin, start
+        self._modal = _modes(self._k, self._m, self._c)
+        if self._modal is not None:
+            phi = self._modal[1]
+            bphi = self._b.T @ phi  # (nb, n)
+            self._bphi = bphi.astype(np.complex128)
+            self._bb = (bphi[:, None, :] * bphi[None, :, :]).reshape(nb * nb, -1).T.astype(
+                np.complex128)  # (n, nb nb)
+            self._pphi = (self._p[:, :, 0] @ phi)  # (H, n)
         self._slices = []
         offset = 0
         for link in s.joints:
@@ -113,19 +131,30 @@ class Condensed:
         dz = -2.0 * self._order * kw * self._m + 1j * self._order * self._c
         return np.linalg.solve(z, self._rhs), dz
 
+    def _compliance(self, omega: float) -> tuple[Complex, Complex, Complex, Complex]:
+        """Per harmonic: G (H, nb, nb), B^T Z^-1 P (H, nb) and their w-derivatives."""
+        nb = self._b.shape[1]
+        if self._modal is not None:
+            w2, _, cj = self._modal
+            order = self._order[:, :, 0]
+            kw = order * omega
+            d = 1.0 / (w2 - kw**2 + 1j * kw * cj)  # (H, n)
+            dd = -d * d * (-2.0 * order * kw + 1j * order * cj)
+            g = (d @ self._bb).reshape(-1, nb, nb)
+            dg = (dd @ self._bb).reshape(-1, nb, nb)
+            return g, (d * self._pphi) @ self._bphi.T, dg, (dd * self._pphi) @ self._bphi.T
+        sol, dz = self._solve(omega)
+        xb, xp = sol[:, :, :nb], sol[:, :, nb:]
+        bt = self._b.T
+        tb = np.swapaxes(xb, 1, 2)
+        return (bt @ xb, (bt @ xp)[:, :, 0], -(tb @ dz @ xb), -(tb @ dz @ xp)[:, :, 0])
+
     def residual(self, y: Array) -> tuple[Array, Array]:
         """``R(u, w)`` (mm, (size,)) and ``[dR/du | dR/dw]`` ((size, size + 1)) at
         ``y = [u, w]``."""
         u, omega = y[:-1], float(y[-1])
         nb = self._b.shape[1]
-        sol, dz = self._solve(omega)
-        xb, xp = sol[:, :, :nb], sol[:, :, nb:]
-        bt = self._b.T
-        g = bt @ xb  # (H, nb, nb)
-        up = (bt @ xp)[:, :, 0]
-        tb = np.swapaxes(xb, 1, 2)
-        dg = -(tb @ dz @ xb)
-        dup = -(tb @ dz @ xp)[:, :, 0]
+        g, up, dg, dup = self._compliance(omega)
         force = np.empty(self.size)
         dforce = np.zeros((self.size, self.size))
         for operator, part in self._slices:
@@ -185,8 +214,14 @@ class Condensed:
             force[part] = self.hb.joint_harmonics(operator, u[part])[0]
         f = force.reshape(nb, h)
         fc = (f[:, 1::2] - 1j * f[:, 2::2]).T[:, :, None]  # (H, nb, 1)
-        sol, _ = self._solve(omega)
-        xk = (sol[:, :, nb:] - sol[:, :, :nb] @ fc)[:, :, 0]  # (H, n)
+        if self._modal is not None:
+            w2, phi, cj = self._modal
+            kw = self._order[:, :, 0] * omega
+            q = (self._pphi - fc[:, :, 0] @ self._bphi) / (w2 - kw**2 + 1j * kw * cj)
+            xk = q @ phi.T  # (H, n)
+        else:
+            sol, _ = self._solve(omega)
+            xk = (sol[:, :, nb:] - sol[:, :, :nb] @ fc)[:, :, 0]  # (H, n)
         x = np.empty((self.hb.structure.dofs, h))
         x[:, 0] = self._static[:, nb] - self._static[:, :nb] @ f[:, 0]
         x[:, 1::2] = xk.T.real
@@ -197,3 +232,17 @@ class Condensed:
         """The largest first-harmonic amplitude of the joints' coordinates, mm: what the
         continuation's norm scales the unknowns by."""
         return float(np.max(np.hypot(u[self._cos[0]], u[self._sin[0]])))
+
+
+def _modes(k: Array, m: Array, c: Array) -> tuple[Array, Array, Array] | None:
+    """``(w_j^2, Phi, c_j)`` of the undamped modes (mass-normalized) if M is positive
+    definite and C diagonal in them (to :data:`PROPORTIONAL`), else None."""
+    if not _definite(m):
+        return None
+    w2, phi = eigh(k, m)
+    modal_c = phi.T @ c @ phi
+    cj = np.diag(modal_c).copy()
+    off = modal_c - np.diag(cj)
+    if np.max(np.abs(off)) > PROPORTIONAL * np.max(np.abs(cj)):
+        return None
+    return w2, phi, cj
