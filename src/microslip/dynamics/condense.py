@@ -89,8 +89,10 @@ class Condensed:
         sin = cos + 1
         rows = np.stack([cos, cos, sin, sin], axis=1)[:, :, :, None]  # (H, 4, nb, 1)
         cols = np.stack([cos, sin, cos, sin], axis=1)[:, :, None, :]  # (H, 4, 1, nb)
-        self._rows, self._cols = np.broadcast_arrays(rows, cols)
-        self._zero = np.ix_(start, start)
+        rows, cols = np.broadcast_arrays(rows, cols)
+        self._flat = np.ravel_multi_index((rows, cols), (self.size, self.size)).ravel()
+        self._template = np.zeros((self.size, self.size))  # the static block in place
+        self._template[np.ix_(start, start)] = self._g0
         self._diagonal = (np.arange(self.size), np.arange(self.size))
         self._cos, self._sin, self._start = cos, sin, start
         self._modal = _modes(self._k, self._m, self._c)
@@ -98,8 +100,13 @@ class Condensed:
             phi = self._modal[1]
             bphi = self._b.T @ phi  # (nb, n)
             self._bphi = bphi.astype(np.complex128)
-            self._bb = (bphi[:, None, :] * bphi[None, :, :]).reshape(nb * nb, -1).T.astype(
-                np.complex128)  # (n, nb nb)
+            bb = (bphi[:, None, :] * bphi[None, :, :]).reshape(nb * nb, -1).T  # (n, nb nb)
+            # the per-harmonic values of _blocks, [Re G, Im G, -Im G, Re G], as the real map
+            # of a complex (H, n) array viewed as (H, 2n) reals (re, im interleaved)
+            e = np.zeros((bb.shape[0], 2, 4, nb * nb))
+            e[:, 0, 0] = e[:, 0, 3] = e[:, 1, 1] = bb
+            e[:, 1, 2] = -bb
+            self._e = e.reshape(2 * bb.shape[0], 4 * nb * nb)
             self._pphi = (self._p[:, :, 0] @ phi)  # (H, n)
         self._slices = []
         offset = 0
@@ -108,12 +115,17 @@ class Condensed:
             self._slices.append((link.operator, slice(offset, offset + width)))
             offset += width
 
-    def _blocks(self, g: NDArray[np.complex128], g0: Array) -> Array:
+    def _blocks(self, g: NDArray[np.complex128], static: bool = True) -> Array:
         """The real (size, size) matrix of per-harmonic complex blocks ``g`` (H, nb, nb)
-        acting on ``c - i s``, and the static block ``g0``."""
-        out = np.zeros((self.size, self.size))
-        out[self._rows, self._cols] = np.stack([g.real, g.imag, -g.imag, g.real], axis=1)
-        out[self._zero] = g0
+        acting on ``c - i s``, and the static block G_0 (if ``static``, else zero)."""
+        values = np.stack([g.real, g.imag, -g.imag, g.real], axis=1)
+        return self._place(values, static)
+
+    def _place(self, values: Array, static: bool) -> Array:
+        """The real (size, size) matrix of the per-harmonic blocks ``values`` (H, 4 nb nb):
+        ``[Re G, Im G, -Im G, Re G]``."""
+        out = self._template.copy() if static else np.zeros((self.size, self.size))
+        out.flat[self._flat] = values.ravel()
         return out
 
     def _vector(self, v: NDArray[np.complex128], v0: Array) -> Array:
@@ -131,42 +143,43 @@ class Condensed:
         dz = -2.0 * self._order * kw * self._m + 1j * self._order * self._c
         return np.linalg.solve(z, self._rhs), dz
 
-    def _compliance(self, omega: float) -> tuple[Complex, Complex, Complex, Complex]:
-        """Per harmonic: G (H, nb, nb), B^T Z^-1 P (H, nb) and their w-derivatives."""
+    def _compliance(self, omega: float) -> tuple[Array, Array, Array, Array]:
+        """The real (size, size) matrices of G and dG/dw and the real (size,) vectors of
+        B^T D^-1 P and its w-derivative."""
         nb = self._b.shape[1]
         if self._modal is not None:
             w2, _, cj = self._modal
             order = self._order[:, :, 0]
             kw = order * omega
-            d = 1.0 / (w2 - kw**2 + 1j * kw * cj)  # (H, n)
-            dd = -d * d * (-2.0 * order * kw + 1j * order * cj)
-            g = (d @ self._bb).reshape(-1, nb, nb)
-            dg = (dd @ self._bb).reshape(-1, nb, nb)
-            return g, (d * self._pphi) @ self._bphi.T, dg, (dd * self._pphi) @ self._bphi.T
+            d = np.empty((2, kw.shape[0], w2.size), dtype=np.complex128)  # D^-1, its w-derivative
+            d[0] = 1.0 / (w2 - kw**2 + 1j * kw * cj)  # (H, n)
+            d[1] = -d[0] * d[0] * (-2.0 * order * kw + 1j * order * cj)
+            values = d.view(np.float64) @ self._e  # (2, H, 4 nb nb)
+            up = (d * self._pphi) @ self._bphi.T  # (2, H, nb)
+            return (self._place(values[0], True), self._place(values[1], False),
+                    self._vector(up[0], self._u0), self._vector(up[1], np.zeros(nb)))
         sol, dz = self._solve(omega)
         xb, xp = sol[:, :, :nb], sol[:, :, nb:]
         bt = self._b.T
         tb = np.swapaxes(xb, 1, 2)
-        return (bt @ xb, (bt @ xp)[:, :, 0], -(tb @ dz @ xb), -(tb @ dz @ xp)[:, :, 0])
+        return (self._blocks(bt @ xb), self._blocks(-(tb @ dz @ xb), False),
+                self._vector((bt @ xp)[:, :, 0], self._u0),
+                self._vector(-(tb @ dz @ xp)[:, :, 0], np.zeros(nb)))
 
     def residual(self, y: Array) -> tuple[Array, Array]:
         """``R(u, w)`` (mm, (size,)) and ``[dR/du | dR/dw]`` ((size, size + 1)) at
         ``y = [u, w]``."""
         u, omega = y[:-1], float(y[-1])
-        nb = self._b.shape[1]
-        g, up, dg, dup = self._compliance(omega)
+        big_g, big_dg, up, dup = self._compliance(omega)
         force = np.empty(self.size)
         dforce = np.zeros((self.size, self.size))
         for operator, part in self._slices:
             force[part], dforce[part, part] = self.hb.joint_harmonics(operator, u[part])
-        f = force.reshape(nb, -1)
-        fk = (f[:, 1::2] - 1j * f[:, 2::2]).T[:, :, None]  # (H, nb, 1)
-        big_g = self._blocks(g, self._g0)
-        r = u - self._vector(up, self._u0) + big_g @ force
+        r = u - up + big_g @ force
         jac = np.empty((self.size, self.size + 1))
         jac[:, :-1] = big_g @ dforce
         jac[self._diagonal] += 1.0
-        jac[:, -1] = self._vector((dg @ fk)[:, :, 0] - dup, np.zeros(nb))
+        jac[:, -1] = big_dg @ force - dup
         return r, jac
 
     def amplitude(self, y: Array) -> tuple[float, Array]:
