@@ -87,12 +87,18 @@ def test_condensed_modal_sums_are_the_solves_per_harmonic(monkeypatch):
     monkeypatch.setattr(condense, "_modes", lambda k, m, c: None)
     solved = Condensed(hb, load)
     y = np.append(2e-3 * rng.standard_normal(modal.size), 0.0)
+    ys = []
     for f in (0.3, 1.0, 2.5):
         y[-1] = 2 * np.pi * f * float(s.linear_frequencies(stuck=True)[0])
         (r, jac), (r_ref, jac_ref) = modal.residual(y), solved.residual(y)
         np.testing.assert_allclose(r, r_ref, rtol=0, atol=1e-13 * np.abs(r_ref).max())
         np.testing.assert_allclose(jac, jac_ref, rtol=0, atol=1e-13 * np.abs(jac_ref).max())
         x, x_ref = modal.coefficients(y[:-1], y[-1]), solved.coefficients(y[:-1], y[-1])
+        np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-13 * np.abs(x_ref).max())
+        ys.append(y.copy())
+    xs, xs_ref = modal.along(np.array(ys)), solved.along(np.array(ys))
+    for x, x_ref, y in zip(xs, xs_ref, ys, strict=True):  # each point its own
+        assert np.array_equal(x_ref, solved.coefficients(y[:-1], y[-1]))
         np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-13 * np.abs(x_ref).max())
 
 

@@ -220,26 +220,35 @@ class Condensed:
 
     def coefficients(self, u: Array, omega: float) -> Array:
         """The structure's coefficients x = D^-1 (P - B F(u)) (mm, :mod:`.hb` layout)."""
+        return self.along(np.append(u, omega)[None, :])[0]
+
+    def along(self, points: Array) -> Array:
+        """:meth:`coefficients` at every row ``[u, w]`` of ``points`` (m, size + 1), all
+        at once: (m, n (2H + 1)), mm."""
         nb = self._b.shape[1]
         h = 2 * self.hb.harmonics + 1
-        force = np.empty(self.size)
-        for operator, part in self._slices:
-            force[part] = self.hb.joint_harmonics(operator, u[part])[0]
-        f = force.reshape(nb, h)
-        fc = (f[:, 1::2] - 1j * f[:, 2::2]).T[:, :, None]  # (H, nb, 1)
+        m = points.shape[0]
+        force = np.empty((m, self.size))
+        for i, y in enumerate(points):
+            for operator, part in self._slices:
+                force[i, part] = self.hb.joint_harmonics(operator, y[part])[0]
+        f = force.reshape(m, nb, h)
+        fc = np.swapaxes(f[:, :, 1::2] - 1j * f[:, :, 2::2], 1, 2)  # (m, H, nb)
+        omega = points[:, -1]
         if self._modal is not None:
             w2, phi, cj = self._modal
-            kw = self._order[:, :, 0] * omega
-            q = (self._pphi - fc[:, :, 0] @ self._bphi) / (w2 - kw**2 + 1j * kw * cj)
-            xk = q @ phi.T  # (H, n)
+            kw = self._order[None, :, :, 0] * omega[:, None, None]  # (m, H, 1)
+            q = (self._pphi - fc @ self._bphi) / (w2 - kw**2 + 1j * kw * cj)
+            xk = q @ phi.T  # (m, H, n)
         else:
-            sol, _ = self._solve(omega)
-            xk = (sol[:, :, nb:] - sol[:, :, :nb] @ fc)[:, :, 0]  # (H, n)
-        x = np.empty((self.hb.structure.dofs, h))
-        x[:, 0] = self._static[:, nb] - self._static[:, :nb] @ f[:, 0]
-        x[:, 1::2] = xk.T.real
-        x[:, 2::2] = -xk.T.imag
-        return x.ravel()
+            xk = np.array([(sol[:, :, nb:] - sol[:, :, :nb] @ fk[:, :, None])[:, :, 0]
+                           for sol, fk in zip((self._solve(w)[0] for w in omega), fc,
+                                              strict=True)])
+        x = np.empty((m, self.hb.structure.dofs, h))
+        x[:, :, 0] = self._static[:, nb] - f[:, :, 0] @ self._static[:, :nb].T
+        x[:, :, 1::2] = np.swapaxes(xk.real, 1, 2)
+        x[:, :, 2::2] = -np.swapaxes(xk.imag, 1, 2)
+        return x.reshape(m, -1)
 
     def reach(self, u: Array) -> float:
         """The largest first-harmonic amplitude of the joints' coordinates, mm: what the

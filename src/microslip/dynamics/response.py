@@ -129,7 +129,7 @@ def _frequency_response(structure: Structure, force: float, shape: Array,
         if end is not None:
             points[-1] = np.append(end[0], hi)
     omega = points[:, -1]
-    coeffs = np.array([system.coefficients(y[:-1], y[-1]) for y in points])
+    coeffs = system.along(points)
     amps = hb.amplitudes(coeffs)
     peak_a, peak_w = _peak(system, points, amps)
     return FrequencyResponse(force=float(force), frequency=omega / (2.0 * np.pi),
@@ -151,8 +151,9 @@ class _Full:
     def joints(self, x: Array) -> Array:
         return x
 
-    def coefficients(self, x: Array, omega: float) -> Array:
-        return x
+    def along(self, points: Array) -> Array:
+        """The coefficients at every row ``[x, w]`` of ``points``: x itself."""
+        return points[:, :-1].copy()
 
     def amplitude(self, y: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in
