@@ -108,6 +108,20 @@ class Condensed:
             e[:, 1, 2] = -bb
             self._e = e.reshape(2 * bb.shape[0], 4 * nb * nb)
             self._pphi = (self._p[:, :, 0] @ phi)  # (H, n)
+            w2, cj = self._modal[0], self._modal[2]
+            self._order2 = order[:, None] ** 2  # (H, 1)
+            self._ioc = 1j * order[:, None] * cj  # (H, n): D_k = w2 - k^2 w^2 + i w k c
+            # B^T D^-1 P as the real map of D^-1 viewed as reals into _vector's layout
+            c = self._pphi[:, :, None] * bphi.T[None, :, :]  # (H, n, nb)
+            eu = np.zeros((hb.harmonics, w2.size, 2, self.size))
+            for k in range(hb.harmonics):
+                eu[k, :, 0, cos[k]] = c[k].real.T
+                eu[k, :, 1, cos[k]] = -c[k].imag.T
+                eu[k, :, 0, sin[k]] = -c[k].imag.T
+                eu[k, :, 1, sin[k]] = -c[k].real.T
+            self._eu = eu.reshape(-1, self.size)
+            self._u0_vector = np.zeros(self.size)
+            self._u0_vector[start] = self._u0
         self._slices = []
         offset = 0
         for link in s.joints:
@@ -148,16 +162,15 @@ class Condensed:
         B^T D^-1 P and its w-derivative."""
         nb = self._b.shape[1]
         if self._modal is not None:
-            w2, _, cj = self._modal
-            order = self._order[:, :, 0]
-            kw = order * omega
-            d = np.empty((2, kw.shape[0], w2.size), dtype=np.complex128)  # D^-1, its w-derivative
-            d[0] = 1.0 / (w2 - kw**2 + 1j * kw * cj)  # (H, n)
-            d[1] = -d[0] * d[0] * (-2.0 * order * kw + 1j * order * cj)
-            values = d.view(np.float64) @ self._e  # (2, H, 4 nb nb)
-            up = (d * self._pphi) @ self._bphi.T  # (2, H, nb)
+            d = np.empty((2, *self._ioc.shape), dtype=np.complex128)  # D^-1, its w-derivative
+            np.divide(1.0, self._modal[0] + omega * (self._ioc - omega * self._order2),
+                      out=d[0])
+            np.multiply(-d[0] * d[0], self._ioc - 2.0 * omega * self._order2, out=d[1])
+            real = d.view(np.float64)  # (2, H, 2n)
+            values = real @ self._e  # (2, H, 4 nb nb)
+            up = real.reshape(2, -1) @ self._eu  # (2, size)
             return (self._place(values[0], True), self._place(values[1], False),
-                    self._vector(up[0], self._u0), self._vector(up[1], np.zeros(nb)))
+                    up[0] + self._u0_vector, up[1])
         sol, dz = self._solve(omega)
         xb, xp = sol[:, :, :nb], sol[:, :, nb:]
         bt = self._b.T
