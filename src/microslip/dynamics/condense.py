@@ -33,7 +33,6 @@ from .structure import SI_PER_MM
 __all__ = ["Condensed", "condensable"]
 
 Array = NDArray[np.float64]
-Complex = NDArray[np.complex128]
 
 #: Largest modal coupling ``|Phi^T C Phi|`` off the diagonal, relative to the largest modal
 #: damping, for the damping to count as proportional (rounding of exactly proportional C).
