@@ -91,32 +91,36 @@ def compare(r: Any, ti_points: int, integrate: Callable[[float, int], Any]
     return total / picks.size, worst, most
 
 
-def bench_frf(repeat: int, ti_points: int) -> None:
-    s = one_dof()
-    lo = 0.8 * float(s.linear_frequencies(stuck=False)[0])
-    hi = float(s.linear_frequencies(stuck=True)[0]) / 0.8
-    shape = np.ones(1)
-
-    def run() -> Any:
-        return frequency_response(s, FORCE, shape, (lo, hi), HARMONICS, SAMPLES)
-
+def race(title: str, run: Callable[[], Any], integrate: Callable[[float, int], Any],
+         target: float, scheme: str, repeat: int, ti_points: int) -> None:
+    """Time a frequency response ``run`` against the settled time integration
+    ``integrate(frequency_Hz, periods)`` at points of its curve, and print them side by side."""
     run()  # warm-up (numba compilation)
     r, t_hb = best(run, repeat)
-    steady_state(s, FORCE, float(r.frequency[0]), periods=2, steps=STEPS)  # compile
-    per_point, worst, most = compare(
-        r, ti_points, lambda f, p: steady_state(s, FORCE, f, periods=p, steps=STEPS))
+    integrate(float(r.frequency[0]), 2)  # compile
+    per_point, worst, most = compare(r, ti_points, integrate)
     t_ti = per_point * r.frequency.size
-    print(f"1. FRF, 1 DOF, tip joint (201 elements), {HARMONICS} harmonics, {SAMPLES} "
-          f"samples, {r.frequency.size} points, F = {FORCE:g} N")
+    print(f"{title}, {r.frequency.size} points")
     print(f"   peak {r.peak_amplitude:.6g} mm at {r.peak_frequency:.6g} Hz; "
           f"success {r.success}")
-    print(f"   harmonic balance      {t_hb:8.3f} s   (target < 0.5 s)")
+    print(f"   harmonic balance      {t_hb:8.3f} s   (target < {target:g} s)")
     print(f"   time integration      {t_ti:8.3f} s   ({per_point:.4f} s per point x "
-          f"{r.frequency.size} points, measured at {ti_points}+1; Newmark, {STEPS} steps "
+          f"{r.frequency.size} points, measured at {ti_points}+1; {scheme}, {STEPS} steps "
           f"per period, up to {most} periods to settle below {SETTLED:g})")
     print(f"   speed-up              {t_ti / t_hb:8.0f} x   (target >= 100 x)")
     print(f"   amplitude HB vs TI    {100 * worst:8.3f} %   (target <= 0.5 %, worst of "
           f"the measured frequencies incl. the peak)")
+
+
+def bench_frf(repeat: int, ti_points: int) -> None:
+    s = one_dof()
+    lo = 0.8 * float(s.linear_frequencies(stuck=False)[0])
+    hi = float(s.linear_frequencies(stuck=True)[0]) / 0.8
+    race(f"1. FRF, 1 DOF, tip joint (201 elements), {HARMONICS} harmonics, {SAMPLES} "
+         f"samples, F = {FORCE:g} N",
+         lambda: frequency_response(s, FORCE, np.ones(1), (lo, hi), HARMONICS, SAMPLES),
+         lambda f, p: steady_state(s, FORCE, f, periods=p, steps=STEPS),
+         0.5, "Newmark", repeat, ti_points)
 
 
 def bench_backbone(repeat: int) -> None:
@@ -155,27 +159,10 @@ def bench_ten_dof(repeat: int, ti_points: int) -> None:
     load = 20.0 * mode_load(s, 0)  # a modal force of 20 N on the first mode
     lo = 0.9 * float(s.linear_frequencies(stuck=False)[0])
     hi = float(s.linear_frequencies(stuck=True)[0]) / 0.9
-
-    def run() -> Any:
-        return frequency_response(s, 1.0, load, (lo, hi), HARMONICS, SAMPLES, step=STEP_10)
-
-    run()
-    r, t_hb = best(run, repeat)
-    transient(s, load, float(r.frequency[0]), periods=2, steps=STEPS)  # compile
-    per_point, worst, most = compare(
-        r, ti_points, lambda f, p: transient(s, load, f, periods=p, steps=STEPS))
-    t_ti = per_point * r.frequency.size
-    print(f"3. FRF, 10 DOF, two tip joints, {HARMONICS} harmonics, {SAMPLES} samples, "
-          f"{r.frequency.size} points")
-    print(f"   peak {r.peak_amplitude:.6g} mm at {r.peak_frequency:.6g} Hz; "
-          f"success {r.success}")
-    print(f"   harmonic balance      {t_hb:8.3f} s   (target < 2 s)")
-    print(f"   time integration      {t_ti:8.3f} s   ({per_point:.4f} s per point x "
-          f"{r.frequency.size} points, measured at {ti_points}+1; central differences, "
-          f"{STEPS} steps per period, up to {most} periods to settle below {SETTLED:g})")
-    print(f"   speed-up              {t_ti / t_hb:8.0f} x   (target >= 100 x)")
-    print(f"   amplitude HB vs TI    {100 * worst:8.3f} %   (target <= 0.5 %, worst of "
-          "the measured frequencies incl. the peak)")
+    race(f"3. FRF, 10 DOF, two tip joints, {HARMONICS} harmonics, {SAMPLES} samples",
+         lambda: frequency_response(s, 1.0, load, (lo, hi), HARMONICS, SAMPLES, step=STEP_10),
+         lambda f, p: transient(s, load, f, periods=p, steps=STEPS),
+         2.0, "central differences", repeat, ti_points)
 
 
 def main() -> None:
