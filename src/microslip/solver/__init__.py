@@ -19,6 +19,7 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 
 from __future__ import annotations
 
+from .backbone import FEBackbone, fe_backbone
 from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pressure_law
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
@@ -66,6 +67,7 @@ __all__ = [
     "CouplingResult",
     "CouplingSweep",
     "CycleWork",
+    "FEBackbone",
     "FrictionModel",
     "FrictionResponse",
     "History",
@@ -85,6 +87,7 @@ __all__ = [
     "coupling_study",
     "coupling_sweep",
     "element_stiffness",
+    "fe_backbone",
     "fe_pressure_law",
     "friction_dissipation",
     "level_counts",
