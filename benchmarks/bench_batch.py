@@ -15,6 +15,12 @@ length updates, secant U):
   (``microslip.damping``: backbone, Masing loop and energies, 1000 increments, after
   warm-up; target < 1 ms), tip and centre;
 * the single-loop API, ``microslip.damping`` once per case;
+* the floor of any model whose slip front solves a transcendental equation: a compiled loop
+  over the same cases and increments in the same layout that does nothing but one
+  ``math.tanh`` per case-increment (the layer's stuck part, F = Q(a) + q tanh(lambda (L - a))
+  / lambda, needs at least one per increment), and, beside it, the same loop with one
+  division instead (what SIMD arithmetic alone reaches here). numba vectorises ``tanh`` only
+  through Intel SVML, which this llvmlite is not built with; the printout says which;
 * a plain-Python loop of the same arithmetic (the kernel's ``py_func`` run by the
   interpreter; it still calls the compiled step function per case-increment);
 * a C reference loop (``benchmarks/ref_tip.c``) compiled here with ``gcc -O2``: one case at a
@@ -29,6 +35,7 @@ The machine may be shared: each timing is the best of a few repeats.
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import shutil
 import subprocess
@@ -39,6 +46,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+from numba import config as numba_config
+from numba import njit, prange
 
 from microslip import damping, preset
 from microslip.batch import batch_damping
@@ -80,6 +89,44 @@ def loop_time(model: str, n: int, repeats: int) -> float:
     f0 = 0.8 * p.macroslip_force
     damping(model, p, f0, n, contact=LAYER)
     return best(lambda: damping(model, p, f0, n, contact=LAYER), repeats)
+
+
+@njit(parallel=True, cache=True, fastmath=False)
+def _floor_kernel(scale, n, transcendental, out):
+    """One ``math.tanh`` (or one division) per case-increment, cases in chunks of CHUNK
+    lanes as the engine lays them out; the sum per case keeps the work from being removed."""
+    ncase = scale.shape[0]
+    chunk = batch_kernels.CHUNK
+    for c in prange((ncase + chunk - 1) // chunk):
+        lo = c * chunk
+        m = min(chunk, ncase - lo)
+        acc = np.zeros(m)
+        for i in range(1, n + 1):
+            fr = i / n
+            if transcendental:
+                for k in range(m):
+                    acc[k] += math.tanh(scale[lo + k] * fr)
+            else:
+                for k in range(m):
+                    acc[k] += 1.0 / (scale[lo + k] + fr)
+        for k in range(m):
+            out[lo + k] = acc[k]
+
+
+def rate_floor(cases: int, n: int, threads: int, transcendental: bool, repeats: int) -> float:
+    """Case-increments/s of :func:`_floor_kernel` on ``threads`` threads."""
+    import numba
+
+    scale = np.linspace(0.1, 20.0, cases)
+    out = np.empty(cases)
+    before = numba.get_num_threads()
+    numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    try:
+        _floor_kernel(scale[:10], 2, transcendental, out[:10])
+        t = best(lambda: _floor_kernel(scale, n, transcendental, out), repeats)
+    finally:
+        numba.set_num_threads(before)
+    return cases * n / t
 
 
 def rate_single_loop(cases: int, n: int) -> float:
@@ -163,6 +210,13 @@ def main() -> int:
                    rate_batch(layer_cases, n, t, "numba", repeats, contact=LAYER),
                    f"{layer_cases} cases") for t in (1, 2)]
     rows.extend(layer_rows)
+    svml = "with SVML" if numba_config.USING_SVML else "no SVML: scalar libm"
+    floor_rows = [(f"  floor: one math.tanh per case-increment, {t} thread{'s' * (t > 1)}",
+                   rate_floor(big, n, t, True, repeats), f"{big} cases, {svml}")
+                  for t in (1, 2)]
+    rows.extend(floor_rows)
+    rows.append(("  (one division instead, 2 threads)", rate_floor(big, n, 2, False, repeats),
+                 f"{big} cases"))
     loops = {m: loop_time(m, n, 20 if args.quick else 100) for m in ("tip", "centre")}
     rows.append(("single-loop API (microslip.damping)", rate_single_loop(20, n), "20 cases"))
     rows.append(("plain-Python loop, same arithmetic", rate_python(10, n), "10 cases"))
@@ -190,7 +244,8 @@ def main() -> int:
     layer2 = layer_rows[1][1]
     print(f"batch engine on layer + parabolic law, 2 threads: {layer2:.3e} case-increments/s, "
           f"target >= 1e9: {'met' if layer2 >= 1e9 else 'NOT met'} (rigid tip, 2 threads: "
-          f"{rows[1][1]:.3e})")
+          f"{rows[1][1]:.3e}; the floor of one tanh per increment, 2 threads: "
+          f"{floor_rows[1][1]:.3e})")
     print(f"load average at the end: {', '.join(f'{x:.2f}' for x in os.getloadavg())} "
           "(other processes on the machine slow every row)")
     if args.quick:
