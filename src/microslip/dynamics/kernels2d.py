@@ -156,7 +156,7 @@ def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.
     """
     n = u.shape[0]
     h = basis.shape[1]
-    scale = ph + abs(u[start, 0]) + abs(u[start, 1])
+    scale = ph / min(1.0, rho) + abs(u[start, 0]) + abs(u[start, 1])  # slips along y: ph / rho
     q = np.zeros((2, 2 * h))
     for cycle in range(MAX_PASSES):
         zx, zy = z0[0], z0[1]
