@@ -97,8 +97,9 @@ def test_return_map_lands_on_the_circle_with_the_slip_along_the_force(d, rho, ph
         assert (zx, zy) == (0.0, 0.0)
         return
     assert math.hypot(gx, gy) == pytest.approx(ph, rel=1e-14)
-    # z = u - (u - z): its direction carries round-off of |u| (and rho on g_y)
-    assert abs(zx * gy - zy * gx) <= 1e-14 * math.hypot(*d) * ph * (1 + rho)
+    # z = u - stretch and g from u - z: round-off of |u| on both (times rho on g_y)
+    z = math.hypot(zx, zy)
+    assert abs(zx * gy - zy * gx) <= 2e-15 * math.hypot(*d) * (ph + (1 + rho) * z)
     assert zx * gx + zy * gy >= 0.0
 
 
