@@ -139,8 +139,7 @@ class HarmonicBalance:
         extra = np.zeros((self.size, self.size))
         h = 2 * self.harmonics + 1
         for link in self.structure.joints:
-            w = link.weights
-            extra += np.kron(w @ w.T, np.eye(h)) * link.operator.initial_stiffness
+            extra += np.kron(link.stuck_stiffness, np.eye(h))
         lin = self._k - omega**2 * self._m + omega * self._c + extra
         return np.asarray(np.linalg.solve(lin, load))
 

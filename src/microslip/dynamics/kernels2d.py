@@ -1,16 +1,33 @@
 """Compiled kernels of the two-directional Iwan operator: parallel 2-D Jenkins elements with
-circular slip limits (radial return).
+one circular Coulomb limit each, isotropic or anisotropic springs.
 
-Element e: an isotropic spring ``k[e]`` (N/mm) in series with a slider at ``z`` (mm, a
-2-vector) that slips when the stretch ``r = |u - z|`` exceeds ``phi[e]`` (mm); its slip force
-is ``k[e] phi[e]`` (N) in any direction. Force of the set: ``sum_e k[e] (u - z_e)``.
+Element e: a spring ``K = diag(k[e], ky[e])`` (N/mm) in series with a slider at ``z`` (mm, a
+2-vector); its force ``f = K (u - z)`` (N) stays within the circle ``|f| <= s``,
+``s = k[e] phi[e]`` (``phi`` the slip displacement along x, mm), and the slider slips
+along the force (associated flow, isotropic Coulomb friction). Force of the set:
+``sum_e K_e (u - z_e)``.
 
 Notes
 -----
-Radial return (the exact return mapping of a circular Coulomb limit): with
-``n = (u - z) / r``, ``z <- u - phi n`` if ``r > phi``. Its derivatives, with
-``D = (phi / r) (I - n n^T)``: ``dz_new = (I - D) du + D dz``. Along one axis ``n = +-e_x``
-exactly and the step is the 1-D return mapping of :mod:`.kernels`, bit for bit.
+Return map from the trial stretch ``d = u - z`` (:func:`_slip`), written in
+x-displacement units (forces over ``k``, ``rho = ky / k``): ``g = (d_x, rho d_y)``,
+elastic if ``|g| <= phi``; else ``g_j / (1 + gamma r_j)`` (``r = (1, rho)``) with
+gamma >= 0 the root of ``|g(gamma)| = phi`` and ``z_new = u - C d``,
+``C = diag(c_j) = diag(1 / (1 + gamma r_j))``: the slip increment ``z_new - z = gamma g_new``
+is parallel to the new force. Newton's method on ``phi / |g(gamma)| - 1`` (concave and
+increasing in gamma) from ``gamma_0 = (|g| / phi - 1) / max(1, rho)`` (a lower bound of the
+root) increases monotonically to it; for ``rho = 1`` gamma_0 is the root (radial return,
+``C = (phi / r) I``). The new stretch is then set from its direction (d_x, (c_y / c_x) d_y)
+scaled onto the circle, which for rho = 1 is the radial return's own arithmetic, bit for
+bit (so a slider exactly at its limit decides stick or slip as before).
+
+Tangent by implicit differentiation of ``|g_new| = phi``: ``dz_new = (I - D) du + D dz``
+with ``D = C - (c o g)(r o c o g)^T / b``, ``b = sum_j r_j c_j g_j^2`` (o the elementwise
+product), i.e. ``D_xx = c_x rho c_y g_y^2 / b``, ``D_yy = c_y c_x g_x^2 / b``,
+``D_xy = -rho c_x c_y g_x g_y / b``, ``D_yx = -c_x c_y g_x g_y / b``; the force tangent
+``K D`` is symmetric. For ``rho = 1`` it is ``D = (phi / r) (I - n n^T)``. Along one axis
+``g`` has one component, D is 0 along it and the step is the 1-D return mapping of
+:mod:`.kernels` (to round-off).
 """
 
 from __future__ import annotations
@@ -21,7 +38,7 @@ import numpy as np
 
 from .kernels import njit
 
-__all__ = ["circular_periodic_kernel", "radial_return"]
+__all__ = ["circular_periodic_kernel", "return_map"]
 
 #: Passes at most of the per-element fixed-point (Newton) iteration for the periodic state.
 MAX_PASSES = 200
@@ -29,46 +46,70 @@ MAX_PASSES = 200
 #: Cycles repeated as the history would before Newton's method takes over.
 CYCLES = 60
 
-
-@njit(cache=True, fastmath=False, nogil=True)
-def radial_return(ux: float, uy: float, zx: float, zy: float, ph: float
-                  ) -> tuple[float, float, float, float, bool]:
-    """New slider position (zx, zy), normal (nx, ny) and whether the element slipped."""
-    dx = ux - zx
-    dy = uy - zy
-    r = math.hypot(dx, dy)
-    if r > ph:
-        nx = dx / r
-        ny = dy / r
-        return ux - ph * nx, uy - ph * ny, nx, ny, True
-    return zx, zy, 0.0, 0.0, False
+#: Newton iterations at most for the return map's gamma (monotone, quadratic: a few).
+MAX_NEWTON = 100
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _project(ux: float, uy: float, zx: float, zy: float, ph: float) -> tuple[float, float]:
-    """Slider on the limit circle: u - phi (u - z) / |u - z| (the radial return of a
-    slipping element, also at r = phi)."""
-    dx = ux - zx
-    dy = uy - zy
-    r = math.hypot(dx, dy)
-    return ux - ph * (dx / r), uy - ph * (dy / r)
+def _skew(dx: float, dy: float, rho: float, ph: float) -> float:
+    """``q = c_y / c_x = (1 + gamma) / (1 + gamma rho)`` of a slipping step from the trial
+    stretch (dx, dy) (``|(dx, rho dy)| > phi``): the new stretch is parallel to
+    (dx, q dy). 1 exactly if rho = 1."""
+    gamma = (math.hypot(dx, rho * dy) / ph - 1.0) / max(1.0, rho)
+    for _ in range(MAX_NEWTON):
+        cx = 1.0 / (1.0 + gamma)
+        cy = 1.0 / (1.0 + gamma * rho)
+        gx = cx * dx
+        gy = cy * rho * dy
+        norm = math.hypot(gx, gy)
+        step = (norm - ph) * norm * norm / (ph * (cx * gx * gx + rho * cy * gy * gy))
+        if not step > 1e-15 * gamma:  # converged (or round-off: step <= 0)
+            break
+        gamma += step
+    return (1.0 + gamma) / (1.0 + gamma * rho)
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _slip_map(ux: float, uy: float, zx: float, zy: float, ph: float) -> np.ndarray:
-    """D = (phi / r) (I - n n^T) at a slipping step from (zx, zy) to u."""
+def _slip(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
+          ) -> tuple[float, float, float, float, float, float]:
+    """New slider (zx, zy) of a slipping step, the direction (nx, ny) of the new stretch
+    ``phi n`` (``|(n_x, rho n_y)| = 1``: the force on the circle) and (c_x, c_y). For
+    rho = 1 exactly the radial return ``u - phi (u - z) / |u - z|``."""
     dx = ux - zx
     dy = uy - zy
-    r = math.hypot(dx, dy)
-    nx = dx / r
-    ny = dy / r
-    s = ph / r
+    q = _skew(dx, dy, rho, ph)
+    wy = q * dy
+    norm = math.hypot(dx, rho * wy)
+    nx = dx / norm
+    ny = wy / norm
+    cx = ph / norm
+    return ux - ph * nx, uy - ph * ny, nx, ny, cx, q * cx
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def return_map(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
+               ) -> tuple[float, float]:
+    """New slider position (zx, zy), mm, of an element (``rho = ky / k``, slip displacement
+    ``ph`` along x, mm) moved to ``u`` (mm) from ``z``."""
+    if math.hypot(ux - zx, rho * (uy - zy)) > ph:
+        zx, zy, _, _, _, _ = _slip(ux, uy, zx, zy, rho, ph)
+    return zx, zy
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _slip_map(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
+              ) -> tuple[float, float, np.ndarray]:
+    """The new slider position and D at a slipping step from (zx, zy) to u."""
+    zx, zy, nx, ny, cx, cy = _slip(ux, uy, zx, zy, rho, ph)
+    gx = nx  # the force over k phi
+    gy = rho * ny
+    b = cx * gx * gx + rho * cy * gy * gy
     d = np.empty((2, 2))
-    d[0, 0] = s * (1.0 - nx * nx)
-    d[0, 1] = -s * nx * ny
-    d[1, 0] = d[0, 1]
-    d[1, 1] = s * (1.0 - ny * ny)
-    return d
+    d[0, 0] = cx * rho * cy * gy * gy / b
+    d[0, 1] = -rho * cx * cy * gx * gy / b
+    d[1, 0] = -cx * cy * gx * gy / b
+    d[1, 1] = cy * cx * gx * gx / b
+    return zx, zy, d
 
 
 @njit(cache=True, fastmath=False, nogil=True)
@@ -90,9 +131,9 @@ def _advance(g: np.ndarray, d: np.ndarray, basis: np.ndarray, t: int, h: int) ->
 
 @njit(cache=True, fastmath=False, nogil=True)
 def _slips(r: float, ph: float, first: bool, virgin: bool) -> int:
-    """0: the element sticks; 1: it slips (r > phi); 2: it sits where the virgin radial
-    loading to the start sample left it, at its limit (counted as slipping there, as in the
-    1-D kernel, with the virgin state's derivative)."""
+    """0: the element sticks; 1: it slips (trial ``r = |(d_x, rho d_y)|`` > phi); 2: it
+    sits where the virgin loading to the start sample left it, at its limit (counted as
+    slipping there, as in the 1-D kernel, with the virgin state's derivative)."""
     if r > ph:
         return 1
     if first and virgin and r >= ph * (1.0 - 1e-14):
@@ -101,13 +142,7 @@ def _slips(r: float, ph: float, first: bool, virgin: bool) -> int:
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _virgin_map(ux: float, uy: float, ph: float) -> np.ndarray:
-    """D of the virgin radial loading z = u (1 - phi / |u|): dz = (I - D) du."""
-    return _slip_map(ux, uy, 0.0, 0.0, ph)
-
-
-@njit(cache=True, fastmath=False, nogil=True)
-def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
+def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.ndarray,
                     z0: np.ndarray, dz0: np.ndarray, virgin: bool) -> bool:
     """The element's periodic slider position before sample ``start`` (``z0``, updated in
     place from the virgin state) and its derivative ``dz0`` (2, 2h) in the coefficients.
@@ -121,7 +156,7 @@ def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
     """
     n = u.shape[0]
     h = basis.shape[1]
-    scale = ph + abs(u[start, 0]) + abs(u[start, 1])
+    scale = ph / min(1.0, rho) + abs(u[start, 0]) + abs(u[start, 1])  # slips along y: ph / rho
     q = np.zeros((2, 2 * h))
     for cycle in range(MAX_PASSES):
         zx, zy = z0[0], z0[1]
@@ -132,19 +167,18 @@ def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
             if t >= n:
                 t -= n
             ux, uy = u[t, 0], u[t, 1]
-            kind = _slips(math.hypot(ux - zx, uy - zy), ph, j == 0, virgin)
+            kind = _slips(math.hypot(ux - zx, rho * (uy - zy)), ph, j == 0, virgin)
             if kind == 2:  # the virgin state: depends on u[start] only
                 p00, p01, p10, p11 = 0.0, 0.0, 0.0, 0.0
                 q[:, :] = 0.0
-                _advance(q, _virgin_map(ux, uy, ph), basis, t, h)
+                _advance(q, _slip_map(ux, uy, 0.0, 0.0, rho, ph)[2], basis, t, h)
             elif kind == 1:
-                d = _slip_map(ux, uy, zx, zy, ph)
+                zx, zy, d = _slip_map(ux, uy, zx, zy, rho, ph)
                 p00, p01, p10, p11 = (d[0, 0] * p00 + d[0, 1] * p10,
                                       d[0, 0] * p01 + d[0, 1] * p11,
                                       d[1, 0] * p00 + d[1, 1] * p10,
                                       d[1, 0] * p01 + d[1, 1] * p11)
                 _advance(q, d, basis, t, h)
-                zx, zy = _project(ux, uy, zx, zy, ph)
         rx, ry = zx - z0[0], zy - z0[1]
         a00, a01, a10, a11 = 1.0 - p00, -p01, -p10, 1.0 - p11
         det = a00 * a11 - a01 * a10
@@ -172,41 +206,52 @@ def _periodic_state(u: np.ndarray, ph: float, start: int, basis: np.ndarray,
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, phi: np.ndarray, start: int,
-                             basis: np.ndarray, f: np.ndarray, jb: np.ndarray) -> int:
-    """Closed periodic force ``f`` (N, (N, 2)) of a set of circular Jenkins elements under
-    the displacement samples ``u`` (mm, (N, 2)), and ``jb[t, a, b, c] = d f_t,a / d C_b,c``
+def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, ky: np.ndarray, phi: np.ndarray,
+                             start: int, basis: np.ndarray, f: np.ndarray, jb: np.ndarray
+                             ) -> int:
+    """Closed periodic force ``f`` (N, (N, 2)) of a set of 2-D Jenkins elements (stiffness
+    ``k`` along x and ``ky`` along y, N/mm, slip displacement ``phi`` along x, mm) under the
+    displacement samples ``u`` (mm, (N, 2)), and ``jb[t, a, b, c] = d f_t,a / d C_b,c``
     (N/mm) with ``u_b(t) = sum_c basis[t, c] C_b,c``; both added into. Returns the number
     of elements whose periodic state did not converge (0 on success).
 
     Notes
     -----
-    Each element starts from the virgin radial loading to the sample ``start`` of largest
-    |u| (the 1-D operator's start), then its periodic state is found by
-    :func:`_periodic_state`. The force pass keeps ``G_e = dz_e/dC`` by the recursion
-    ``G <- D G + (I - D) E_t`` at slipping samples and the sum ``S = sum_e k_e G_e``, so that
-    ``jb[t] = (sum_e k_e) E_t - S`` costs O(columns) per sample plus O(columns) per slip.
+    Each element starts from the virgin loading to the sample ``start`` of largest |u| (the
+    1-D operator's start; one return-map step from z = 0, radial for an isotropic element),
+    then its periodic state is found by :func:`_periodic_state`. The force pass keeps
+    ``G_e = dz_e/dC`` by the recursion ``G <- D G + (I - D) E_t`` at slipping samples and
+    the sums ``S_a = sum_e K_e,a G_e,a`` (row a weighted by the stiffness along a), so that
+    ``jb[t]_ab = (sum_e K_e,a) delta_ab E_t - S_a,b`` costs O(columns) per sample plus
+    O(columns) per slip. Elements of zero stiffness carry no force and are skipped.
     """
     n = u.shape[0]
     m = k.size
     h = basis.shape[1]
-    um = math.hypot(u[start, 0], u[start, 1])
+    ux0, uy0 = u[start, 0], u[start, 1]
     z = np.zeros((m, 2))
     g = np.zeros((m, 2, 2 * h))
+    rho = np.zeros(m)
+    virgin = np.zeros(m, dtype=np.bool_)
     failed = 0
     for e in range(m):
-        if um > phi[e]:
-            z[e, 0] = u[start, 0] - phi[e] * (u[start, 0] / um)
-            z[e, 1] = u[start, 1] - phi[e] * (u[start, 1] / um)
-        if not _periodic_state(u, phi[e], start, basis, z[e], g[e], um > phi[e]):
+        if k[e] == 0.0:
+            continue
+        rho[e] = ky[e] / k[e]
+        virgin[e] = math.hypot(ux0, rho[e] * uy0) > phi[e]
+        if virgin[e]:
+            z[e, 0], z[e, 1] = return_map(ux0, uy0, 0.0, 0.0, rho[e], phi[e])
+        if not _periodic_state(u, rho[e], phi[e], start, basis, z[e], g[e], virgin[e]):
             failed += 1
-    total = 0.0
+    tx = 0.0
+    ty = 0.0
     s = np.zeros((2, 2 * h))
     for e in range(m):
-        total += k[e]
-        for a in range(2):
-            for c in range(2 * h):
-                s[a, c] += k[e] * g[e, a, c]
+        tx += k[e]
+        ty += ky[e]
+        for c in range(2 * h):
+            s[0, c] += k[e] * g[e, 0, c]
+            s[1, c] += ky[e] * g[e, 1, c]
     for j in range(n):
         t = start + j
         if t >= n:
@@ -215,32 +260,33 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, phi: np.ndarray, star
         fx = 0.0
         fy = 0.0
         for e in range(m):
+            if k[e] == 0.0:
+                continue
             zx, zy = z[e, 0], z[e, 1]
-            kind = _slips(math.hypot(ux - zx, uy - zy), phi[e], j == 0, um > phi[e])
+            kind = _slips(math.hypot(ux - zx, rho[e] * (uy - zy)), phi[e], j == 0, virgin[e])
             if kind:
                 ge = g[e]
-                for a in range(2):
-                    for c in range(2 * h):
-                        s[a, c] -= k[e] * ge[a, c]
+                for c in range(2 * h):
+                    s[0, c] -= k[e] * ge[0, c]
+                    s[1, c] -= ky[e] * ge[1, c]
                 if kind == 2:
                     ge[:, :] = 0.0
-                    d = _virgin_map(ux, uy, phi[e])
+                    d = _slip_map(ux, uy, 0.0, 0.0, rho[e], phi[e])[2]
                 else:
-                    d = _slip_map(ux, uy, zx, zy, phi[e])
+                    zx, zy, d = _slip_map(ux, uy, zx, zy, rho[e], phi[e])
+                    z[e, 0], z[e, 1] = zx, zy
                 _advance(ge, d, basis, t, h)
-                for a in range(2):
-                    for c in range(2 * h):
-                        s[a, c] += k[e] * ge[a, c]
-                zx, zy = _project(ux, uy, zx, zy, phi[e])
-                z[e, 0], z[e, 1] = zx, zy
+                for c in range(2 * h):
+                    s[0, c] += k[e] * ge[0, c]
+                    s[1, c] += ky[e] * ge[1, c]
             fx += k[e] * (ux - zx)
-            fy += k[e] * (uy - zy)
+            fy += ky[e] * (uy - zy)
         f[t, 0] += fx
         f[t, 1] += fy
         for c in range(h):
             bt = basis[t, c]
-            jb[t, 0, 0, c] += total * bt - s[0, c]
+            jb[t, 0, 0, c] += tx * bt - s[0, c]
             jb[t, 0, 1, c] -= s[0, h + c]
             jb[t, 1, 0, c] -= s[1, c]
-            jb[t, 1, 1, c] += total * bt - s[1, h + c]
+            jb[t, 1, 1, c] += ty * bt - s[1, h + c]
     return failed

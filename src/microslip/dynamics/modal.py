@@ -23,6 +23,7 @@ from ..named import result
 from .continuation import newton
 from .describing import DEFAULT_SAMPLES, describing_function
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
+from .operators import HystereticOperator
 from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
 
@@ -32,6 +33,10 @@ Array = NDArray[np.float64]
 
 #: Newton tolerance of the extended periodic motion concept (relative).
 TOLERANCE = 1e-11
+
+#: Relative component across an axis below which the energy method takes an anisotropic
+#: joint's motion as along that axis.
+AXIS_TOLERANCE = 1e-9
 
 
 @result
@@ -90,8 +95,10 @@ def energy_method(structure: Structure, amplitude: ArrayLike,
     a line with amplitude |p| a and adds |p|^2 K_eq and |p|^2 D_eq (N/mm, x 1e3 to N/m):
     w^2 = (k + sum |p|^2 K_eq) / m and zeta = (c w + sum |p|^2 D_eq) / (2 m w^2)
     = zeta_lin + W_d / (2 pi m w^2 a^2) (REFERENCES.md, 1-DOF single-harmonic balance).
-    A circular two-directional joint on a line is its 1-D operator. Exact single-harmonic
-    balance for one degree of freedom.
+    A circular two-directional joint on a line is its 1-D operator (isotropic: on any line;
+    anisotropic: only along x or y, :meth:`~.CircularIwan.along`; on another line its force
+    turns away from the line, and the energy method refuses: use :func:`epmc`). Exact
+    single-harmonic balance for one degree of freedom.
     """
     a = _amplitudes(amplitude)
     phi, m, k, c = stuck_mode(structure, mode)
@@ -102,14 +109,27 @@ def energy_method(structure: Structure, amplitude: ArrayLike,
         if p == 0.0:
             continue
         op = link.operator
-        df = describing_function(op.axial if isinstance(op, CircularIwan) else op, p * a,
-                                 samples)
+        line = (_on_line(op, link.weights.T @ phi / p) if isinstance(op, CircularIwan)
+                else op)
+        df = describing_function(line, p * a, samples)
         k_eq += p * p * df.stiffness / SI_PER_MM
         d_eq += p * p * df.damping / SI_PER_MM
     omega = np.sqrt(k_eq / m)
     return ModalCurve(method="energy", amplitude=a, frequency=omega / (2.0 * np.pi),
                       damping_ratio=(c * omega + d_eq) / (2.0 * m * omega**2), harmonics=1,
                       samples=samples)
+
+
+def _on_line(op: CircularIwan, direction: Array) -> HystereticOperator:
+    """The 1-D operator of a 2-D joint moving along the unit vector ``direction``."""
+    if op.isotropic:
+        return op.axial
+    for axis in (0, 1):
+        if abs(direction[1 - axis]) <= AXIS_TOLERANCE:
+            return op.along(axis)
+    raise ParameterError(f"the energy method needs the anisotropic joint {op.name!r} to move "
+                         f"along x or y, the mode moves it along ({direction[0]:.3g}, "
+                         f"{direction[1]:.3g}): use epmc")
 
 
 def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,

@@ -69,6 +69,17 @@ class JointLink:
         """Participation as (n_dof, directions)."""
         return self.participation.reshape(self.participation.shape[0], -1)
 
+    @property
+    def stuck_stiffness(self) -> np.ndarray:
+        """W S W^T, N/mm, (n_dof, n_dof): the joint's slope from the virgin state S
+        (directions x directions; a 2-D joint may be stiffer along one axis) on the
+        degrees of freedom."""
+        op = self.operator
+        w = self.weights
+        if isinstance(op, CircularIwan) and not op.isotropic:
+            return np.asarray((w * np.diag(op.stuck_stiffness)) @ w.T)
+        return (w @ w.T) * op.initial_stiffness
+
 
 @result
 class Structure:
@@ -116,11 +127,10 @@ class Structure:
         return int(self.mass.shape[0])
 
     def stuck_stiffness(self) -> np.ndarray:
-        """K plus every joint's initial stiffness, N/m (the small-amplitude limit)."""
+        """K plus every joint's stuck stiffness, N/m (the small-amplitude limit)."""
         k = np.array(self.stiffness, dtype=np.float64)
         for link in self.joints:
-            w = link.weights
-            k += (w @ w.T) * link.operator.initial_stiffness / SI_PER_MM
+            k += link.stuck_stiffness / SI_PER_MM
         return k
 
     def linear_frequencies(self, stuck: bool) -> np.ndarray:

@@ -3,7 +3,7 @@
 A one-degree-of-freedom structure with Iwan joints (parallel Jenkins elements) under
 ``F cos(w t)``, integrated by Newmark's average-acceleration rule (trapezoidal, second order,
 unconditionally stable) with the elements' return mapping solved exactly in every step
-(:func:`steady_state`); any structure, with 1-D and circular two-directional joints, by
+(:func:`steady_state`); any structure, with 1-D and two-directional joints, by
 explicit central differences (:func:`transient`).
 
 Units: mass kg, displacement mm, force N, frequency Hz.
@@ -18,7 +18,7 @@ from numba import njit
 
 from ..errors import ParameterError
 from ..named import result
-from .kernels2d import radial_return
+from .kernels2d import return_map
 from .operators import IwanOperator
 from .operators2d import CircularIwan
 from .structure import SI_PER_MM, Structure
@@ -156,10 +156,11 @@ def steady_state(structure: Structure, force: float, frequency: float, periods: 
 
 @njit(cache=True, nogil=True)
 def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
-                  first_el: np.ndarray, k: np.ndarray, phi: np.ndarray, z: np.ndarray,
-                  g: np.ndarray) -> None:
+                  first_el: np.ndarray, k: np.ndarray, ky: np.ndarray, phi: np.ndarray,
+                  z: np.ndarray, g: np.ndarray) -> None:
     """Generalised joint forces ``g`` (N) at ``x`` (mm); sliders ``z`` (mm) stepped in
-    place (1-D return mapping or radial return, by the joint's number of rows)."""
+    place (1-D return mapping or the 2-D return map of :mod:`.kernels2d`, by the joint's
+    number of rows)."""
     g[:] = 0.0
     for j in range(first_row.size - 1):
         r0 = first_row[j]
@@ -169,10 +170,17 @@ def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
         fx = 0.0
         fy = 0.0
         for e in range(first_el[j], first_el[j + 1]):
-            zx, zy, _, _, _ = radial_return(ux, uy, z[e, 0], z[e, 1], phi[e])
-            z[e, 0], z[e, 1] = zx, zy
-            fx += k[e] * (ux - zx)
-            fy += k[e] * (uy - zy)
+            if d == 1:
+                if ux - z[e, 0] > phi[e]:
+                    z[e, 0] = ux - phi[e]
+                elif ux - z[e, 0] < -phi[e]:
+                    z[e, 0] = ux + phi[e]
+                fx += k[e] * (ux - z[e, 0])
+            elif k[e] > 0.0:
+                zx, zy = return_map(ux, uy, z[e, 0], z[e, 1], ky[e] / k[e], phi[e])
+                z[e, 0], z[e, 1] = zx, zy
+                fx += k[e] * (ux - zx)
+                fy += ky[e] * (uy - zy)
         g += fx * rows[r0]
         if d == 2:
             g += fy * rows[r0 + 1]
@@ -182,7 +190,7 @@ def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
 def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: np.ndarray,
                         load: np.ndarray, omega: float, dt: float, rows: np.ndarray,
                         first_row: np.ndarray, first_el: np.ndarray, k: np.ndarray,
-                        phi: np.ndarray, out: np.ndarray) -> None:
+                        ky: np.ndarray, phi: np.ndarray, out: np.ndarray) -> None:
     """Integrate from rest; ``out`` (steps, n) receives x_1 ... x_steps (mm)."""
     n = kl.shape[0]
     x_prev = np.zeros(n)
@@ -190,7 +198,7 @@ def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: n
     z = np.zeros((k.size, 2))
     g = np.zeros(n)
     for s in range(out.shape[0]):
-        _joint_forces(x, rows, first_row, first_el, k, phi, z, g)
+        _joint_forces(x, rows, first_row, first_el, k, ky, phi, z, g)
         rhs = (load * math.cos(omega * s * dt) - kl @ x - g + m2 @ (2.0 * x - x_prev)
                + c2 @ x_prev)
         x_prev = x
@@ -200,7 +208,7 @@ def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: n
 
 def transient(structure: Structure, load: np.ndarray, frequency: float, periods: int,
               steps: int = 1000) -> SteadyState:
-    """Integrate ``structure`` (any degrees of freedom, 1-D Iwan and circular joints) from
+    """Integrate ``structure`` (any degrees of freedom, 1-D Iwan and 2-D joints) from
     rest under ``load cos(2 pi frequency t)`` (N per degree of freedom).
 
     Notes
@@ -209,8 +217,8 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
     (2 dt) + K x_n + g(x_n) = p(t_n)``, explicit (second order, stable for
     dt < 2 / w_max with w_max the highest stuck frequency: ``steps`` is raised to
     4 pi w_max / w if needed), the joints' sliders stepped by the exact return mapping (1-D)
-    or radial return (circular) at every step, as the harmonic balance's AFT does at its
-    samples.
+    or the 2-D return map (:mod:`.kernels2d`, radial return if isotropic) at every step, as
+    the harmonic balance's AFT does at its samples.
     """
     if not (isinstance(periods, int) and periods >= 2 and isinstance(steps, int)
             and steps >= 16):
@@ -221,12 +229,12 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
     dt = 2.0 * np.pi / omega / steps
     m2 = SI_PER_MM * np.asarray(structure.mass) / dt**2
     c2 = SI_PER_MM * np.asarray(structure.damping) / (2.0 * dt)
-    rows, first_row, first_el, k, phi = _flatten_joints(structure)
+    rows, first_row, first_el, k, ky, phi = _flatten_joints(structure)
     x = np.empty((periods * steps, structure.dofs))
     _central_difference(np.linalg.inv(m2 + c2), m2, c2,
                         SI_PER_MM * np.asarray(structure.stiffness, dtype=np.float64),
                         np.asarray(load, dtype=np.float64), omega, dt, rows, first_row,
-                        first_el, k, phi, x)
+                        first_el, k, ky, phi, x)
     out = x @ structure.output
     last, before = out[-steps:], out[-2 * steps:-steps]
     theta = 2.0 * np.pi * np.arange(1, steps + 1) / steps
@@ -238,10 +246,11 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
                      steps=steps)
 
 
-def _flatten_joints(structure: Structure
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Participation rows, each joint's first row and first element, element k and phi."""
-    rows, first_row, first_el, ks, phis = [], [0], [0], [], []
+def _flatten_joints(structure: Structure) -> tuple[np.ndarray, ...]:
+    """Participation rows, each joint's first row and first element, element stiffness
+    along x and y (N/mm) and slip displacement along x (mm)."""
+    rows, first_row, first_el = [], [0], [0]
+    ks, kys, phis = [np.zeros(0)], [np.zeros(0)], [np.zeros(0)]
     for link in structure.joints:
         op = link.operator
         if not isinstance(op, IwanOperator | CircularIwan):
@@ -249,11 +258,11 @@ def _flatten_joints(structure: Structure
         rows.extend(link.weights.T)
         first_row.append(len(rows))
         ks.append(op.stiffness)
+        kys.append(op.along(1).stiffness if isinstance(op, CircularIwan) else op.stiffness)
         phis.append(op.slip)
         first_el.append(first_el[-1] + op.stiffness.size)
     if not rows:
         rows.append(np.zeros(structure.dofs))
     return (np.array(rows, dtype=np.float64), np.array(first_row, dtype=np.int64),
-            np.array(first_el, dtype=np.int64),
-            np.concatenate(ks) if ks else np.zeros(0), np.concatenate(phis) if phis
-            else np.zeros(0))
+            np.array(first_el, dtype=np.int64), np.concatenate(ks), np.concatenate(kys),
+            np.concatenate(phis))
