@@ -11,7 +11,12 @@ its operators are built from the clamp's 1-D backbones (:func:`.distributions.cl
 series spring = stick slope x width x length, the FE's contact stiffness). Driving the
 joint with the FE's orbit gives its dissipation per cycle, W = closed integral of f . du,
 for the circular coupling and the decoupled sum, beside the FE's; the tip force alone is the
-1-D limit. docs/dynamics.md ("The reduced bar against the FE") gives the figures and
+1-D limit. Across the bar neither 1-D model is the FE's joint (the bar bends in its plane),
+so the anisotropic joint (:func:`.operators2d.anisotropic`) takes the tip model along the
+bar and the FE's own first loading across it (:func:`microslip.solver.fe_backbone`), its
+elements paired by where they sit on the bar (``spatial``) or by slip order (``ordered``);
+the FE-backbone operator on the FE's centre-only motion is the transverse 1-D limit.
+docs/dynamics.md ("The reduced bar against the FE") gives the figures and
 docs/interpretation.md the reading.
 
 Units: N, mm, N·mm.
@@ -31,7 +36,8 @@ from .assemble import PlacedJoint, from_joints
 from .distributions import DEFAULT_ELEMENTS, clamp_joint
 from .files import MatrixFile
 from .operators import IwanOperator
-from .structure import Structure
+from .operators2d import PAIRINGS, CircularIwan, anisotropic
+from .structure import JointLink, Structure
 
 __all__ = ["FEComparison", "cycle_work", "fe_comparison", "orbit_work", "reduced_bar"]
 
@@ -50,6 +56,13 @@ class FEComparison:
         (tip model along the bar, centre model across it).
     tip_limit : float
         The tip model's operator on the FE's tip-only motion (the 1-D limit).
+    anisotropic : dict of str to float
+        The anisotropic joint on the coupled FE orbit, per pairing of
+        :data:`.operators2d.PAIRINGS`: tip model along the bar, the FE's first loading of
+        the centre force across it.
+    centre_limit : float
+        The FE-backbone operator across the bar on the FE's centre-only motion (the
+        transverse 1-D limit).
     orbit : ndarray, shape (n, 2)
         The coupled FE orbit (delta_tip, delta_centre) over the last cycle, mm.
     tip_orbit : ndarray, shape (n,)
@@ -64,6 +77,8 @@ class FEComparison:
     circular: float
     decoupled: float
     tip_limit: float
+    anisotropic: dict[str, float]
+    centre_limit: float
     orbit: np.ndarray
     tip_orbit: np.ndarray
     series_stiffness: float
@@ -78,6 +93,11 @@ class FEComparison:
                 "circular_over_fe": self.circular / self.fe_coupled,
                 "decoupled_over_fe": self.decoupled / self.fe_coupled,
                 "tip_limit_over_fe": self.tip_limit / self.fe_tip_only,
+                "anisotropic_Nmm": dict(self.anisotropic),
+                "anisotropic_over_fe": {k: v / self.fe_coupled
+                                        for k, v in self.anisotropic.items()},
+                "centre_limit_Nmm": self.centre_limit,
+                "centre_limit_over_fe": self.centre_limit / self.fe_centre_only,
                 "orbit_amplitude_mm": (np.ptp(self.orbit, axis=0) / 2).tolist()}
 
 
@@ -90,15 +110,20 @@ def cycle_work(force: np.ndarray, displacement: np.ndarray) -> float:
     return float(np.sum(0.5 * (f + np.roll(f, -1, axis=0)) * du))
 
 
-def reduced_bar(tip: IwanOperator, centre: IwanOperator | None, coupling: str) -> Structure:
+def reduced_bar(tip: IwanOperator | CircularIwan, centre: IwanOperator | None,
+                coupling: str) -> Structure:
     """The bar reduced to its joint: DOFs (delta_tip, delta_centre), one two-directional
     joint to the ground (the tip model's operator, or tip along the bar and centre across
-    it for ``decoupled``). Mass and stiffness are the unit matrix and zero: only the joint
-    matters for a prescribed motion."""
+    it for ``decoupled``, or a given 2-D operator). Mass and stiffness are the unit matrix
+    and zero: only the joint matters for a prescribed motion."""
     matrices = MatrixFile(mass=np.eye(2), stiffness=np.zeros((2, 2)),
                           damping=np.zeros((2, 2)), joints=np.zeros((0, 1, 2), dtype=np.int64),
                           path="reduced Table 1 bar")
     dofs = np.array([[0, -1], [1, -1]])
+    if isinstance(tip, CircularIwan):
+        return Structure(mass=matrices.mass, damping=matrices.damping,
+                         stiffness=matrices.stiffness, joints=(JointLink(tip, np.eye(2)),),
+                         output=np.eye(2)[0])
     if coupling == "decoupled" and centre is not None:
         joints = [PlacedJoint(dofs[:1], tip), PlacedJoint(dofs[1:], centre)]
     else:
@@ -126,12 +151,13 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
                   increments_per_cycle: int = 256, cycles: int = 6,
                   stick_slope: float = DEFAULT_STICK_SLOPE,
                   elements: int = DEFAULT_ELEMENTS) -> FEComparison:
-    """Run the FE's coupled planar study and drive the reduced joint with its orbit."""
-    from ..solver import coupling_study
+    """Run the FE's coupled planar study and the first loading across the bar, and drive
+    the reduced joints with the FE's orbits."""
+    from ..solver import build_model, coupling_study, fe_backbone
 
+    fem = build_model(params, mesh, stick_slope=stick_slope)
     study = coupling_study(params, tip_amplitude, centre_amplitude, phase_deg, cycles=cycles,
-                           increments_per_cycle=increments_per_cycle, mesh=mesh,
-                           stick_slope=stick_slope)
+                           increments_per_cycle=increments_per_cycle, mesh=fem)
     if not study.coupled.converged or not study.tip_only.converged:
         raise ParameterError("the FE runs did not converge; see microslip.solver")
     series = stick_slope * params.width * params.length
@@ -140,6 +166,9 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     c = study.coupled.last_cycle()
     orbit = np.column_stack([study.coupled.d_tip[c], study.coupled.d_centre[c]])[:-1]
     tip_orbit = study.tip_only.d_tip[study.tip_only.last_cycle()][:-1]
+    centre_orbit = study.centre_only.d_centre[study.centre_only.last_cycle()][:-1]
+    across = fe_backbone(params, "centre", mesh=fem).operator("fe-across")
+    zeros = np.zeros_like(centre_orbit)
     return FEComparison(
         fe_coupled=study.coupled.dissipated_energy,
         fe_tip_only=study.tip_only.dissipated_energy,
@@ -148,4 +177,8 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
         decoupled=orbit_work(reduced_bar(tip, centre, "decoupled"), orbit),
         tip_limit=orbit_work(reduced_bar(tip, None, "decoupled"),
                              np.column_stack([tip_orbit, np.zeros_like(tip_orbit)])),
+        anisotropic={name: orbit_work(reduced_bar(anisotropic(tip, across, name), None, ""),
+                                      orbit) for name in PAIRINGS},
+        centre_limit=orbit_work(reduced_bar(across, across, "decoupled"),
+                                np.column_stack([zeros, centre_orbit])),
         orbit=orbit, tip_orbit=tip_orbit, series_stiffness=series)
