@@ -63,34 +63,6 @@ def test_circular_orbit_against_the_2d_jenkins_closed_form(radius):
     assert 3.5 < errors[0] / errors[1] < 4.5
 
 
-@pytest.mark.parametrize(("ax", "ay", "tilt", "third"), [
-    (1.0, 0.5, 0.3, 0.0), (1.2, 1.0, 0.0, 0.2), (0.8, 0.1, 1.0, 0.3), (2.0, 1.9, 0.5, 0.0)])
-def test_circular_jacobian_matches_finite_differences(ax, ay, tilt, third):
-    """The analytic derivative of the periodic state (Newton's fixed point, (I - P)^-1 Q)
-    and of the force, on tilted ellipses with a third harmonic, in every coefficient.
-
-    Not covered: an element that shakes down to elastic cycling only asymptotically keeps
-    a state its whole history chose; its derivative follows the first 60 cycles."""
-    op = circular(TIP)
-    a = float(TIP.slip.max())
-    c = np.zeros((2, 7))
-    c[0, 1], c[1, 2] = ax * a, ay * a
-    c[:, 5] = third * a
-    rot = np.array([[np.cos(tilt), -np.sin(tilt)], [np.sin(tilt), np.cos(tilt)]])
-    c = rot @ c
-    theta = 2 * np.pi * np.arange(64) / 64 + 0.1234567  # no ties for the start sample
-    basis = np.column_stack([np.ones(64), *[g(j * theta) for j in (1, 2, 3)
-                                            for g in (np.cos, np.sin)]])
-    _, jb = op.periodic_force_projected(basis @ c.T, basis)
-    h = 1e-7 * a
-    for d in np.eye(14):
-        d = d.reshape(2, 7)
-        fd = (op.periodic_force(basis @ (c + h * d).T)
-              - op.periodic_force(basis @ (c - h * d).T)) / (2 * h)
-        np.testing.assert_allclose(np.einsum("tabc,bc->ta", jb, d), fd, rtol=0,
-                                   atol=1e-5 * TIP.initial_stiffness)
-
-
 def chain(joint_dofs: tuple[int, int]) -> Structure:
     """2 DOFs, 1 kg and 0.5 kg in a chain, 100 Hz scale, 2 % damping of the first mode; a
     Jenkins joint between ``joint_dofs`` (-1 ground)."""
