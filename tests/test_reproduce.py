@@ -142,12 +142,15 @@ def _fake_validation(fail: bool = False):
 
 
 def _small_coupling_sweep(monkeypatch):
-    """The coupled-friction and Table 2 FE steps on a tiny mesh (their own tests:
-    test_reproduce_coupling.py, test_reproduce_table2_fe.py)."""
+    """The coupled-friction, Table 2 FE and joint-against-FE steps on tiny meshes (their own
+    tests: test_reproduce_coupling.py, test_reproduce_table2_fe.py,
+    test_reproduce_joint_fe.py)."""
+    import microslip.reproduce.joint_fe as joint_fe
     import microslip.reproduce.table2_fe as table2_fe
     import microslip.solver as solver
 
     monkeypatch.setattr(table2_fe, "TABLE2_FE_MESH", "tiny")
+    monkeypatch.setattr(joint_fe, "JOINT_FE_MESH", (8, 2, 1))
     real = solver.coupling_sweep
     monkeypatch.setattr(solver, "coupling_sweep", lambda params, ratios, phases: real(
         params, ratios[:2], phases, mesh="tiny", cycles=2, increments_per_cycle=16))
@@ -165,6 +168,7 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "models agree with FE: not confirmed" in text
     assert "coupling_ratio_vs_R.csv" in text and (tmp_path / "a" / "coupling_ratio_vs_R.csv"
                                                    ).is_file()
+    assert "joint2d_vs_fe.csv" in text and (tmp_path / "a" / "fig13_joint2d_vs_fe.png").is_file()
     monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(fail=True), ""))
     code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20"])
     _, err = capsys.readouterr()

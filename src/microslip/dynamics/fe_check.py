@@ -65,6 +65,11 @@ class FEComparison:
         transverse 1-D limit).
     orbit : ndarray, shape (n, 2)
         The coupled FE orbit (delta_tip, delta_centre) over the last cycle, mm.
+    fe_force : ndarray, shape (n, 2)
+        The FE's applied forces (F_tip, F_centre) at those samples, N.
+    joint_force : dict of str to ndarray, shape (n, 2)
+        Each reduced joint's force on that orbit, N: ``circular``, ``decoupled`` and
+        ``anisotropic <pairing>``.
     tip_orbit : ndarray, shape (n,)
         delta_tip of the tip-only run over its last cycle, mm.
     series_stiffness : float
@@ -80,6 +85,8 @@ class FEComparison:
     anisotropic: dict[str, float]
     centre_limit: float
     orbit: np.ndarray
+    fe_force: np.ndarray
+    joint_force: dict[str, np.ndarray]
     tip_orbit: np.ndarray
     series_stiffness: float
 
@@ -131,19 +138,26 @@ def reduced_bar(tip: IwanOperator | CircularIwan, centre: IwanOperator | None,
     return from_joints(matrices, joints)
 
 
-def orbit_work(structure: Structure, q: np.ndarray) -> float:
-    """Energy the joints of ``structure`` dissipate per cycle on the periodic DOF motion
-    ``q`` ((n, n_dof), mm, without the repeated end point), N·mm."""
-    total = 0.0
+def orbit_force(structure: Structure, q: np.ndarray) -> np.ndarray:
+    """The joints' closed periodic force on the DOFs, N, shape (n, n_dof), at the periodic
+    DOF motion ``q`` ((n, n_dof), mm, without the repeated end point)."""
+    force = np.zeros(np.shape(q))
     for link in structure.joints:
         u = q @ link.weights
         op = link.operator
         if link.directions == 1:
             f, _ = op.periodic_force(np.ascontiguousarray(u[:, 0]))
+            f = f[:, None]
         else:
             f = op.periodic_force(u)
-        total += cycle_work(f, u)
-    return total
+        force += f @ link.weights.T
+    return force
+
+
+def orbit_work(structure: Structure, q: np.ndarray) -> float:
+    """Energy the joints of ``structure`` dissipate per cycle on the periodic DOF motion
+    ``q`` ((n, n_dof), mm, without the repeated end point), N·mm."""
+    return cycle_work(orbit_force(structure, q), q)
 
 
 def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
@@ -169,16 +183,22 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     centre_orbit = study.centre_only.d_centre[study.centre_only.last_cycle()][:-1]
     across = fe_backbone(params, "centre", mesh=fem).operator("fe-across")
     zeros = np.zeros_like(centre_orbit)
+    bars = {"circular": reduced_bar(tip, None, "circular"),
+            "decoupled": reduced_bar(tip, centre, "decoupled")}
+    bars.update({f"anisotropic {name}": reduced_bar(anisotropic(tip, across, name), None, "")
+                 for name in PAIRINGS})
+    forces = {name: orbit_force(bar, orbit) for name, bar in bars.items()}
+    work = {name: cycle_work(f, orbit) for name, f in forces.items()}
     return FEComparison(
         fe_coupled=study.coupled.dissipated_energy,
         fe_tip_only=study.tip_only.dissipated_energy,
         fe_centre_only=study.centre_only.dissipated_energy,
-        circular=orbit_work(reduced_bar(tip, None, "circular"), orbit),
-        decoupled=orbit_work(reduced_bar(tip, centre, "decoupled"), orbit),
+        circular=work["circular"], decoupled=work["decoupled"],
         tip_limit=orbit_work(reduced_bar(tip, None, "decoupled"),
                              np.column_stack([tip_orbit, np.zeros_like(tip_orbit)])),
-        anisotropic={name: orbit_work(reduced_bar(anisotropic(tip, across, name), None, ""),
-                                      orbit) for name in PAIRINGS},
+        anisotropic={name: work[f"anisotropic {name}"] for name in PAIRINGS},
         centre_limit=orbit_work(reduced_bar(across, across, "decoupled"),
                                 np.column_stack([zeros, centre_orbit])),
-        orbit=orbit, tip_orbit=tip_orbit, series_stiffness=series)
+        orbit=orbit,
+        fe_force=np.column_stack([study.coupled.f_tip[c], study.coupled.f_centre[c]])[:-1],
+        joint_force=forces, tip_orbit=tip_orbit, series_stiffness=series)

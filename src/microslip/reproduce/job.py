@@ -83,6 +83,9 @@ class ReproduceResult:
     table2_fe : dict or None
         Columns of ``table2_fe_vs_1d.csv`` (the Table 2 zones in the built-in FE solver beside
         the 1-D models), when the finite-element part ran.
+    joint_fe : dict or None
+        Columns of ``joint2d_vs_fe.csv`` (the bar reduced to a two-directional joint against
+        the built-in FE), when the finite-element part ran.
     """
 
     out_dir: Path
@@ -100,6 +103,7 @@ class ReproduceResult:
     elapsed_s: float
     coupling: dict[str, Any] | None = None
     table2_fe: dict[str, Any] | None = None
+    joint_fe: dict[str, Any] | None = None
 
     __repr__ = short_repr
 
@@ -218,13 +222,16 @@ def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
         files += coupling_files
         table2, table2_files = _run_table2_fe(out, fe, say)
         files += table2_files
+        joint, joint_files = _run_joint_fe(out, fe, say)
+        files += joint_files
         steps.update(1)
     res = ReproduceResult(
         out_dir=out, files=(*files, out / "report.md"), sweep=sweep, phase90=phase90,
         readings=readings, components=components, table=table, equal_levels=r1,
         claims=check_claims(components, table, fe_run.columns()), fe_status=fe_run.status,
         fe_message=fe_run.message, fe_report=fe_run.report,
-        elapsed_s=time.perf_counter() - t0, coupling=coupling, table2_fe=table2)
+        elapsed_s=time.perf_counter() - t0, coupling=coupling, table2_fe=table2,
+        joint_fe=joint)
     with atomic_write(out / "report.md") as fh:
         fh.write(report_markdown(res, s))
     return res
@@ -358,3 +365,18 @@ def _run_table2_fe(out: Path, fe: bool | None, say: Echo
         return None, ()
     write_csv(out / "table2_fe_vs_1d.csv", cols)
     return cols, (out / "table2_fe_vs_1d.csv",)
+
+
+def _run_joint_fe(out: Path, fe: bool | None, say: Echo
+                  ) -> tuple[dict[str, Any] | None, tuple[Path, ...]]:
+    """The bar reduced to a two-directional joint against the built-in FE (joint_fe.py)."""
+    if fe is False:
+        return None, ()
+    from .joint_fe import joint_fe_figure, joint_fe_study
+
+    cols, runs = joint_fe_study(say=say)
+    if not runs:
+        return None, ()
+    write_csv(out / "joint2d_vs_fe.csv", cols)
+    joint_fe_figure(out / "fig13_joint2d_vs_fe.png", cols, runs)
+    return cols, (out / "joint2d_vs_fe.csv", out / "fig13_joint2d_vs_fe.png")

@@ -244,6 +244,14 @@ def _fe_and_files(res: ReproduceResult) -> list[str]:
     else:
         add("Not run (finite elements not asked for, `--no-fe`).\n")
 
+    add("## The clamp as one joint in a structure, against finite elements (beyond the paper)\n")
+    if res.joint_fe:
+        from .joint_fe import joint_fe_section
+
+        add(joint_fe_section(res.joint_fe))
+    else:
+        add("Not run (finite elements not asked for, `--no-fe`).\n")
+
     add("## Files\n")
     add("\n".join(f"- `{f.name}`" for f in res.files) + "\n")
     return lines
