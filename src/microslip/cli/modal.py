@@ -42,8 +42,9 @@ DEFAULT_HARMONICS = 7
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
     """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
-    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode`` and
-    ``--coupling``; and the joint's options."""
+    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode``,
+    ``--coupling`` and the joint across (``--transverse``, ``--pairing``, ``--fe-mesh``);
+    and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
     g.add_argument("--frequency", type=number, metavar="HZ",
                    help="natural frequency with the joint removed, Hz")
