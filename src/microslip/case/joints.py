@@ -9,25 +9,41 @@ overrides it: its own ``preset`` replaces the base, its own sub-tables (``[joint
 spring is ``stiffness`` (N/mm) or ``contact.stick_slope`` x width x length (the table's own,
 else the case's), as ``--joint-stiffness`` / ``--stick-slope`` on the command line.
 
+A two-directional tip or centre joint may name what it is across, its second direction
+(``transverse``: the clamp's other 1-D model, or ``fe``, the built-in FE's first loading of
+the centre force across the bar), and how the elements of the two are paired
+(``pairing``); :data:`TRANSVERSE` builds the joint across, the coupling
+(:data:`microslip.dynamics.operators2d.COUPLINGS`) the two-directional joint.
+
 Units: N, mm, MPa, N/mm, N/mm^3.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from functools import lru_cache
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
 from ..named import result
 from ..params import PRESETS, ClampParams
-from .schema import CLAMP_KEYS, JOINT_CLAMP_SECTIONS, JOINT_KEYS, JOINT_USES, KEYS
+from .schema import (
+    ACROSS_KEYS,
+    CLAMP_KEYS,
+    DEFAULT_FE_MESH,
+    JOINT_CLAMP_SECTIONS,
+    JOINT_KEYS,
+    JOINT_USES,
+    KEYS,
+)
 
 if TYPE_CHECKING:
     from ..dynamics.operators import IwanOperator
     from ..options import ModelOptions
 
-__all__ = ["JointSpec", "joint_operator", "parse_joints"]
+__all__ = ["TRANSVERSE", "JointSpec", "across_operator", "joint_operator", "parse_joints",
+           "transverse_operator"]
 
 _JOINT = {k.name: k for k in JOINT_KEYS}
 _CLAMP_SECTION_KEYS = {k.dotted: k for k in KEYS if k.section in JOINT_CLAMP_SECTIONS}
@@ -56,6 +72,17 @@ class JointSpec:
         Tip and centre joints: the clamp (case's base with the table's overrides).
     series_stiffness : float or None
         Tip and centre joints: the series spring, N/mm.
+    transverse : str or None
+        Two-directional tip and centre joints: the joint across (second direction), a name
+        of :data:`TRANSVERSE`; None: the joint's own model.
+    pairing : str or None
+        With ``transverse``: a name of :data:`microslip.dynamics.operators2d.PAIRINGS`
+        (None: its default).
+    fe_mesh : str or None
+        With ``transverse = "fe"``: the FE mesh (level or ``NXxNYxNZ``; None: the default).
+    stick_slope : float or None
+        Tip and centre joints whose series spring is the contact stick slope: it, N/mm^3
+        (None if ``stiffness`` is given).
     """
 
     number: int
@@ -65,6 +92,10 @@ class JointSpec:
     values: Mapping[str, Any]
     clamp: ClampParams | None
     series_stiffness: float | None
+    transverse: str | None = None
+    pairing: str | None = None
+    fe_mesh: str | None = None
+    stick_slope: float | None = None
 
     @property
     def directions(self) -> int:
@@ -117,24 +148,58 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
     if coupling is not None and len(dofs) == 1:
         raise ParameterError("joint.coupling applies to two-directional joints only (dofs = "
                              "[[I, J], [K, L]])")
+    across = {k: own.pop(k) for k in ACROSS_KEYS if k in own}
+    _check_across(across, model, len(dofs), coupling)
     unused = sorted(set(own) - JOINT_USES[model])
     if model not in ("tip", "centre"):
         unused += sorted(f"[joint.{k.split('.')[0]}]" if "." in k else k for k in clamp)
     if unused:
         raise ParameterError(f"{', '.join(unused)} not used by model {model}")
-    params, series = _clamp(model, own, clamp, case_values) if model in ("tip", "centre") \
-        else (None, None)
+    params, series, slope = _clamp(model, own, clamp, case_values) \
+        if model in ("tip", "centre") else (None, None, None)
     if model in ("jenkins", "iwan"):
-        missing = [k for k in sorted(JOINT_USES[model] - {"elements"}) if k not in own]
+        missing = [k for k in sorted(JOINT_USES[model] - {"elements"} - set(ACROSS_KEYS))
+                   if k not in own]
         if missing:
             raise ParameterError(f"model {model} needs joint.{', joint.'.join(missing)}")
+    if across.get("transverse") == "fe" and slope is None:
+        raise ParameterError('joint.transverse = "fe" needs contact.stick_slope (N/mm^3, the '
+                             "FE's contact stiffness), not joint.stiffness: give the stick "
+                             "slope instead")
     return JointSpec(number=number, dofs=dofs, model=model, coupling=coupling,
-                     values=MappingProxyType(own), clamp=params, series_stiffness=series)
+                     values=MappingProxyType(own), clamp=params, series_stiffness=series,
+                     transverse=across.get("transverse"), pairing=across.get("pairing"),
+                     fe_mesh=across.get("fe_mesh"), stick_slope=slope)
+
+
+def _check_across(across: Mapping[str, Any], model: str, directions: int,
+                  coupling: str | None) -> None:
+    """The keys of a joint across (transverse, pairing, fe_mesh) where they do something."""
+    allowed = {k.name: k.range for k in JOINT_KEYS if k.name in ACROSS_KEYS}
+    transverse = across.get("transverse")
+    for key in across:
+        if model not in ("tip", "centre"):
+            raise ParameterError(f"joint.{key} ({allowed[key]}) applies to two-directional "
+                                 f"tip or centre joints only, not to model {model}")
+        if directions == 1:
+            raise ParameterError(f"joint.{key} ({allowed[key]}) applies to two-directional "
+                                 "joints only (dofs = [[I, J], [K, L]])")
+    if "pairing" in across and transverse is None:
+        raise ParameterError(f"joint.pairing ({allowed['pairing']}) needs joint.transverse "
+                             f"({allowed['transverse']}): it matches the elements along with "
+                             "those across")
+    if "pairing" in across and coupling == "decoupled":
+        raise ParameterError(f"joint.pairing ({allowed['pairing']}) applies to coupling "
+                             "circular only: the decoupled directions are independent")
+    if "fe_mesh" in across and transverse != "fe":
+        raise ParameterError(f"joint.fe_mesh ({allowed['fe_mesh']}) needs joint.transverse = "
+                             '"fe" (the FE mesh of the joint across)')
 
 
 def _clamp(model: str, own: Mapping[str, Any], clamp: Mapping[str, Any],
-           case_values: Mapping[str, Any]) -> tuple[ClampParams, float]:
-    """The clamp of a tip or centre joint and its series stiffness (N/mm)."""
+           case_values: Mapping[str, Any]) -> tuple[ClampParams, float, float | None]:
+    """The clamp of a tip or centre joint, its series stiffness (N/mm) and the stick slope
+    it comes from (N/mm^3; None if ``stiffness`` is given)."""
     if "preset" in clamp:
         base = PRESETS[clamp["preset"]][0].as_dict()
         values = {k: base[f] for k, f in CLAMP_KEYS.items()}
@@ -155,13 +220,14 @@ def _clamp(model: str, own: Mapping[str, Any], clamp: Mapping[str, Any],
         raise ParameterError("joint.stiffness and joint.contact.stick_slope exclude each "
                              "other; give one series spring")
     if "stiffness" in own:
-        return params, float(own["stiffness"])
+        return params, float(own["stiffness"]), None
     if "contact.stick_slope" not in values:
         raise ParameterError(
             f"model {model} needs joint.stiffness (N/mm, a series spring) or "
             "contact.stick_slope (N/mm^3; series spring = stick slope x width x length): a "
             "bar on a rigid Coulomb foundation has no finite stiffness at zero displacement")
-    return params, float(values["contact.stick_slope"]) * params.width * params.length
+    slope = float(values["contact.stick_slope"])
+    return params, slope * params.width * params.length, slope
 
 
 def joint_operator(spec: JointSpec, options: ModelOptions | None = None) -> IwanOperator:
@@ -179,3 +245,69 @@ def joint_operator(spec: JointSpec, options: ModelOptions | None = None) -> Iwan
     assert spec.clamp is not None and spec.series_stiffness is not None
     return clamp_joint(spec.model, spec.clamp, spec.series_stiffness, elements=elements,
                        options=options)
+
+
+#: A joint across: (clamp, series spring N/mm, elements, model options, stick slope N/mm^3
+#: or None, FE mesh) -> its 1-D operator.
+Across = Callable[[ClampParams, float, int, "ModelOptions | None", "float | None", str],
+                  "IwanOperator"]
+
+
+def _clamp_model(model: str) -> Across:
+    def build(clamp: ClampParams, series: float, elements: int,
+              options: ModelOptions | None, stick_slope: float | None, fe_mesh: str
+              ) -> IwanOperator:
+        from ..dynamics.distributions import clamp_joint
+
+        return clamp_joint(model, clamp, series, elements=elements, options=options)
+    return build
+
+
+def _fe(clamp: ClampParams, series: float, elements: int, options: ModelOptions | None,
+        stick_slope: float | None, fe_mesh: str) -> IwanOperator:
+    if stick_slope is None:
+        raise ParameterError("the FE joint across needs the contact stick slope (N/mm^3), not "
+                             "a series stiffness")
+    return _fe_across(clamp, fe_mesh, stick_slope)
+
+
+@lru_cache(maxsize=8)
+def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperator:
+    """The FE's first loading of the centre force across the bar as a 1-D joint (cached:
+    an FE run, the same for the structure and its description)."""
+    from ..solver import fe_backbone
+
+    op: IwanOperator = fe_backbone(clamp, "centre", mesh=mesh,
+                                   stick_slope=stick_slope).operator()
+    return op
+
+
+#: Transverse name -> the 1-D joint across a bar: ``tip``, ``centre`` the clamp's 1-D model
+#: behind the same series spring; ``fe`` the built-in FE's first loading of the centre force
+#: across the bar (:func:`microslip.solver.fe_backbone`, its contact compliance inside).
+TRANSVERSE: dict[str, Across] = {"tip": _clamp_model("tip"), "centre": _clamp_model("centre"),
+                                 "fe": _fe}
+
+
+def across_operator(transverse: str, clamp: ClampParams, series: float, *, elements: int,
+                    options: ModelOptions | None = None, stick_slope: float | None = None,
+                    fe_mesh: str | None = None) -> IwanOperator:
+    """The 1-D joint across (:data:`TRANSVERSE`) of a clamp with the series spring
+    ``series`` (N/mm) from the contact stick slope ``stick_slope`` (N/mm^3)."""
+    return TRANSVERSE[transverse](clamp, series, elements, options, stick_slope,
+                                  DEFAULT_FE_MESH if fe_mesh is None else fe_mesh)
+
+
+def transverse_operator(spec: JointSpec, options: ModelOptions | None = None
+                        ) -> IwanOperator | None:
+    """The 1-D joint across a joint table (its second direction), None without
+    ``transverse``."""
+    if spec.transverse is None:
+        return None
+    from ..dynamics.distributions import DEFAULT_ELEMENTS
+
+    assert spec.clamp is not None and spec.series_stiffness is not None
+    return across_operator(spec.transverse, spec.clamp, spec.series_stiffness,
+                           elements=int(spec.values.get("elements", DEFAULT_ELEMENTS)),
+                           options=options, stick_slope=spec.stick_slope,
+                           fe_mesh=spec.fe_mesh)

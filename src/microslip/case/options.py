@@ -34,7 +34,7 @@ STRUCTURE_COMMANDS = ("modal", "frf")
 #: joint's parameters and its clamp): a case with [[joint]] tables gives them instead.
 JOINT_DESTS = ("joint", "joint_dof", "joint_stiffness", "slip_force", "chi", "beta",
                "stick_slope", "elements", "preset", "length", "width", "thickness", "modulus",
-               "poisson_ratio", "friction", "normal_force")
+               "poisson_ratio", "friction", "normal_force", "transverse", "pairing", "fe_mesh")
 
 #: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
 #: Keys not listed (name, description, preset) map to no option.

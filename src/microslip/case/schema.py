@@ -15,20 +15,25 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE
+from ..meshlevels import LEVELS, parse_counts
 from ..params import PRESETS
 
 __all__ = [
+    "ACROSS_KEYS",
     "CLAMP_KEYS",
     "COUPLINGS",
     "DEFAULT_AMPLITUDE_FRACTION",
+    "DEFAULT_FE_MESH",
     "FUTURE_PRESSURE_LAWS",
     "JOINT_CLAMP_SECTIONS",
     "JOINT_KEYS",
     "JOINT_MODELS",
     "JOINT_USES",
     "KEYS",
+    "PAIRINGS",
     "PRESSURE_LAWS",
     "SECTIONS",
+    "TRANSVERSE",
     "Key",
 ]
 
@@ -46,6 +51,17 @@ LOAD_MODELS = ("tip", "centre")
 #: :data:`microslip.dynamics.operators2d.COUPLINGS` (kept here so that reading a case file
 #: does not import the dynamics; tests/test_case_joints.py checks they are the same).
 COUPLINGS = ("circular", "decoupled")
+
+#: What a two-directional tip or centre joint may be across (its second direction): the
+#: names of :data:`microslip.case.joints.TRANSVERSE` (checked the same by the tests).
+TRANSVERSE = ("tip", "centre", "fe")
+
+#: Pairings of the elements of the joints along and across: the names of
+#: :data:`microslip.dynamics.operators2d.PAIRINGS` (checked the same by the tests).
+PAIRINGS = ("ordered", "spatial")
+
+#: Mesh of the FE's first loading across the bar (``transverse = "fe"``) unless given.
+DEFAULT_FE_MESH = "coarse"
 
 Check = Callable[[str, Any], Any]
 
@@ -112,6 +128,15 @@ def pressure_text(name: str, value: Any) -> str:
     if s in ("uniform", "parabolic") or (s.startswith(("power:", "table:")) and len(s) > 6):
         return s
     raise ParameterError(f"case key {name} must be one of {', '.join(PRESSURE_LAWS)}, "
+                         f"got {s!r}")
+
+
+def mesh_text(name: str, value: Any) -> str:
+    """A check: a mesh level or ``NXxNYxNZ``, as ``microslip fe --mesh`` takes it."""
+    s = text(name, value)
+    if s in LEVELS or parse_counts(s) is not None:
+        return s
+    raise ParameterError(f"case key {name} must be one of {', '.join(LEVELS)} or NXxNYxNZ, "
                          f"got {s!r}")
 
 
@@ -269,15 +294,29 @@ JOINT_KEYS: tuple[Key, ...] = (
     Key("joint", "coupling", choice(COUPLINGS), "", " | ".join(COUPLINGS), None,
         "a two-directional joint's coupling (default: [structure] coupling, --coupling, "
         "else circular)"),
+    Key("joint", "transverse", choice(TRANSVERSE), "", " | ".join(TRANSVERSE), None,
+        "two-directional tip, centre: the joint across the bar (second direction): the clamp's "
+        "tip or centre model (same clamp and series spring) or fe, the built-in FE's first "
+        "loading of the centre force across the bar (needs contact.stick_slope); omitted, "
+        "the joint's own model (as --transverse)"),
+    Key("joint", "pairing", choice(PAIRINGS), "", " | ".join(PAIRINGS), None,
+        "with transverse, circular coupling: how the elements along and across are matched; "
+        "spatial (default): by position on the bar, ordered: by slip order (as --pairing)"),
+    Key("joint", "fe_mesh", mesh_text, "", f"{' | '.join(LEVELS)} | NXxNYxNZ",
+        DEFAULT_FE_MESH, "with transverse = fe: the FE mesh, as microslip fe --mesh (as "
+        "--fe-mesh)"),
 )
 
 #: Joint model -> the keys of :data:`JOINT_KEYS` it uses besides dofs, model and coupling.
 JOINT_USES: dict[str, frozenset[str]] = {
     "jenkins": frozenset({"stiffness", "slip_force"}),
     "iwan": frozenset({"stiffness", "slip_force", "chi", "beta", "elements"}),
-    "tip": frozenset({"stiffness", "elements"}),
-    "centre": frozenset({"stiffness", "elements"}),
+    "tip": frozenset({"stiffness", "elements", "transverse", "pairing", "fe_mesh"}),
+    "centre": frozenset({"stiffness", "elements", "transverse", "pairing", "fe_mesh"}),
 }
+
+#: The keys of a joint across (:data:`JOINT_KEYS`): transverse and what only it uses.
+ACROSS_KEYS = ("transverse", "pairing", "fe_mesh")
 
 #: Clamp sections a tip or centre joint may hold, overriding the case's own clamp.
 JOINT_CLAMP_SECTIONS = ("geometry", "material", "contact", "clamping")

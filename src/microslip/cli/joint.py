@@ -23,10 +23,11 @@ from ..dynamics.describing import (
 from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
 from ..dynamics.operators import IwanOperator, jenkins
 from ..errors import ParameterError
+from ..params import ClampParams
 from .common import add_model_options, add_params, model_options, number, params_from_args
 
-__all__ = ["JOINTS", "add_joint_options", "add_parser", "describe_joint", "joint_from_args",
-           "run"]
+__all__ = ["JOINTS", "add_joint_options", "add_parser", "clamp_from_args", "describe_joint",
+           "elements_from_args", "joint_from_args", "run"]
 
 def _jenkins(args: argparse.Namespace) -> IwanOperator:
     return jenkins(_need(args, "joint_stiffness"), _need(args, "slip_force"))
@@ -34,10 +35,12 @@ def _jenkins(args: argparse.Namespace) -> IwanOperator:
 
 def _iwan(args: argparse.Namespace) -> IwanOperator:
     return iwan4_segalman(_need(args, "joint_stiffness"), _need(args, "slip_force"),
-                          _need(args, "chi"), _need(args, "beta"), _elements(args))
+                          _need(args, "chi"), _need(args, "beta"), elements_from_args(args))
 
 
-def _clamp(args: argparse.Namespace) -> IwanOperator:
+def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float | None]:
+    """The clamp of a tip or centre joint, its series spring (N/mm) and the stick slope it
+    comes from (N/mm^3; None if --joint-stiffness is given)."""
     params, _ = params_from_args(args, fallback_amplitude=1.0)
     if args.amplitude is not None:
         raise ParameterError("--amplitude (a load amplitude) does not apply to a joint; give "
@@ -50,10 +53,13 @@ def _clamp(args: argparse.Namespace) -> IwanOperator:
             "displacement (F ~ sqrt(d))")
     if args.stick_slope is not None:
         slope = _positive(args.stick_slope, "--stick-slope", "N/mm^3")
-        series = slope * params.width * params.length
-    else:
-        series = args.joint_stiffness
-    return clamp_joint(args.joint, params, series, elements=_elements(args),
+        return params, slope * params.width * params.length, slope
+    return params, args.joint_stiffness, None
+
+
+def _clamp(args: argparse.Namespace) -> IwanOperator:
+    params, series, _ = clamp_from_args(args)
+    return clamp_joint(args.joint, params, series, elements=elements_from_args(args),
                        options=model_options(args))
 
 
@@ -209,7 +215,8 @@ def _need(args: argparse.Namespace, dest: str) -> float:
     return float(value)
 
 
-def _elements(args: argparse.Namespace) -> int:
+def elements_from_args(args: argparse.Namespace) -> int:
+    """--elements, checked (default :data:`DEFAULT_ELEMENTS`)."""
     n = DEFAULT_ELEMENTS if args.elements is None else args.elements
     if not 2 <= n <= 100_000:
         raise ParameterError(f"--elements must be in [2, 100000], got {n}")

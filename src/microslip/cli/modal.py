@@ -25,9 +25,10 @@ from ..dynamics.assemble import (
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, ModalCurve, energy_method
-from ..dynamics.operators2d import COUPLINGS
+from ..dynamics.operators2d import COUPLINGS, PAIRINGS
 from ..dynamics.structure import Structure, one_mode
 from ..errors import ParameterError
+from .across import across_from_args, across_joint, add_across_options, describe_across
 from .common import number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
@@ -41,8 +42,9 @@ DEFAULT_HARMONICS = 7
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
     """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
-    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode`` and
-    ``--coupling``; and the joint's options."""
+    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode``,
+    ``--coupling`` and the joint across (``--transverse``, ``--pairing``, ``--fe-mesh``);
+    and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
     g.add_argument("--frequency", type=number, metavar="HZ",
                    help="natural frequency with the joint removed, Hz")
@@ -66,6 +68,7 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     f.add_argument("--coupling", choices=list(COUPLINGS),
                    help="two-directional joints: one circular Coulomb limit (default) or "
                         "two independent directions (the paper's decoupled sum)")
+    add_across_options(f)
     add_joint_options(parser)
     add_case_option(parser)
     for action in parser._actions:
@@ -85,6 +88,7 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
         _refuse(args, ("joint_dof", "--joint-dof"), ("mode", "--mode"),
                 ("coupling", "--coupling"), ("excitation", "--excitation"),
                 why="a one-mode structure (they need --structure)")
+        across_from_args(args, None)
         if args.frequency is None or args.modal_mass is None:
             raise ParameterError("give --frequency HZ and --modal-mass KG (one mode) or "
                                  "--structure FILE")
@@ -103,15 +107,16 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
     if args.coupling is not None and not np.any(np.asarray(joints).shape[1:2] == (2,)):
         raise ParameterError("--coupling applies to two-directional joints only (give "
                              "--joint-dof twice or a (n, 2, 2) joints array)")
+    across = across_from_args(args, np.asarray(joints))
     structure = from_matrices(matrices, np.asarray(joints), joint_from_args(args),
-                              args.coupling or "circular")
+                              args.coupling or "circular", across, args.pairing)
     return with_output(structure, modal_output(structure, mode_from_args(args)))
 
 
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
     """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
     coupling wins over --coupling (or [structure] coupling), which wins over circular."""
-    from ..case.joints import joint_operator
+    from ..case.joints import joint_operator, transverse_operator
     from .common import model_options
 
     specs = args.case_joints
@@ -120,10 +125,18 @@ def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[Placed
                              "joints only; the case's joints all have one direction")
     out = []
     for spec in specs:
-        dofs = check_joint_dofs(f"case {args.case}: joint {spec.number}: dofs",
-                                np.array(spec.dofs, dtype=np.int64), matrices.mass.shape[0])
-        out.append(PlacedJoint(dofs, joint_operator(spec, model_options(args)),
-                               spec.coupling or args.coupling or "circular"))
+        where = f"case {args.case}: joint {spec.number}"
+        dofs = check_joint_dofs(f"{where}: dofs", np.array(spec.dofs, dtype=np.int64),
+                                matrices.mass.shape[0])
+        coupling = spec.coupling or args.coupling or "circular"
+        if spec.pairing is not None and coupling == "decoupled":
+            raise ParameterError(f"{where}: joint.pairing ({' | '.join(PAIRINGS)}) applies "
+                                 "to coupling circular only, and this joint's coupling is "
+                                 "decoupled ([structure] coupling or --coupling): its "
+                                 "directions are independent")
+        opts = model_options(args)
+        out.append(PlacedJoint(dofs, joint_operator(spec, opts), coupling,
+                               transverse_operator(spec, opts), spec.pairing))
     return out
 
 
@@ -163,15 +176,22 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
         out = {"file": args.structure, "mode": mode_from_args(args) + 1,
                **describe_matrices(structure)}
         specs = getattr(args, "case_joints", ())
+        if not specs and getattr(args, "transverse", None) is not None:
+            return {**out, "joint": {**describe_joint(joint_from_args(args)), **describe_across(
+                args.transverse, args.pairing, args.coupling or "circular",
+                across_joint(args), args.fe_mesh)}}
         if not specs:
             return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
-        from ..case.joints import joint_operator
+        from ..case.joints import joint_operator, transverse_operator
         from .common import model_options
 
+        opts = model_options(args)
         return {**out, "case_joints": [
             {"number": s.number, "model": s.model, "dofs": [list(d) for d in s.dofs],
              "coupling": (s.coupling or args.coupling or "circular") if s.directions == 2
-             else None, **describe_joint(joint_operator(s, model_options(args)))}
+             else None, **describe_joint(joint_operator(s, opts)),
+             **describe_across(s.transverse, s.pairing, s.coupling or args.coupling
+                               or "circular", transverse_operator(s, opts), s.fe_mesh)}
             for s in specs]}
     m = float(structure.mass[0, 0])
     k = float(structure.stiffness[0, 0])

@@ -38,20 +38,28 @@ class PlacedJoint:
 
     ``dofs`` is its connectivity, shape (directions, 2): ``[i, j]`` per direction, j = -1 for
     the ground (:mod:`.files`); ``coupling`` a name of :data:`~.operators2d.COUPLINGS`.
+    A two-directional joint is ``operator`` along its first direction and ``transverse``
+    (None: ``operator``) along its second, its elements matched by ``pairing``
+    (:data:`~.operators2d.PAIRINGS`, None: the default; circular coupling only).
     """
 
     dofs: np.ndarray
     operator: IwanOperator
     coupling: str = "circular"
+    transverse: IwanOperator | None = None
+    pairing: str | None = None
 
 
 def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
-                  coupling: str) -> Structure:
+                  coupling: str, transverse: IwanOperator | None = None,
+                  pairing: str | None = None) -> Structure:
     """The structure of ``matrices`` with ``joint`` at every connectivity row of ``joints``
     ((n, directions, 2), :mod:`.files`); two-directional joints coupled by ``coupling``
-    (:data:`~.operators2d.COUPLINGS`). The output coordinate is set by :func:`with_output`.
+    (:data:`~.operators2d.COUPLINGS`), ``transverse`` along their second direction (None:
+    ``joint``) with ``pairing``. The output coordinate is set by :func:`with_output`.
     """
-    return from_joints(matrices, [PlacedJoint(row, joint, coupling) for row in joints])
+    return from_joints(matrices, [PlacedJoint(row, joint, coupling, transverse, pairing)
+                                  for row in joints])
 
 
 def from_joints(matrices: MatrixFile, joints: Sequence[PlacedJoint]) -> Structure:
@@ -65,9 +73,12 @@ def from_joints(matrices: MatrixFile, joints: Sequence[PlacedJoint]) -> Structur
     for placed in joints:
         (w,) = joint_weights([np.asarray(placed.dofs)], n)
         if w.ndim == 1:
+            if placed.transverse is not None or placed.pairing is not None:
+                raise ParameterError("a joint across (transverse) and its pairing need a "
+                                     "two-directional joint ([[I, J], [K, L]])")
             links.append(JointLink(placed.operator, w))
             continue
-        ops = COUPLINGS[placed.coupling](placed.operator)
+        ops = COUPLINGS[placed.coupling](placed.operator, placed.transverse, placed.pairing)
         if len(ops) == 1:
             links.append(JointLink(ops[0], w))
         else:

@@ -24,7 +24,7 @@ from ..named import readonly, result
 from .kernels2d import circular_periodic_kernel
 from .operators import IwanOperator
 
-__all__ = ["COUPLINGS", "PAIRINGS", "CircularIwan", "anisotropic", "circular"]
+__all__ = ["COUPLINGS", "DEFAULT_PAIRING", "PAIRINGS", "CircularIwan", "anisotropic", "circular"]
 
 Array = NDArray[np.float64]
 
@@ -183,6 +183,9 @@ def _spatial(x_edges: Array, y_edges: Array) -> tuple[Array, Callable[[Array], A
 #: along x and from mid-length across (tau_y = |2 tau_x - F|).
 PAIRINGS: dict[str, Pairing] = {"ordered": _ordered, "spatial": _spatial}
 
+#: Pairing of :func:`anisotropic` (and of a coupling given two 1-D joints) unless named.
+DEFAULT_PAIRING = "spatial"
+
 
 def _edges(joint: IwanOperator) -> tuple[Array, Array]:
     """Cumulative slip force (N, from 0) of the elements of ``joint`` sorted by slip
@@ -194,7 +197,7 @@ def _edges(joint: IwanOperator) -> tuple[Array, Array]:
     return np.concatenate([[0.0], np.cumsum(force)]), phi
 
 
-def anisotropic(x: IwanOperator, y: IwanOperator, pairing: str = "spatial") -> CircularIwan:
+def anisotropic(x: IwanOperator, y: IwanOperator, pairing: str = DEFAULT_PAIRING) -> CircularIwan:
     """The 2-D joint that is ``x`` along x and ``y`` along y (its elements split), its
     elements matched by ``pairing`` (:data:`PAIRINGS`).
 
@@ -228,16 +231,33 @@ def anisotropic(x: IwanOperator, y: IwanOperator, pairing: str = "spatial") -> C
                         stiffness_y=length / y_phi[iy])
 
 
-def _decoupled(joint: IwanOperator) -> tuple[IwanOperator, IwanOperator]:
-    return joint, joint
+#: A coupling: ``(x, y, pairing)`` -> the operators of a two-directional joint that is the
+#: 1-D joint ``x`` along its first direction and ``y`` (None: ``x``) along its second.
+Coupling = Callable[[IwanOperator, IwanOperator | None, str | None],
+                    tuple[IwanOperator | CircularIwan, ...]]
 
 
-def _circular(joint: IwanOperator) -> tuple[CircularIwan]:
-    return (circular(joint),)
+def _decoupled(x: IwanOperator, y: IwanOperator | None = None, pairing: str | None = None
+               ) -> tuple[IwanOperator, IwanOperator]:
+    if pairing is not None:
+        raise ParameterError(f"pairing {pairing!r} does not apply to the decoupled coupling "
+                             "(its two directions are independent); leave it out")
+    return x, x if y is None else y
 
 
-#: Coupling name -> the operators of a two-directional joint built from a 1-D joint:
-#: ``circular`` one :class:`CircularIwan` on both directions, ``decoupled`` one
-#: :class:`IwanOperator` per direction (the paper's sum).
-COUPLINGS: dict[str, Callable[[IwanOperator], tuple[IwanOperator | CircularIwan, ...]]] = {
-    "circular": _circular, "decoupled": _decoupled}
+def _circular(x: IwanOperator, y: IwanOperator | None = None, pairing: str | None = None
+              ) -> tuple[CircularIwan]:
+    if y is None:
+        if pairing is not None:
+            raise ParameterError(f"pairing {pairing!r} needs a second 1-D joint (the joint "
+                                 "across); one joint's elements pair with themselves")
+        return (circular(x),)
+    return (anisotropic(x, y, DEFAULT_PAIRING if pairing is None else pairing),)
+
+
+#: Coupling name -> the operators of a two-directional joint built from the 1-D joint x
+#: along its first direction and y (default x) along its second: ``circular`` one
+#: :class:`CircularIwan` on both directions (:func:`circular` of x, or
+#: :func:`anisotropic` (x, y, pairing)), ``decoupled`` one :class:`IwanOperator` per
+#: direction, x and y (the paper's sum).
+COUPLINGS: dict[str, Coupling] = {"circular": _circular, "decoupled": _decoupled}
