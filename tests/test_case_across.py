@@ -297,3 +297,23 @@ def test_one_mode_and_case_joints_refuse_the_flags(capsys, planar):
     name = _case(planar / "c.toml", transverse="centre")
     code, _, err = run(capsys, "frf", "--case", name, "--pairing", "ordered", *FORCED)
     assert code == 1 and err.count("\n") == 1 and "--pairing conflicts with the [[joint]]" in err
+
+
+def test_a_tip_joint_that_is_its_own_model_across_is_warned_once(capsys, planar):
+    """Without a joint across the warning goes to stderr (one line) and into the JSON's
+    ``warnings``, naming the way out; with one, or for a one-directional joint, nothing."""
+    amps = ["--amplitude-range", "1e-6", "3e-6", "--amplitudes", "2", "--harmonics", "1",
+            "--samples", "32"]
+    code, out, err = run(capsys, "modal", *CLI, *amps, "--json")
+    assert code == 0
+    (line,) = err.strip().splitlines()
+    assert line.startswith("warning: --joint tip: the tip model is also the joint across")
+    assert "--transverse fe" in line and json.loads(out)["warnings"] == [line[9:]]
+    code, out, err = run(capsys, "modal", "--case", _case(planar / "w.toml"), *amps, "--json")
+    assert code == 0 and json.loads(out)["warnings"] == [err.strip()[9:]]
+    assert 'joint 1: the tip model' in err and 'transverse = "fe"' in err
+    for argv in (["modal", *CLI, "--transverse", "centre", *amps, "--json"],
+                 ["modal", "--structure", "planar.npz", "--joint-dof", "0", "--joint", "tip",
+                  "--stick-slope", str(SLOPE), *amps, "--json"]):
+        code, out, err = run(capsys, *argv)
+        assert code == 0 and err == "" and json.loads(out)["warnings"] == []

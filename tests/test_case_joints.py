@@ -209,6 +209,12 @@ def test_one_case_joint_equals_the_joint_dof_options(capsys, planar, monkeypatch
                  "--joint-dof", "1", "--joint", "tip", "--stick-slope", "1e4", "--elements",
                  "30", "--coupling", "decoupled", *forced)
     assert a.pop("case_file") == "one.toml"
+    # a tip joint that is its own model across: warned, naming each path's way out
+    wa, wb = a.pop("warnings"), b.pop("warnings")
+    assert len(wa) == len(wb) == 1
+    assert wa[0].startswith("joint 1: the tip model is also the joint across")
+    assert 'transverse = "fe"' in wa[0] and "--transverse fe" in wb[0]
+    assert wa[0].split(";", 1)[1].split(":")[0] == wb[0].split(";", 1)[1].split(":")[0]
     sa, sb = a.pop("structure"), b.pop("structure")
     case_joint = sa.pop("case_joints")[0]
     assert case_joint.pop("coupling") == "decoupled"

@@ -22,7 +22,16 @@ from ..meshlevels import LEVELS, parse_counts
 from .common import model_options
 from .joint import clamp_from_args, describe_joint, elements_from_args
 
-__all__ = ["across_from_args", "across_joint", "add_across_options", "describe_across"]
+__all__ = ["ACROSS_WARNING", "across_from_args", "across_joint", "across_warnings",
+           "add_across_options", "describe_across"]
+
+#: The warning for a two-directional tip or centre joint that is its own 1-D model across
+#: (docs/dynamics.md, "The reduced bar against the FE").
+ACROSS_WARNING = (
+    "{who}: the {model} model is also the joint across (its second direction); a clamped "
+    "bar loaded across bends in its plane, which no 1-D model describes (on the Table 1 bar "
+    "such joints dissipate 53-79 % more than the coupled FE at R = 1, docs/dynamics.md): "
+    "give {fix} to take the FE's first loading across")
 
 
 def _mesh(text: str) -> str:
@@ -114,3 +123,21 @@ def describe_across(transverse: str | None, pairing: str | None, coupling: str,
     if coupling == "circular":
         out["pairing"] = DEFAULT_PAIRING if pairing is None else pairing
     return out
+
+
+def across_warnings(args: argparse.Namespace, joints: Any) -> list[str]:
+    """Warnings (sentences) for the two-directional tip or centre joints that are their own
+    model across: each [[joint]] table of a case, or the command line's joint placed at the
+    connectivity ``joints`` ((n, d, 2) array; None: a one-mode structure)."""
+    specs = getattr(args, "case_joints", ())
+    if specs:
+        return [ACROSS_WARNING.format(who=f"joint {s.number}", model=s.model,
+                                      fix='transverse = "fe"')
+                for s in specs if s.directions == 2 and s.model in ("tip", "centre")
+                and s.transverse is None]
+    two = joints is not None and np.ndim(joints) == 3 and np.shape(joints)[1] == 2
+    if not two or args.joint not in ("tip", "centre") or \
+            getattr(args, "transverse", None) is not None:
+        return []
+    return [ACROSS_WARNING.format(who=f"--joint {args.joint}", model=args.joint,
+                                  fix="--transverse fe --stick-slope N/MM3")]

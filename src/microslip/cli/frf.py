@@ -16,7 +16,9 @@ from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_respo
 from ..dynamics.structure import Structure
 from ..errors import ParameterError
 from ..progress import progress
+from .across import across_warnings
 from .common import number
+from .contact import report_warnings
 from .modal import (
     add_balance_options,
     add_structure_options,
@@ -98,6 +100,9 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         check_writable(args.csv)
     structure = structure_from_args(args)
+    warnings = across_warnings(args, None if getattr(args, "case_joints", ())
+                               else _connectivity(args))
+    report_warnings(warnings)
     harmonics, samples = balance_from_args(args)
     for f in args.force:
         if not (math.isfinite(f) and f > 0.0):
@@ -124,7 +129,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json({"structure": describe_structure(structure, args), "harmonics": harmonics,
                     "samples": samples, "frequency_range_Hz": list(frange),
-                    "curves": [_curve_json(c, _connectivity(args)) for c in curves]})
+                    "curves": [_curve_json(c, _connectivity(args)) for c in curves],
+                    "warnings": warnings})
         return 0
     print(f"{headline(structure, mode)}; {harmonics} harmonic(s), {samples} samples, "
           f"{frange[0]:.6g} to {frange[1]:.6g} Hz")

@@ -28,8 +28,15 @@ from ..dynamics.modal import METHODS, ModalCurve, energy_method
 from ..dynamics.operators2d import COUPLINGS, PAIRINGS
 from ..dynamics.structure import Structure, one_mode
 from ..errors import ParameterError
-from .across import across_from_args, across_joint, add_across_options, describe_across
+from .across import (
+    across_from_args,
+    across_joint,
+    across_warnings,
+    add_across_options,
+    describe_across,
+)
 from .common import number
+from .contact import report_warnings
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
@@ -259,6 +266,10 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         check_writable(args.csv)
     structure = structure_from_args(args)
+    warnings = across_warnings(args, None if getattr(args, "case_joints", ()) or
+                               args.structure is None else
+                               connectivity_from_args(args, read_structure(args.structure)))
+    report_warnings(warnings)
     if args.method == "energy" and args.harmonics is not None:
         raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
                              "balance); leave it out or use --method epmc")
@@ -278,7 +289,8 @@ def run(args: argparse.Namespace) -> int:
                     "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                     "damping_ratio": curve.damping_ratio,
                     "energy_method": {"frequency_Hz": energy.frequency,
-                                      "damping_ratio": energy.damping_ratio}})
+                                      "damping_ratio": energy.damping_ratio},
+                    "warnings": warnings})
         return 0
     print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "
           f"{curve.samples} samples")
