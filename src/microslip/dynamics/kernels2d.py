@@ -98,35 +98,33 @@ def return_map(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
 
 @njit(cache=True, fastmath=False, nogil=True)
 def _slip_map(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
-              ) -> tuple[float, float, np.ndarray]:
-    """The new slider position and D at a slipping step from (zx, zy) to u."""
+              ) -> tuple[float, float, float, float, float, float]:
+    """The new slider position and D (d00, d01, d10, d11) at a slipping step from (zx, zy)
+    to u."""
     zx, zy, nx, ny, cx, cy = _slip(ux, uy, zx, zy, rho, ph)
     gx = nx  # the force over k phi
     gy = rho * ny
     b = cx * gx * gx + rho * cy * gy * gy
-    d = np.empty((2, 2))
-    d[0, 0] = cx * rho * cy * gy * gy / b
-    d[0, 1] = -rho * cx * cy * gx * gy / b
-    d[1, 0] = -cx * cy * gx * gy / b
-    d[1, 1] = cy * cx * gx * gx / b
-    return zx, zy, d
+    return (zx, zy, cx * rho * cy * gy * gy / b, -rho * cx * cy * gx * gy / b,
+            -cx * cy * gx * gy / b, cy * cx * gx * gx / b)
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _advance(g: np.ndarray, d: np.ndarray, basis: np.ndarray, t: int, h: int) -> None:
+def _advance(g: np.ndarray, d00: float, d01: float, d10: float, d11: float,
+             basis: np.ndarray, t: int, h: int) -> None:
     """g <- D g + (I - D) E_t in place; g is (2, 2h), E_t[a, b h + c] = delta_ab basis[t, c]."""
     cols = g.shape[1]
     for c in range(cols):
         g0 = g[0, c]
         g1 = g[1, c]
-        g[0, c] = d[0, 0] * g0 + d[0, 1] * g1
-        g[1, c] = d[1, 0] * g0 + d[1, 1] * g1
+        g[0, c] = d00 * g0 + d01 * g1
+        g[1, c] = d10 * g0 + d11 * g1
     for c in range(h):
         bt = basis[t, c]
-        g[0, c] += (1.0 - d[0, 0]) * bt
-        g[1, c] -= d[1, 0] * bt
-        g[0, h + c] -= d[0, 1] * bt
-        g[1, h + c] += (1.0 - d[1, 1]) * bt
+        g[0, c] += (1.0 - d00) * bt
+        g[1, c] -= d10 * bt
+        g[0, h + c] -= d01 * bt
+        g[1, h + c] += (1.0 - d11) * bt
 
 
 @njit(cache=True, fastmath=False, nogil=True)
@@ -142,57 +140,120 @@ def _slips(r: float, ph: float, first: bool, virgin: bool) -> int:
 
 
 @njit(cache=True, fastmath=False, nogil=True)
-def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.ndarray,
-                    z0: np.ndarray, dz0: np.ndarray, virgin: bool) -> bool:
-    """The element's periodic slider position before sample ``start`` (``z0``, updated in
-    place from the virgin state) and its derivative ``dz0`` (2, 2h) in the coefficients.
-
-    One pass G through the period has ``P = dG/dz0`` (the product of the slipping steps'
-    D) and ``Q = dG/dC`` (the recursion of :func:`_advance` from 0). The first
-    :data:`CYCLES` passes repeat the cycle as the history would (``z0 <- G(z0)``,
-    ``dz0 <- P dz0 + Q``): an element that shakes down to elastic cycling keeps the state
-    and derivative its history gave it. Then Newton's method on ``z0 = G(z0)``, and at the
-    fixed point ``dz0 = (I - P)^-1 Q``. Returns False if not converged.
-    """
+def _pass(u: np.ndarray, rho: float, ph: float, start: int, virgin: bool, zx: float,
+          zy: float, ev_t: np.ndarray, ev_d: np.ndarray, count: int
+          ) -> tuple[float, float, float, float, float, float, int]:
+    """One pass G through the period from the slider (zx, zy), values only: the end slider,
+    ``P = dG/dz0`` (p00, p01, p10, p11, the product of the slipping steps' D) and the new
+    event count. Each slipping sample t is recorded from ``count`` on: ``ev_t`` = t (or
+    ``-1 - t`` for the virgin state, which restarts the derivative), ``ev_d`` = its D."""
     n = u.shape[0]
+    p00, p01, p10, p11 = 1.0, 0.0, 0.0, 1.0
+    for j in range(n):
+        t = start + j
+        if t >= n:
+            t -= n
+        ux, uy = u[t, 0], u[t, 1]
+        kind = _slips(math.hypot(ux - zx, rho * (uy - zy)), ph, j == 0, virgin)
+        if kind == 0:
+            continue
+        if kind == 2:  # the virgin state: depends on u[start] only
+            d00, d01, d10, d11 = _slip_map(ux, uy, 0.0, 0.0, rho, ph)[2:]
+            p00, p01, p10, p11 = 0.0, 0.0, 0.0, 0.0
+            ev_t[count] = -1 - t
+        else:
+            zx, zy, d00, d01, d10, d11 = _slip_map(ux, uy, zx, zy, rho, ph)
+            p00, p01, p10, p11 = (d00 * p00 + d01 * p10, d00 * p01 + d01 * p11,
+                                  d10 * p00 + d11 * p10, d10 * p01 + d11 * p11)
+            ev_t[count] = t
+        ev_d[count, 0], ev_d[count, 1], ev_d[count, 2], ev_d[count, 3] = d00, d01, d10, d11
+        count += 1
+    return zx, zy, p00, p01, p10, p11, count
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _history_derivative(ev_t: np.ndarray, ev_d: np.ndarray, count: int, basis: np.ndarray,
+                        w: np.ndarray, dz0: np.ndarray) -> None:
+    """``dz0`` (2, 2h) = the recursion ``dz <- D dz + (I - D) E_t`` from ``dz = 0`` over the
+    events [0, count), summed backwards: ``dz0 = sum_events M (I - D) E_t`` with ``M`` the
+    product of the later events' D (2x2, O(1) per event), gathered per sample into ``w``
+    (N, 2, 2, scratch) and expanded over the basis once; a virgin-state event ends the sum."""
+    n = basis.shape[0]
+    h = basis.shape[1]
+    w[:, :, :] = 0.0
+    m00, m01, m10, m11 = 1.0, 0.0, 0.0, 1.0
+    for i in range(count - 1, -1, -1):
+        t = ev_t[i]
+        reset = t < 0
+        if reset:
+            t = -1 - t
+        d00, d01, d10, d11 = ev_d[i, 0], ev_d[i, 1], ev_d[i, 2], ev_d[i, 3]
+        w[t, 0, 0] += m00 * (1.0 - d00) - m01 * d10
+        w[t, 0, 1] += m01 * (1.0 - d11) - m00 * d01
+        w[t, 1, 0] += m10 * (1.0 - d00) - m11 * d10
+        w[t, 1, 1] += m11 * (1.0 - d11) - m10 * d01
+        if reset:
+            break
+        m00, m01, m10, m11 = (m00 * d00 + m01 * d10, m00 * d01 + m01 * d11,
+                              m10 * d00 + m11 * d10, m10 * d01 + m11 * d11)
+    dz0[:, :] = 0.0
+    for t in range(n):
+        w00, w01, w10, w11 = w[t, 0, 0], w[t, 0, 1], w[t, 1, 0], w[t, 1, 1]
+        if w00 == 0.0 and w01 == 0.0 and w10 == 0.0 and w11 == 0.0:
+            continue
+        for c in range(h):
+            bt = basis[t, c]
+            dz0[0, c] += w00 * bt
+            dz0[0, h + c] += w01 * bt
+            dz0[1, c] += w10 * bt
+            dz0[1, h + c] += w11 * bt
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.ndarray,
+                    z0: np.ndarray, dz0: np.ndarray, virgin: bool, ev_t: np.ndarray,
+                    ev_d: np.ndarray, w: np.ndarray) -> bool:
+    """The element's periodic slider position before sample ``start`` (``z0``, updated in
+    place from the virgin state) and its derivative ``dz0`` (2, 2h) in the coefficients
+    (filled). ``ev_t``, ``ev_d``: room for ``(CYCLES + 1) N`` slip events; ``w``: (N, 2, 2).
+
+    One pass G through the period (:func:`_pass`) has ``P = dG/dz0`` (the product of the
+    slipping steps' D) and ``Q = dG/dC`` (the recursion of :func:`_advance` from 0). The
+    first :data:`CYCLES` passes repeat the cycle as the history would, values only
+    (``z0 <- G(z0)``), recording the slip events, until a pass returns to its start to
+    round-off: an element that does so (or shakes down to elastic cycling) keeps the state
+    its history gave it and the history's derivative (``dz0 <- P dz0 + Q`` pass by pass
+    from 0, :func:`_history_derivative` on the recorded events). Otherwise Newton's method
+    on ``z0 = G(z0)``, and at the fixed point ``dz0 = (I - P)^-1 Q``, Q from that pass's
+    events alone (the history is forgotten); where ``I - P`` is singular there (shakedown
+    reached late), the history's derivative carried through that pass. Returns False if
+    not converged.
+    """
     h = basis.shape[1]
     scale = ph / min(1.0, rho) + abs(u[start, 0]) + abs(u[start, 1])  # slips along y: ph / rho
-    q = np.zeros((2, 2 * h))
+    hist = 0  # events recorded by the history passes
     for cycle in range(MAX_PASSES):
-        zx, zy = z0[0], z0[1]
-        p00, p01, p10, p11 = 1.0, 0.0, 0.0, 1.0
-        q[:, :] = 0.0
-        for j in range(n):
-            t = start + j
-            if t >= n:
-                t -= n
-            ux, uy = u[t, 0], u[t, 1]
-            kind = _slips(math.hypot(ux - zx, rho * (uy - zy)), ph, j == 0, virgin)
-            if kind == 2:  # the virgin state: depends on u[start] only
-                p00, p01, p10, p11 = 0.0, 0.0, 0.0, 0.0
-                q[:, :] = 0.0
-                _advance(q, _slip_map(ux, uy, 0.0, 0.0, rho, ph)[2], basis, t, h)
-            elif kind == 1:
-                zx, zy, d = _slip_map(ux, uy, zx, zy, rho, ph)
-                p00, p01, p10, p11 = (d[0, 0] * p00 + d[0, 1] * p10,
-                                      d[0, 0] * p01 + d[0, 1] * p11,
-                                      d[1, 0] * p00 + d[1, 1] * p10,
-                                      d[1, 0] * p01 + d[1, 1] * p11)
-                _advance(q, d, basis, t, h)
+        zx, zy, p00, p01, p10, p11, count = _pass(u, rho, ph, start, virgin, z0[0], z0[1],
+                                                  ev_t, ev_d, hist)
         rx, ry = zx - z0[0], zy - z0[1]
         a00, a01, a10, a11 = 1.0 - p00, -p01, -p10, 1.0 - p11
         det = a00 * a11 - a01 * a10
         done = abs(rx) + abs(ry) <= 1e-15 * scale
         if cycle < CYCLES or (done and abs(det) < 1e-12):
-            for c in range(2 * h):  # dz0 <- P dz0 + Q, the history's derivative
-                d0, d1 = dz0[0, c], dz0[1, c]
-                dz0[0, c] = p00 * d0 + p01 * d1 + q[0, c]
-                dz0[1, c] = p10 * d0 + p11 * d1 + q[1, c]
             z0[0], z0[1] = zx, zy
+            hist = count
             if done:
+                _history_derivative(ev_t, ev_d, count, basis, w, dz0)
                 return True
             continue
         if done:
+            q = np.zeros((2, 2 * h))
+            for i in range(hist, count):
+                t = ev_t[i]
+                if t < 0:  # the virgin state restarts Q
+                    t = -1 - t
+                    q[:, :] = 0.0
+                _advance(q, ev_d[i, 0], ev_d[i, 1], ev_d[i, 2], ev_d[i, 3], basis, t, h)
             for c in range(2 * h):
                 dz0[0, c] = (a11 * q[0, c] - a01 * q[1, c]) / det
                 dz0[1, c] = (-a10 * q[0, c] + a00 * q[1, c]) / det
@@ -233,6 +294,9 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, ky: np.ndarray, phi: 
     g = np.zeros((m, 2, 2 * h))
     rho = np.zeros(m)
     virgin = np.zeros(m, dtype=np.bool_)
+    ev_t = np.empty((CYCLES + 1) * n, dtype=np.int64)
+    ev_d = np.empty(((CYCLES + 1) * n, 4))
+    w = np.empty((n, 2, 2))
     failed = 0
     for e in range(m):
         if k[e] == 0.0:
@@ -241,7 +305,8 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, ky: np.ndarray, phi: 
         virgin[e] = math.hypot(ux0, rho[e] * uy0) > phi[e]
         if virgin[e]:
             z[e, 0], z[e, 1] = return_map(ux0, uy0, 0.0, 0.0, rho[e], phi[e])
-        if not _periodic_state(u, rho[e], phi[e], start, basis, z[e], g[e], virgin[e]):
+        if not _periodic_state(u, rho[e], phi[e], start, basis, z[e], g[e], virgin[e], ev_t,
+                               ev_d, w):
             failed += 1
     tx = 0.0
     ty = 0.0
@@ -271,11 +336,11 @@ def circular_periodic_kernel(u: np.ndarray, k: np.ndarray, ky: np.ndarray, phi: 
                     s[1, c] -= ky[e] * ge[1, c]
                 if kind == 2:
                     ge[:, :] = 0.0
-                    d = _slip_map(ux, uy, 0.0, 0.0, rho[e], phi[e])[2]
+                    d00, d01, d10, d11 = _slip_map(ux, uy, 0.0, 0.0, rho[e], phi[e])[2:]
                 else:
-                    zx, zy, d = _slip_map(ux, uy, zx, zy, rho[e], phi[e])
+                    zx, zy, d00, d01, d10, d11 = _slip_map(ux, uy, zx, zy, rho[e], phi[e])
                     z[e, 0], z[e, 1] = zx, zy
-                _advance(ge, d, basis, t, h)
+                _advance(ge, d00, d01, d10, d11, basis, t, h)
                 for c in range(2 * h):
                     s[0, c] += k[e] * ge[0, c]
                     s[1, c] += ky[e] * ge[1, c]
