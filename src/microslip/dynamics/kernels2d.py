@@ -229,22 +229,49 @@ def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.
     reached late), the history's derivative carried through that pass. Returns False if
     not converged.
     """
+    zx, zy = z0[0], z0[1]
+    status = _solve(u, rho, ph, start, basis, z0, dz0, virgin, ev_t, ev_d, w, True)
+    if status == 2:  # cut short but the history was wanted: the history in full
+        z0[0], z0[1] = zx, zy
+        status = _solve(u, rho, ph, start, basis, z0, dz0, virgin, ev_t, ev_d, w, False)
+    return status == 1
+
+
+@njit(cache=True, fastmath=False, nogil=True)
+def _solve(u: np.ndarray, rho: float, ph: float, start: int, basis: np.ndarray,
+           z0: np.ndarray, dz0: np.ndarray, virgin: bool, ev_t: np.ndarray, ev_d: np.ndarray,
+           w: np.ndarray, early: bool) -> int:
+    """:func:`_periodic_state`, the history cut short if ``early``. Returns 1 on success,
+    0 if not converged, 2 if cut short and the history turned out to be wanted."""
     h = basis.shape[1]
     scale = ph / min(1.0, rho) + abs(u[start, 0]) + abs(u[start, 1])  # slips along y: ph / rho
     hist = 0  # events recorded by the history passes
+    newton = False
+    res0 = 0.0
+    ratio0 = 0.0
     for cycle in range(MAX_PASSES):
         zx, zy, p00, p01, p10, p11, count = _pass(u, rho, ph, start, virgin, z0[0], z0[1],
                                                   ev_t, ev_d, hist)
         rx, ry = zx - z0[0], zy - z0[1]
         a00, a01, a10, a11 = 1.0 - p00, -p01, -p10, 1.0 - p11
         det = a00 * a11 - a01 * a10
-        done = abs(rx) + abs(ry) <= 1e-15 * scale
-        if cycle < CYCLES or (done and abs(det) < 1e-12):
+        res = abs(rx) + abs(ry)
+        done = res <= 1e-15 * scale
+        if (cycle < CYCLES and not newton) or (done and abs(det) < 1e-12):
             z0[0], z0[1] = zx, zy
             hist = count
             if done:
+                if newton:
+                    return 2
                 _history_derivative(ev_t, ev_d, count, basis, w, dz0)
-                return True
+                return 1
+            ratio = res / res0 if res0 > 0.0 else 0.0
+            if (early and abs(det) > 1e-8 and 0.0 < ratio < 1.0
+                    and abs(ratio - ratio0) <= 0.1 * ratio
+                    and res * ratio ** (CYCLES - 1 - cycle) > 1e3 * 1e-15 * scale):
+                newton = True  # it will not repeat within CYCLES: Newton's method now
+            res0 = res
+            ratio0 = ratio
             continue
         if done:
             q = np.zeros((2, 2 * h))
@@ -257,13 +284,13 @@ def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.
             for c in range(2 * h):
                 dz0[0, c] = (a11 * q[0, c] - a01 * q[1, c]) / det
                 dz0[1, c] = (-a10 * q[0, c] + a00 * q[1, c]) / det
-            return True
+            return 1
         if abs(det) > 1e-8:
             z0[0] += (a11 * rx - a01 * ry) / det
             z0[1] += (-a10 * rx + a00 * ry) / det
         else:
             z0[0], z0[1] = zx, zy
-    return False
+    return 2 if newton else 0
 
 
 @njit(cache=True, fastmath=False, nogil=True)
