@@ -28,6 +28,15 @@ product), i.e. ``D_xx = c_x rho c_y g_y^2 / b``, ``D_yy = c_y c_x g_x^2 / b``,
 ``K D`` is symmetric. For ``rho = 1`` it is ``D = (phi / r) (I - n n^T)``. Along one axis
 ``g`` has one component, D is 0 along it and the step is the 1-D return mapping of
 :mod:`.kernels` (to round-off).
+
+Periodic state of an element (:func:`_periodic_state`): passes through the period from the
+virgin state, values only (the slider and the 2x2 ``P``, each slipping sample's D recorded),
+as the history would, until a pass repeats to round-off; the derivative in the
+coefficients is formed once at the end, from the recorded D (summed backwards, O(1) per
+slip) or from the last pass alone at a fixed point found by Newton's method. An element
+whose passes decay geometrically too slowly to repeat within :data:`CYCLES` goes to
+Newton's method as soon as that shows (it would have gone after CYCLES passes, to the same
+fixed point).
 """
 
 from __future__ import annotations
@@ -43,7 +52,8 @@ __all__ = ["circular_periodic_kernel", "return_map"]
 #: Passes at most of the per-element fixed-point (Newton) iteration for the periodic state.
 MAX_PASSES = 200
 
-#: Cycles repeated as the history would before Newton's method takes over.
+#: Cycles repeated as the history would before Newton's method takes over (sooner for an
+#: element whose passes plainly decay too slowly to repeat within them).
 CYCLES = 60
 
 #: Newton iterations at most for the return map's gamma (monotone, quadratic: a few).
@@ -228,6 +238,13 @@ def _periodic_state(u: np.ndarray, rho: float, ph: float, start: int, basis: np.
     events alone (the history is forgotten); where ``I - P`` is singular there (shakedown
     reached late), the history's derivative carried through that pass. Returns False if
     not converged.
+
+    Newton's method starts early (:func:`_solve`) once the residuals ``|G(z0) - z0|`` of
+    three passes decay geometrically (two ratios q < 1 within 10 %), ``|I - P|`` is not
+    small (1e-8) and ``q`` to the passes left would still leave the residual 1e3 times above
+    the repeat tolerance: the history would not have repeated, and Newton's method reaches
+    the same fixed point (to round-off) with the same derivative. Should such an element
+    end singular (shakedown) or not converge, it is redone with the full history.
     """
     zx, zy = z0[0], z0[1]
     status = _solve(u, rho, ph, start, basis, z0, dz0, virgin, ev_t, ev_d, w, True)
