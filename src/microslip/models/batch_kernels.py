@@ -17,13 +17,13 @@ independent cases: the sequential dependence of increment i on increment i - 1 n
 stalls the pipeline, and the lane loop compiles to SIMD instructions. The state of a chunk
 (a few arrays of ``CHUNK`` doubles) stays in the level-1 cache.
 
-The chunk loop is written once: :func:`_chunk` allocates a chunk's common buffers,
-:func:`_load` runs the increments and the zero-crossing snapshot, taking the model's
-per-increment lane loop (``_tip_advance``, ``_centre_advance``, ``_centre_layer_advance``)
-as a function argument that numba inlines, and :func:`_write_out` the energies; a kernel
-adds only its per-lane constants and state. :func:`tip_layer_kernel` keeps its loop
-written out: through :func:`_load` it ran 4 % slower (the fold is kept only where it
-costs nothing measurable).
+Shared parts: :func:`_snapshot` and :func:`_write_out` (every kernel); for the tip and
+centre kernels also :func:`_chunk` (a chunk's common buffers) and :func:`_load` (the
+increments and the snapshot, taking the model's per-increment lane loop, ``_tip_advance``
+or ``_centre_advance``, as a function argument that numba inlines), so that each adds only
+its per-lane constants and state. The two layer kernels keep their chunk loops written
+out: through :func:`_load` they ran 4 % (tip) and 10 % (centre) slower, measured against
+the written-out loops in one process, alternately (``benchmarks/bench_batch.py`` rows).
 
 Energies (paper Eqs 21-23, Masing loop at the backbone samples, see
 :func:`microslip.hysteresis.masing_loop`), with Q = sum_k (F_(k-1) + F_k)(d_k - d_(k-1))
@@ -99,16 +99,16 @@ def _load(n, k0, m, f0, d, q, gmin, d_km1, d_k0, q_k0, advance, lanes, fixed):
     """The first loading of a chunk, increments outer: ``advance(m, fr, fr_prev, f0, d, q,
     gmin, lanes, fixed)`` runs the model's step on every lane (the inner loop) at the force
     fraction ``fr`` (previous ``fr_prev``) and keeps d, Q and the smallest factor by
-    :func:`_accumulate`; the model's own per-lane arrays come in the tuple ``lanes``, the
-    chunk's scalars (flags, law) in ``fixed``.
+    :func:`_accumulate`; the model's own per-lane arrays come in the tuple ``lanes``, its
+    scalars (the flags) in ``fixed``.
 
     An ``advance`` takes its arrays out of ``lanes`` once per increment, not per lane (a
     tuple item is a new reference: taken per lane, its reference counting cost 25 % on the
-    tip layer kernel); arrays and scalars travel in separate tuples (numba's array analysis fails
-    on a tuple that mixes them); and an array the step writes is taken by index,
-    ``lanes[i]``, never by unpacking: numba's alias analysis does not follow tuple
-    unpacking, and the parallel pass would drop its stores as dead code (wrong numbers, no
-    error).
+    tip layer kernel when it ran through here); arrays and scalars travel in separate
+    tuples (numba's array analysis fails on a tuple that mixes them); and an array the
+    step writes is taken by index, ``lanes[i]``, never by unpacking: numba's alias
+    analysis does not follow tuple unpacking, and the parallel pass would drop its stores
+    as dead code (wrong numbers, no error).
     """
     fr_prev = 0.0
     for i in range(1, n + 1):
@@ -295,32 +295,6 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
                    out_d0, out_w, out_u, out_eta, out_section)
 
 
-@njit(cache=True, fastmath=False, inline="always")
-def _centre_layer_advance(m, fr, fr_prev, f0, d, q, gmin, lanes, fixed):
-    """Every lane of :func:`centre_layer_kernel` by one increment
-    (:func:`~.layered.centre_layer_step`; ``doms`` rows: tension then compression)."""
-    _, cs, doms = lanes  # read only
-    st = lanes[0]  # written: by index (see _load)
-    flags, plain, code, data, symmetric = fixed
-    for k in range(m):
-        f = f0[k] * fr
-        fp = f0[k] * fr_prev
-        s = st[k]
-        dm = doms[k]
-        r = centre_layer_step(
-            f, fp, (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10], s[11],
-                    s[12], s[13]),
-            (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3], cs[k, 4]),
-            (cs[k, 5], cs[k, 6], cs[k, 7], cs[k, 8], cs[k, 9]), flags, plain,
-            (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9], dm[10],
-             dm[11], dm[12], dm[13]),
-            (dm[14], dm[15], dm[16], dm[17], dm[18], dm[19], dm[20], dm[21], dm[22], dm[23],
-             dm[24], dm[25], dm[26], dm[27]), code, data, symmetric, 0)
-        for t in range(14):
-            s[t] = r[t]
-        _accumulate(k, f, fp, r[14], min(r[17], r[18]), d, q, gmin)
-
-
 @njit(parallel=True, cache=True, fastmath=False, nogil=True)
 def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio,
                         friction, normal_force, n, poisson_code, length_update, reading, kind,
@@ -329,12 +303,23 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
     """Centre model (physical reading) on a contact
     (:func:`~microslip.models.layered.centre_layer_step`); arguments as for
     :func:`tip_layer_kernel`."""
+    ncase = amplitude.shape[0]
+    nchunk = (ncase + CHUNK - 1) // CHUNK
     k0 = (n + 1) // 2
-    for c in prange((amplitude.shape[0] + CHUNK - 1) // CHUNK):
-        lo, m, f0, d, q, gmin, d_km1, d_k0, q_k0 = _chunk(c, amplitude)
+    for c in prange(nchunk):
+        lo = c * CHUNK
+        m = min(CHUNK, ncase - lo)
+        f0 = np.empty(m)
         st = np.empty((m, 14))
         cs = np.empty((m, 10))
         doms = np.empty((m, 28))
+        d = np.zeros(m)
+        q = np.zeros(m)
+        gmin = np.ones(m)
+        q_k0 = np.zeros(m)
+        d_km1 = np.zeros(m)
+        d_k0 = np.zeros(m)
+        stored = np.full(m, np.nan)
         flags = plain = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         for k in range(m):
             j = lo + k
@@ -351,7 +336,29 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
                 doms[k, 14 + i] = dc[i]
             for i in range(14):
                 st[k, i] = state[i]
-        _load(n, k0, m, f0, d, q, gmin, d_km1, d_k0, q_k0, _centre_layer_advance,
-              (st, cs, doms), (flags, plain, code, data, symmetric))
-        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, np.full(m, np.nan), gmin,
+        fr_prev = 0.0
+        for i in range(1, n + 1):
+            fr = i / n
+            for k in range(m):
+                f = f0[k] * fr
+                fp = f0[k] * fr_prev
+                s = st[k]
+                dm = doms[k]
+                r = centre_layer_step(
+                    f, fp, (s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], s[8], s[9], s[10],
+                            s[11], s[12], s[13]),
+                    (cs[k, 0], cs[k, 1], cs[k, 2], cs[k, 3], cs[k, 4]),
+                    (cs[k, 5], cs[k, 6], cs[k, 7], cs[k, 8], cs[k, 9]), flags, plain,
+                    (dm[0], dm[1], dm[2], dm[3], dm[4], dm[5], dm[6], dm[7], dm[8], dm[9],
+                     dm[10], dm[11], dm[12], dm[13]),
+                    (dm[14], dm[15], dm[16], dm[17], dm[18], dm[19], dm[20], dm[21], dm[22],
+                     dm[23], dm[24], dm[25], dm[26], dm[27]), code, data, symmetric, 0)
+                for t in range(14):
+                    s[t] = r[t]
+                gmin[k] = min(gmin[k], min(r[17], r[18]))
+                q[k] += (fp + f) * (r[14] - d[k])
+                d[k] = r[14]
+            _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
+            fr_prev = fr
+        _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
                    out_d0, out_w, out_u, out_eta, out_section)
