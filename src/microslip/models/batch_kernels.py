@@ -17,13 +17,14 @@ independent cases: the sequential dependence of increment i on increment i - 1 n
 stalls the pipeline, and the lane loop compiles to SIMD instructions. The state of a chunk
 (a few arrays of ``CHUNK`` doubles) stays in the level-1 cache.
 
-Shared parts: :func:`_snapshot` and :func:`_write_out` (every kernel); for the tip and
-centre kernels also :func:`_chunk` (a chunk's common buffers) and :func:`_load` (the
-increments and the snapshot, taking the model's per-increment lane loop, ``_tip_advance``
-or ``_centre_advance``, as a function argument that numba inlines), so that each adds only
-its per-lane constants and state. The two layer kernels keep their chunk loops written
-out: through :func:`_load` they ran 4 % (tip) and 10 % (centre) slower, measured against
-the written-out loops in one process, alternately (``benchmarks/bench_batch.py`` rows).
+Shared parts: every kernel takes its chunk's common buffers from :func:`_chunk` and ends
+with :func:`_write_out`, every lane keeps Q, d and the smallest factor by
+:func:`_accumulate`; the tip and centre kernels also share the increment loop,
+:func:`_load`, which takes the model's per-increment lane loop (``_tip_advance`` or
+``_centre_advance``) as a function argument that numba inlines, so that each adds only
+its per-lane constants and state. The two layer kernels keep their increment loops
+written out (with :func:`_snapshot`): through :func:`_load` they ran 4 % (tip) and 10 %
+(centre) slower, measured against the written-out loops in one process, alternately.
 
 Energies (paper Eqs 21-23, Masing loop at the backbone samples, see
 :func:`microslip.hysteresis.masing_loop`), with Q = sum_k (F_(k-1) + F_k)(d_k - d_(k-1))
@@ -239,22 +240,12 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
     energies for every case; arguments as for :func:`tip_kernel`, then the contact's
     :attr:`~microslip.models.contact.Contact.kernel_args` (one contact for the batch). The
     stored energy is NaN (strain energy ``stored`` is refused on a contact)."""
-    ncase = amplitude.shape[0]
-    nchunk = (ncase + CHUNK - 1) // CHUNK
     k0 = (n + 1) // 2
-    for c in prange(nchunk):
-        lo = c * CHUNK
-        m = min(CHUNK, ncase - lo)
-        f0 = np.empty(m)
+    for c in prange((amplitude.shape[0] + CHUNK - 1) // CHUNK):
+        lo, m, f0, d, q, gmin, d_km1, d_k0, q_k0 = _chunk(c, amplitude)
         st = np.empty((m, 6))
         cs = np.empty((m, 8))
         doms = np.empty((m, 14))
-        d = np.zeros(m)
-        q = np.zeros(m)
-        gmin = np.ones(m)
-        q_k0 = np.zeros(m)
-        d_km1 = np.zeros(m)
-        d_k0 = np.zeros(m)
         stored = np.full(m, np.nan)
         flags = plain = (0.0, 0.0, 0.0)
         for k in range(m):
@@ -286,9 +277,7 @@ def tip_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ratio
                      dm[10], dm[11], dm[12], dm[13]), code, data)
                 st[k, 0], st[k, 1], st[k, 2], st[k, 3], st[k, 4], st[k, 5] = (dn, ra, dpn, rap,
                                                                               a, da)
-                gmin[k] = min(gmin[k], g)
-                q[k] += (fp + f) * (dd - d[k])
-                d[k] = dd
+                _accumulate(k, f, fp, dd, g, d, q, gmin)
             _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
             fr_prev = fr
         _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
@@ -303,22 +292,12 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
     """Centre model (physical reading) on a contact
     (:func:`~microslip.models.layered.centre_layer_step`); arguments as for
     :func:`tip_layer_kernel`."""
-    ncase = amplitude.shape[0]
-    nchunk = (ncase + CHUNK - 1) // CHUNK
     k0 = (n + 1) // 2
-    for c in prange(nchunk):
-        lo = c * CHUNK
-        m = min(CHUNK, ncase - lo)
-        f0 = np.empty(m)
+    for c in prange((amplitude.shape[0] + CHUNK - 1) // CHUNK):
+        lo, m, f0, d, q, gmin, d_km1, d_k0, q_k0 = _chunk(c, amplitude)
         st = np.empty((m, 14))
         cs = np.empty((m, 10))
         doms = np.empty((m, 28))
-        d = np.zeros(m)
-        q = np.zeros(m)
-        gmin = np.ones(m)
-        q_k0 = np.zeros(m)
-        d_km1 = np.zeros(m)
-        d_k0 = np.zeros(m)
         stored = np.full(m, np.nan)
         flags = plain = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         for k in range(m):
@@ -355,9 +334,7 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
                      dm[23], dm[24], dm[25], dm[26], dm[27]), code, data, symmetric, 0)
                 for t in range(14):
                     s[t] = r[t]
-                gmin[k] = min(gmin[k], min(r[17], r[18]))
-                q[k] += (fp + f) * (r[14] - d[k])
-                d[k] = r[14]
+                _accumulate(k, f, fp, r[14], min(r[17], r[18]), d, q, gmin)
             _snapshot(i, k0, m, d, q, d_km1, d_k0, q_k0)
             fr_prev = fr
         _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
