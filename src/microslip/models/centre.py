@@ -8,8 +8,9 @@ case (:func:`microslip.first_loading`). There is no other copy of the arithmetic
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
+
+from .columns import backbone_columns
 
 __all__ = ["centre_backbone", "centre_constants", "centre_flags", "centre_step",
            "centre_stored_energy"]
@@ -132,14 +133,7 @@ def centre_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, fri
                           normal_force, flags)
     c = (cs[0], cs[1], cs[2], cs[3], cs[4])
     state = (cs[5], cs[6], cs[7], cs[8])
-    force = np.zeros(n + 1)
-    disp = np.zeros(n + 1)
-    stored = np.zeros(n + 1)
-    slip = np.zeros((n + 1, 2))
-    w = np.empty((n + 1, 2))
-    t = np.empty((n + 1, 2))
-    w[0, :] = width
-    t[0, :] = thickness
+    force, disp, stored, slip, w, t = backbone_columns(n, 2, width, thickness, 0.0)
     fr_prev = 0.0
     for i in range(1, n + 1):
         fr = i / n

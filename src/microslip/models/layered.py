@@ -25,6 +25,7 @@ from numba import njit
 
 from ..options import POISSON_CODES
 from .centre import centre_constants, centre_flags, centre_step
+from .columns import backbone_columns
 from .layer import domain_constants, domain_point, layer_k, split_point
 from .tip import tip_constants, tip_flags, tip_step
 
@@ -82,14 +83,7 @@ def tip_layer_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, 
     flags, plain, c, cp, dom, state = tip_layer_setup(
         length, width, thickness, modulus, poisson_ratio, friction, normal_force,
         poisson_code, length_update, reading, stick_slope, shear_lag, code, data)
-    force = np.zeros(n + 1)
-    disp = np.zeros(n + 1)
-    stored = np.full(n + 1, np.nan)
-    slip = np.zeros((n + 1, 1))
-    w = np.empty((n + 1, 1))
-    t = np.empty((n + 1, 1))
-    w[0, 0] = width
-    t[0, 0] = thickness
+    force, disp, stored, slip, w, t = backbone_columns(n, 1, width, thickness, np.nan)
     fr_prev = 0.0
     for i in range(1, n + 1):
         fr = i / n
@@ -175,14 +169,7 @@ def centre_layer_backbone(f0, n, length, width, thickness, modulus, poisson_rati
     flags, plain, c, cp, tension, compression, state = centre_layer_setup(
         length, width, thickness, modulus, poisson_ratio, friction, normal_force,
         poisson_code, length_update, reading, stick_slope, shear_lag, code, data)
-    force = np.zeros(n + 1)
-    disp = np.zeros(n + 1)
-    stored = np.full(n + 1, np.nan)
-    slip = np.zeros((n + 1, 2))
-    w = np.empty((n + 1, 2))
-    t = np.empty((n + 1, 2))
-    w[0, :] = width
-    t[0, :] = thickness
+    force, disp, stored, slip, w, t = backbone_columns(n, 2, width, thickness, np.nan)
     fr_prev = 0.0
     for i in range(1, n + 1):
         fr = i / n

@@ -8,8 +8,9 @@ of a chunk of cases; :func:`tip_backbone` calls it to record the virgin curve of
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
+
+from .columns import backbone_columns
 
 __all__ = ["tip_backbone", "tip_constants", "tip_flags", "tip_step", "tip_stored_energy"]
 
@@ -112,14 +113,7 @@ def tip_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, fricti
                                               poisson_ratio, friction, normal_force, flags)
     c = (ln, rfn, cnu, he)
     state = (d0, ra0)
-    force = np.zeros(n + 1)
-    disp = np.zeros(n + 1)
-    stored = np.zeros(n + 1)
-    slip = np.zeros((n + 1, 1))
-    w = np.empty((n + 1, 1))
-    t = np.empty((n + 1, 1))
-    w[0, 0] = width
-    t[0, 0] = thickness
+    force, disp, stored, slip, w, t = backbone_columns(n, 1, width, thickness, 0.0)
     fr_prev = 0.0
     for i in range(1, n + 1):
         fr = i / n
