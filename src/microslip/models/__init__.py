@@ -30,9 +30,9 @@ The step functions return flat tuples (state first, then what is observed): numb
 analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
 on-disk cache keys a compiled function on its own file only: after editing a step in
 ``tip.py`` or ``centre.py`` (or :func:`~microslip.energy.masing_energies`), touch
-``batch_kernels.py`` or remove its ``__pycache__/*.nbi`` so that the batch kernels are
-rebuilt (``tests/test_batch.py`` compares them bit for bit with :func:`first_loading` and
-fails on a stale cache).
+``layered.py`` and ``batch_kernels.py`` (both inline those steps) or remove
+``__pycache__/*.nbi`` so that they are rebuilt (``tests/test_batch.py`` compares them
+bit for bit with :func:`first_loading` and fails on a stale cache).
 
 This package may import ``closedform``, ``energy`` (its compiled sums), ``options``,
 ``params``, ``results``, ``named`` and ``errors``; never ``batch``, ``planar``, the FE code
