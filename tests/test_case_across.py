@@ -17,12 +17,12 @@ import sys
 import numpy as np
 import pytest
 from scipy.linalg import eigh
+from test_case_joints import run, run_json  # the case-joint tests' one CLI runner
 
 from microslip import preset
 from microslip.case import parse_case
 from microslip.case.joints import TRANSVERSE, transverse_operator
 from microslip.case.schema import PAIRINGS
-from microslip.cli.main import main
 from microslip.dynamics.distributions import clamp_joint
 from microslip.dynamics.modal import epmc
 from microslip.dynamics.operators import IwanOperator
@@ -69,18 +69,6 @@ FORCED = ["--force", "3", "--harmonics", "3", "--samples", "64", "--excitation",
           "--frequency-range", "8000", "12000"]
 CLI = ["--structure", "planar.npz", "--joint-dof", "0", "--joint-dof", "1", "--joint", "tip",
        "--stick-slope", str(SLOPE), "--normal-force", "200", "--elements", str(ELEMENTS)]
-
-
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def run_json(capsys, *argv):
-    code, out, err = run(capsys, *argv, "--json")
-    assert code == 0, err
-    return json.loads(out)
 
 
 @pytest.fixture
