@@ -46,6 +46,7 @@ __all__ = [
     "SQUAT_RATIO",
     "MeshLevel",
     "is_graded",
+    "is_mesh_spec",
     "is_squat",
     "level_axes",
     "level_counts",
@@ -122,6 +123,15 @@ def parse_counts(text: str) -> tuple[int, int, int] | None:
     """
     m = _COUNTS.match(text)
     return None if m is None else (int(m[1]), int(m[2]), int(m[3]))
+
+
+def is_mesh_spec(text: str) -> bool:
+    """Whether ``text`` names a mesh: a level of :data:`LEVELS` or ``NXxNYxNZ``.
+
+    >>> is_mesh_spec("medium"), is_mesh_spec("8x2x1"), is_mesh_spec("fine-ish")
+    (True, True, False)
+    """
+    return text in LEVELS or parse_counts(text) is not None
 
 
 def level_counts(params: ClampParams, level: str) -> tuple[int, int, int]:

@@ -15,7 +15,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..fe.case import DEFAULT_STICK_SLOPE
-from ..meshlevels import LEVELS, parse_counts
+from ..meshlevels import LEVELS, is_mesh_spec
 from ..params import PRESETS
 
 __all__ = [
@@ -134,7 +134,7 @@ def pressure_text(name: str, value: Any) -> str:
 def mesh_text(name: str, value: Any) -> str:
     """A check: a mesh level or ``NXxNYxNZ``, as ``microslip fe --mesh`` takes it."""
     s = text(name, value)
-    if s in LEVELS or parse_counts(s) is not None:
+    if is_mesh_spec(s):
         return s
     raise ParameterError(f"case key {name} must be one of {', '.join(LEVELS)} or NXxNYxNZ, "
                          f"got {s!r}")

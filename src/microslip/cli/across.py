@@ -18,8 +18,9 @@ from ..case.joints import TRANSVERSE, across_operator
 from ..case.schema import DEFAULT_FE_MESH
 from ..dynamics.operators import IwanOperator
 from ..dynamics.operators2d import DEFAULT_PAIRING, PAIRINGS
-from ..meshlevels import LEVELS, parse_counts
+from ..meshlevels import LEVELS
 from .common import model_options
+from .fe import mesh_level
 from .joint import clamp_from_args, describe_joint, elements_from_args
 
 __all__ = ["ACROSS_WARNING", "across_from_args", "across_joint", "across_warnings",
@@ -34,13 +35,6 @@ ACROSS_WARNING = (
     "give {fix} to take the FE's first loading across")
 
 
-def _mesh(text: str) -> str:
-    if text in LEVELS or parse_counts(text) is not None:
-        return text
-    raise argparse.ArgumentTypeError(
-        f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
-
-
 def add_across_options(group: Any) -> None:
     """``--transverse``, ``--pairing`` and ``--fe-mesh`` in the argument group ``group``."""
     group.add_argument("--transverse", choices=list(TRANSVERSE),
@@ -52,7 +46,7 @@ def add_across_options(group: Any) -> None:
                        help=f"with --transverse and circular coupling: elements matched by "
                             f"position on the bar (spatial) or by slip order (ordered) "
                             f"(default {DEFAULT_PAIRING})")
-    group.add_argument("--fe-mesh", type=_mesh, metavar="LEVEL",
+    group.add_argument("--fe-mesh", type=mesh_level, metavar="LEVEL",
                        help=f"with --transverse fe: the FE mesh, as microslip fe --mesh "
                             f"({', '.join(LEVELS)} or NXxNYxNZ; default {DEFAULT_FE_MESH})")
 

@@ -19,7 +19,7 @@ from ..fe import SOLVERS, run_loop
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..io import write_loop_csv
 from ..loading import LOAD_CASES
-from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, parse_counts
+from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, is_mesh_spec
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
 from ..solver.normal import NORMAL_CONTACTS
@@ -49,7 +49,7 @@ MESH_HELP = (
 
 def mesh_level(text: str) -> str:
     """argparse type: a mesh level of :mod:`microslip.meshlevels` or ``NXxNYxNZ``."""
-    if text in LEVELS or parse_counts(text) is not None:
+    if is_mesh_spec(text):
         return text
     raise argparse.ArgumentTypeError(
         f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
