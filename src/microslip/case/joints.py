@@ -158,8 +158,7 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
     params, series, slope = _clamp(model, own, clamp, case_values) \
         if model in ("tip", "centre") else (None, None, None)
     if model in ("jenkins", "iwan"):
-        missing = [k for k in sorted(JOINT_USES[model] - {"elements"} - set(ACROSS_KEYS))
-                   if k not in own]
+        missing = [k for k in sorted(JOINT_USES[model] - {"elements"}) if k not in own]
         if missing:
             raise ParameterError(f"model {model} needs joint.{', joint.'.join(missing)}")
     if across.get("transverse") == "fe" and slope is None:

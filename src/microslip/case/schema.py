@@ -307,12 +307,13 @@ JOINT_KEYS: tuple[Key, ...] = (
         "--fe-mesh)"),
 )
 
-#: Joint model -> the keys of :data:`JOINT_KEYS` it uses besides dofs, model and coupling.
+#: Joint model -> the keys of :data:`JOINT_KEYS` it uses besides dofs, model, coupling and
+#: the keys across (:data:`ACROSS_KEYS`, checked on their own).
 JOINT_USES: dict[str, frozenset[str]] = {
     "jenkins": frozenset({"stiffness", "slip_force"}),
     "iwan": frozenset({"stiffness", "slip_force", "chi", "beta", "elements"}),
-    "tip": frozenset({"stiffness", "elements", "transverse", "pairing", "fe_mesh"}),
-    "centre": frozenset({"stiffness", "elements", "transverse", "pairing", "fe_mesh"}),
+    "tip": frozenset({"stiffness", "elements"}),
+    "centre": frozenset({"stiffness", "elements"}),
 }
 
 #: The keys of a joint across (:data:`JOINT_KEYS`): transverse and what only it uses.
