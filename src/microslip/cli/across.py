@@ -119,19 +119,24 @@ def describe_across(transverse: str | None, pairing: str | None, coupling: str,
     return out
 
 
-def across_warnings(args: argparse.Namespace, joints: Any) -> list[str]:
+def across_warnings(args: argparse.Namespace) -> list[str]:
     """Warnings (sentences) for the two-directional tip or centre joints that are their own
-    model across: each [[joint]] table of a case, or the command line's joint placed at the
-    connectivity ``joints`` ((n, d, 2) array; None: a one-mode structure)."""
+    model across: each [[joint]] table of a case, or the command line's joint where its
+    connectivity (``--joint-dof`` or the structure file's) has two directions."""
     specs = getattr(args, "case_joints", ())
     if specs:
         return [ACROSS_WARNING.format(who=f"joint {s.number}", model=s.model,
                                       fix='transverse = "fe"')
                 for s in specs if s.directions == 2 and s.model in ("tip", "centre")
                 and s.transverse is None]
-    two = joints is not None and np.ndim(joints) == 3 and np.shape(joints)[1] == 2
-    if not two or args.joint not in ("tip", "centre") or \
+    if args.structure is None or args.joint not in ("tip", "centre") or \
             getattr(args, "transverse", None) is not None:
+        return []
+    from ..dynamics.files import read_structure
+    from .modal import connectivity_from_args
+
+    joints = np.asarray(connectivity_from_args(args, read_structure(args.structure)))
+    if joints.ndim != 3 or joints.shape[1] != 2:
         return []
     return [ACROSS_WARNING.format(who=f"--joint {args.joint}", model=args.joint,
                                   fix="--transverse fe --stick-slope N/MM3")]

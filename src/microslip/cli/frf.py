@@ -100,8 +100,7 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         check_writable(args.csv)
     structure = structure_from_args(args)
-    warnings = across_warnings(args, None if getattr(args, "case_joints", ())
-                               else _connectivity(args))
+    warnings = across_warnings(args)
     report_warnings(warnings)
     harmonics, samples = balance_from_args(args)
     for f in args.force:

@@ -266,9 +266,7 @@ def run(args: argparse.Namespace) -> int:
     if args.csv:
         check_writable(args.csv)
     structure = structure_from_args(args)
-    warnings = across_warnings(args, None if getattr(args, "case_joints", ()) or
-                               args.structure is None else
-                               connectivity_from_args(args, read_structure(args.structure)))
+    warnings = across_warnings(args)
     report_warnings(warnings)
     if args.method == "energy" and args.harmonics is not None:
         raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
