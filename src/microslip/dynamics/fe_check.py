@@ -36,8 +36,8 @@ from .assemble import PlacedJoint, from_joints
 from .distributions import DEFAULT_ELEMENTS, clamp_joint
 from .files import MatrixFile
 from .operators import IwanOperator
-from .operators2d import PAIRINGS, CircularIwan, anisotropic
-from .structure import JointLink, Structure
+from .operators2d import PAIRINGS
+from .structure import Structure
 
 __all__ = ["FEComparison", "cycle_work", "fe_comparison", "orbit_work", "reduced_bar"]
 
@@ -117,25 +117,18 @@ def cycle_work(force: np.ndarray, displacement: np.ndarray) -> float:
     return float(np.sum(0.5 * (f + np.roll(f, -1, axis=0)) * du))
 
 
-def reduced_bar(tip: IwanOperator | CircularIwan, centre: IwanOperator | None,
-                coupling: str) -> Structure:
+def reduced_bar(along: IwanOperator, across: IwanOperator | None, coupling: str,
+                pairing: str | None = None) -> Structure:
     """The bar reduced to its joint: DOFs (delta_tip, delta_centre), one two-directional
-    joint to the ground (the tip model's operator, or tip along the bar and centre across
-    it for ``decoupled``, or a given 2-D operator). Mass and stiffness are the unit matrix
-    and zero: only the joint matters for a prescribed motion."""
+    joint to the ground, ``along`` the bar and ``across`` it (None: ``along``), coupled by
+    ``coupling`` with ``pairing`` (:data:`.operators2d.COUPLINGS`, the same path as
+    ``modal`` and ``frf``). Mass and stiffness are the unit matrix and zero: only the joint
+    matters for a prescribed motion."""
     matrices = MatrixFile(mass=np.eye(2), stiffness=np.zeros((2, 2)),
                           damping=np.zeros((2, 2)), joints=np.zeros((0, 1, 2), dtype=np.int64),
                           path="reduced Table 1 bar")
-    dofs = np.array([[0, -1], [1, -1]])
-    if isinstance(tip, CircularIwan):
-        return Structure(mass=matrices.mass, damping=matrices.damping,
-                         stiffness=matrices.stiffness, joints=(JointLink(tip, np.eye(2)),),
-                         output=np.eye(2)[0])
-    if coupling == "decoupled" and centre is not None:
-        joints = [PlacedJoint(dofs[:1], tip), PlacedJoint(dofs[1:], centre)]
-    else:
-        joints = [PlacedJoint(dofs, tip, coupling)]
-    return from_joints(matrices, joints)
+    return from_joints(matrices, [PlacedJoint(np.array([[0, -1], [1, -1]]), along, coupling,
+                                              across, pairing)])
 
 
 def orbit_force(structure: Structure, q: np.ndarray) -> np.ndarray:
@@ -185,7 +178,7 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     zeros = np.zeros_like(centre_orbit)
     bars = {"circular": reduced_bar(tip, None, "circular"),
             "decoupled": reduced_bar(tip, centre, "decoupled")}
-    bars.update({f"anisotropic {name}": reduced_bar(anisotropic(tip, across, name), None, "")
+    bars.update({f"anisotropic {name}": reduced_bar(tip, across, "circular", name)
                  for name in PAIRINGS})
     forces = {name: orbit_force(bar, orbit) for name, bar in bars.items()}
     work = {name: cycle_work(f, orbit) for name, f in forces.items()}
