@@ -29,8 +29,8 @@ import numpy as np
 
 from microslip import closedform, preset
 from microslip.blas import single_threaded_blas
+from microslip.fe.builtin import available_linear_solvers, build_model, solve_uniaxial
 from microslip.params import ClampParams
-from microslip.solver import available_linear_solvers, build_model, solve_uniaxial
 
 P = preset("table1")
 F0 = 267.0
@@ -81,7 +81,7 @@ def bench_linear_solvers(mesh: Any, repeat: int) -> None:
     d = np.stack([m.contact_stiffness * rng.uniform(0.0, 1.0, m.contact_stiffness.size),
                   np.zeros(m.contact_stiffness.size), m.contact_stiffness], axis=1)
     b = rng.normal(size=m.dof)
-    from microslip.solver.linalg import make_backend
+    from microslip.fe.builtin.linalg import make_backend
 
     for name in available_linear_solvers():
         be = make_backend(name, m.stiffness, m.contact_dofs[:, 0], m.contact_dofs[:, 1])

@@ -192,7 +192,7 @@ def test_the_flags_give_the_json_of_the_case_file(capsys, planar, keys, flags):
 def test_the_fe_joint_across_is_the_fe_first_loading(capsys, planar):
     """transverse = "fe": the operator across is fe_backbone(clamp, "centre", mesh,
     stick_slope).operator(), and the structure runs end to end."""
-    from microslip.solver import fe_backbone
+    from microslip.fe.builtin import fe_backbone
 
     name = _case(planar / "fe.toml", transverse="fe", fe_mesh=TINY)
     (spec,) = parse_case(tomllib.loads((planar / name).read_text()), name).joints

@@ -19,7 +19,7 @@ from microslip.case import (
     template,
 )
 from microslip.errors import ParameterError
-from microslip.fe.case import DEFAULT_STICK_SLOPE
+from microslip.fe.calculix.case import DEFAULT_STICK_SLOPE
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from microslip import ParameterError, preset
-from microslip.solver import CENTRE_DIRECTIONS, build_model, run_history
+from microslip.fe.builtin import CENTRE_DIRECTIONS, build_model, run_history
 
 P = preset("table1")
 AXIS = {"axial": 0, "transverse": 1}

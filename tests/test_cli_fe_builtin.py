@@ -70,7 +70,7 @@ def test_out_writes_result_json_and_a_vtu_series_read_back(capsys, tmp_path):
     the first peak, averaged over the loaded end face with the consistent-load weights and
     measured from the clamped state, is the loop's first displacement."""
     meshio = pytest.importorskip("meshio")
-    from microslip.solver.mesh import box_mesh
+    from microslip.fe.builtin.mesh import box_mesh
 
     out = tmp_path / "run"
     data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out", str(out),

@@ -20,7 +20,7 @@ from microslip import preset
 from microslip.cli.main import main
 from microslip.energy import damping_from_loop
 from microslip.fe import FECase, ResultsError, read_results, run_case
-from microslip.fe.mesh import bar_mesh
+from microslip.fe.calculix.mesh import bar_mesh
 from microslip.validate import TOLERANCES, ValidationReport, run_validation
 
 pytestmark = [

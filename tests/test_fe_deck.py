@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from microslip import preset
 from microslip.errors import MacroslipError, ParameterError
 from microslip.fe import LEVELS, FECase, MeshSpec, bar_mesh, build_deck, mesh_spec
-from microslip.fe import deck as d
+from microslip.fe.calculix import deck as d
 
 P = preset("table1")
 

@@ -12,6 +12,8 @@ import pytest
 from microslip import preset
 from microslip.cli.main import main
 from microslip.energy import dissipated_energy
+from microslip.fe.builtin import NewtonOptions, coupling_study, solve_uniaxial
+from microslip.fe.builtin import solve as solve_module
 from microslip.fe.result import (
     SLIP,
     STICK,
@@ -20,8 +22,6 @@ from microslip.fe.result import (
     idle_loop_reason,
 )
 from microslip.params import ClampParams
-from microslip.solver import NewtonOptions, coupling_study, solve_uniaxial
-from microslip.solver import solve as solve_module
 
 #: The titanium block of issue 11 (30 x 12 x 8 mm, mu 0.5, F_N 12 kN).
 TITANIUM = ClampParams(length=30.0, width=12.0, thickness=8.0, modulus=113_800.0,

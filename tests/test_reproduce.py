@@ -145,9 +145,9 @@ def _small_coupling_sweep(monkeypatch):
     """The coupled-friction, Table 2 FE and joint-against-FE steps on tiny meshes (their own
     tests: test_reproduce_coupling.py, test_reproduce_table2_fe.py,
     test_reproduce_joint_fe.py)."""
+    import microslip.fe.builtin as solver
     import microslip.reproduce.joint_fe as joint_fe
     import microslip.reproduce.table2_fe as table2_fe
-    import microslip.solver as solver
 
     monkeypatch.setattr(table2_fe, "TABLE2_FE_MESH", "tiny")
     monkeypatch.setattr(joint_fe, "JOINT_FE_MESH", (8, 2, 1))

@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 
 from microslip import preset
+from microslip.fe.builtin import coupling_sweep
 from microslip.io import write_csv
 from microslip.reproduce import coupling_table, figure_coupling, read_csv
 from microslip.reproduce.report import _coupling_section
-from microslip.solver import coupling_sweep
 
 
 @pytest.fixture(scope="module")

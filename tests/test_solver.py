@@ -17,14 +17,14 @@ import numpy as np
 import pytest
 
 from microslip import MacroslipError, ParameterError, closedform, damping_from_loop, preset
-from microslip.loading import LoadPath
-from microslip.solver import (
+from microslip.fe.builtin import (
     NewtonOptions,
     build_model,
     coupling_study,
     solve_load_path,
     solve_uniaxial,
 )
+from microslip.loading import LoadPath
 
 P = preset("table1")
 EA, Q = P.axial_stiffness, P.friction_per_length

@@ -1,4 +1,4 @@
-"""The FE's first loading as a joint backbone (microslip.solver.backbone).
+"""The FE's first loading as a joint backbone (microslip.fe.builtin.backbone).
 
 Exact properties first (the concave majorant, the operator's virgin curve through the FE's
 nodes), then the physics check that makes the backbone useful: a Masing joint built from
@@ -15,9 +15,9 @@ from hypothesis import strategies as st
 from microslip import preset
 from microslip.dynamics.fe_check import cycle_work
 from microslip.errors import ParameterError
+from microslip.fe.builtin.backbone import HULL_TOLERANCE, concave_majorant, fe_backbone
+from microslip.fe.builtin.study import coupling_study, model_for
 from microslip.fe.constants import DEFAULT_STICK_SLOPE
-from microslip.solver.backbone import HULL_TOLERANCE, concave_majorant, fe_backbone
-from microslip.solver.study import coupling_study, model_for
 
 MESH = (8, 2, 1)
 

@@ -10,15 +10,15 @@ import pytest
 
 from microslip import preset
 from microslip.cli.main import main
+from microslip.fe.builtin import build_model, solve_uniaxial
+from microslip.fe.builtin.clamping import clamp_forces, clamping_pressure, fe_pressure_law
+from microslip.fe.builtin.mesh import box_mesh
 from microslip.models.interface import (
     masing_dissipation,
     power_law,
     pressure_law,
     read_pressure_table,
 )
-from microslip.solver import build_model, solve_uniaxial
-from microslip.solver.clamping import clamp_forces, clamping_pressure, fe_pressure_law
-from microslip.solver.mesh import box_mesh
 
 P = preset("table1")
 PARABOLIC = pressure_law("parabolic")

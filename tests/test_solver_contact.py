@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from microslip.closedform import jenkins_1d_dissipation, jenkins_2d_circular_dissipation
-from microslip.solver.contact import friction_dissipation, return_map
+from microslip.fe.builtin.contact import friction_dissipation, return_map
 
 K, FS = 2.0, 1.0  # spring stiffness N/mm, slip force N: d_s = 0.5 mm
 

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from microslip import preset
-from microslip.solver import solve_uniaxial
+from microslip.fe.builtin import solve_uniaxial
 
 P = preset("table1")
 F0 = 267.0

@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from microslip import preset
-from microslip.solver import coupling_study
-from microslip.solver.contact import friction_dissipation, return_map
+from microslip.fe.builtin import coupling_study
+from microslip.fe.builtin.contact import friction_dissipation, return_map
 
 K, FS = 1.0e3, 2.0  # N/mm, N
 

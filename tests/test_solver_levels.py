@@ -10,11 +10,11 @@ import pytest
 
 from microslip import preset
 from microslip.fe import mesh_spec
-from microslip.fe.mesh import bar_mesh
+from microslip.fe.builtin import build_model, solve_uniaxial
+from microslip.fe.builtin.mesh import box_mesh, mesh_from_spec
+from microslip.fe.calculix.mesh import bar_mesh
 from microslip.meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, level_axes, level_counts
 from microslip.params import ClampParams
-from microslip.solver import build_model, solve_uniaxial
-from microslip.solver.mesh import box_mesh, mesh_from_spec
 
 TITANIUM = ClampParams(length=30.0, width=12.0, thickness=8.0, modulus=113_800.0,
                        poisson_ratio=0.342, friction=0.5, normal_force=12_000.0)
@@ -90,7 +90,7 @@ def test_graded_mesh_areas_and_clamping_use_the_actual_spacing():
 def test_graded_stiffness_matches_per_element_assembly():
     """The stiffness of a graded mesh (one element matrix per size class) equals the sum of
     every element's own matrix."""
-    from microslip.solver.element import assemble_stiffness, element_stiffness
+    from microslip.fe.builtin.element import assemble_stiffness, element_stiffness
 
     box = box_mesh(6.0, 2.0, 3.0, 4, 2, 3, axes=([0, 1, 3, 5.5, 6], None, [0, 0.5, 1.5, 3]))
     k = assemble_stiffness(box, 1000.0, 0.3, "C3D8I").toarray()

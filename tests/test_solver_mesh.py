@@ -7,9 +7,9 @@ import pytest
 import scipy.sparse.linalg as spla
 
 from microslip import ParameterError, preset
-from microslip.solver.element import NODE_XI, assemble_stiffness, element_stiffness
-from microslip.solver.linalg import BandedBackend, SpluBackend, make_backend
-from microslip.solver.mesh import box_mesh, mesh_from_spec
+from microslip.fe.builtin.element import NODE_XI, assemble_stiffness, element_stiffness
+from microslip.fe.builtin.linalg import BandedBackend, SpluBackend, make_backend
+from microslip.fe.builtin.mesh import box_mesh, mesh_from_spec
 
 
 def test_slice_numbering_gives_a_band() -> None:

@@ -9,10 +9,10 @@ import pytest
 
 from microslip import preset
 from microslip.cli.main import main
+from microslip.fe.builtin import build_model, solve_uniaxial
+from microslip.fe.builtin.normal import PenaltyNormal
 from microslip.fe.result import OPEN
 from microslip.params import ClampParams
-from microslip.solver import build_model, solve_uniaxial
-from microslip.solver.normal import PenaltyNormal
 
 #: The titanium block of issue 11 (30 x 12 x 8 mm, mu 0.5, F_N 12 kN; 3600 N at the tip).
 TITANIUM = ClampParams(length=30.0, width=12.0, thickness=8.0, modulus=113_800.0,

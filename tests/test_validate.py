@@ -16,8 +16,8 @@ from microslip.cli.main import main
 from microslip.energy import damping_from_loop, loop_work
 from microslip.errors import ParameterError
 from microslip.fe import FECase, SolverNotFoundError, bar_mesh
+from microslip.fe.calculix.collect import CalculixDetails
 from microslip.fe.result import ContactHistory, FELoopResult, column_lengths
-from microslip.fe.results import CalculixDetails
 from microslip.results import HysteresisLoop
 from microslip.validate import (
     TOLERANCES,

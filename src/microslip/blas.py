@@ -1,5 +1,5 @@
 """One BLAS/LAPACK thread for the small dense and banded solves of the FE solver and the
-harmonic balance (shared by :mod:`microslip.solver` and :mod:`microslip.dynamics`)."""
+harmonic balance (shared by :mod:`microslip.fe.builtin` and :mod:`microslip.dynamics`)."""
 
 from __future__ import annotations
 

@@ -29,11 +29,11 @@ import numpy as np
 from . import closedform as cf
 from .energy import DEFAULT_STRAIN_ENERGY, damping, loop_work
 from .errors import ParameterError
-from .fe.case import FECase
+from .fe.calculix.case import FECase
+from .fe.calculix.collect import CalculixDetails
+from .fe.calculix.mesh import MeshSpec, mesh_spec
 from .fe.constants import DEFAULT_STICK_SLOPE
-from .fe.mesh import MeshSpec, mesh_spec
 from .fe.result import FELoopResult
-from .fe.results import CalculixDetails
 from .fe.run import run_loop
 from .io import write_csv
 from .loading import LOAD_CASES, load_case
@@ -456,7 +456,7 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
         Progress bar on standard error (tqdm, if installed).
     timeout : float, optional
         Time-out of each solver run, s (default: per case, see
-        :func:`microslip.fe.runner.default_timeout`).
+        :func:`microslip.fe.calculix.runner.default_timeout`).
     scheduler : str, optional
         None: run locally, one case after the other. An address (``tcp://host:8786``): run one
         ccx job per task on that dask.distributed cluster (workers must see ``out_dir`` and
@@ -504,7 +504,7 @@ def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coa
         for model in models for name, spec in specs
     ]
     if scheduler is None and not reuse:
-        from .fe.runner import find_ccx
+        from .fe.calculix.runner import find_ccx
 
         find_ccx()  # one clear line before anything is written
     results = _run_tasks(tasks, scheduler=scheduler, show=progress, timeout=timeout,

@@ -274,7 +274,7 @@ def _fe(clamp: ClampParams, series: float, elements: int, options: ModelOptions 
 def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperator:
     """The FE's first loading of the centre force across the bar as a 1-D joint (cached:
     an FE run, the same for the structure and its description)."""
-    from ..solver import fe_backbone
+    from ..fe.builtin import fe_backbone
 
     op: IwanOperator = fe_backbone(clamp, "centre", mesh=mesh,
                                    stick_slope=stick_slope).operator()
@@ -283,7 +283,7 @@ def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperato
 
 #: Transverse name -> the 1-D joint across a bar: ``tip``, ``centre`` the clamp's 1-D model
 #: behind the same series spring; ``fe`` the built-in FE's first loading of the centre force
-#: across the bar (:func:`microslip.solver.fe_backbone`, its contact compliance inside).
+#: across the bar (:func:`microslip.fe.builtin.fe_backbone`, its contact compliance inside).
 TRANSVERSE: dict[str, Across] = {"tip": _clamp_model("tip"), "centre": _clamp_model("centre"),
                                  "fe": _fe}
 

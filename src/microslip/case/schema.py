@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import ParameterError
-from ..fe.case import DEFAULT_STICK_SLOPE
+from ..fe.calculix.case import DEFAULT_STICK_SLOPE
 from ..meshlevels import LEVELS, is_mesh_spec
 from ..params import PRESETS
 

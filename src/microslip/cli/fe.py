@@ -16,13 +16,13 @@ from typing import Any
 from ..case.options import add_case_option
 from ..errors import ParameterError
 from ..fe import SOLVERS, run_loop
+from ..fe.builtin.normal import NORMAL_CONTACTS
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..io import write_loop_csv
 from ..loading import LOAD_CASES
 from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, is_mesh_spec
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
-from ..solver.normal import NORMAL_CONTACTS
 from .common import (
     add_params,
     add_strain_energy,

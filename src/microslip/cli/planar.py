@@ -175,7 +175,7 @@ def run(args: argparse.Namespace) -> int:
 
 def run_fe(args: argparse.Namespace) -> int:
     """Coupled 2-D friction (built-in FE solver) against the sum of its uni-axial runs."""
-    from ..solver import DEFAULT_MESH, coupling_study
+    from ..fe.builtin import DEFAULT_MESH, coupling_study
 
     planar_displacement_forces(args, 0, None, (None, None))  # refused with --solver fe
     if args.ratio is not None:

@@ -8,7 +8,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..errors import ParameterError
-from ..fe.case import DEFAULT_STICK_SLOPE, LOAD_CASES
+from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from .common import add_params, check_output_dir, number, params_from_args, print_json
 from .fe import MESH_HELP, mesh_level
 

@@ -1,6 +1,6 @@
 """The Table 1 bar reduced to its joint, against the built-in FE solver at the same motion.
 
-The FE solver's coupled planar run (:func:`microslip.solver.coupling_study`: tip force along
+The FE solver's coupled planar run (:func:`microslip.fe.builtin.coupling_study`: tip force along
 the bar on the end face, centre force across it on the mid-length section) gives the joint
 motion, the work-conjugate displacements (delta_tip, delta_centre) over one settled cycle,
 and the energy dissipated per cycle W_FE. The reduced model keeps only those two
@@ -13,7 +13,7 @@ joint with the FE's orbit gives its dissipation per cycle, W = closed integral o
 for the circular coupling and the decoupled sum, beside the FE's; the tip force alone is the
 1-D limit. Across the bar neither 1-D model is the FE's joint (the bar bends in its plane),
 so the anisotropic joint (:func:`.operators2d.anisotropic`) takes the tip model along the
-bar and the FE's own first loading across it (:func:`microslip.solver.fe_backbone`), its
+bar and the FE's own first loading across it (:func:`microslip.fe.builtin.fe_backbone`), its
 elements paired by where they sit on the bar (``spatial``) or by slip order (``ordered``);
 the FE-backbone operator on the FE's centre-only motion is the transverse 1-D limit.
 docs/dynamics.md ("The reduced bar against the FE") gives the figures and
@@ -160,13 +160,13 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
                   elements: int = DEFAULT_ELEMENTS) -> FEComparison:
     """Run the FE's coupled planar study and the first loading across the bar, and drive
     the reduced joints with the FE's orbits."""
-    from ..solver import build_model, coupling_study, fe_backbone
+    from ..fe.builtin import build_model, coupling_study, fe_backbone
 
     fem = build_model(params, mesh, stick_slope=stick_slope)
     study = coupling_study(params, tip_amplitude, centre_amplitude, phase_deg, cycles=cycles,
                            increments_per_cycle=increments_per_cycle, mesh=fem)
     if not study.coupled.converged or not study.tip_only.converged:
-        raise ParameterError("the FE runs did not converge; see microslip.solver")
+        raise ParameterError("the FE runs did not converge; see microslip.fe.builtin")
     series = stick_slope * params.width * params.length
     tip = clamp_joint("tip", params, series, elements=elements)
     centre = clamp_joint("centre", params, series, elements=elements)

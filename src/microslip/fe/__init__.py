@@ -1,22 +1,16 @@
-"""Finite-element loops of the clamped bar: one result type, one entry point, two solvers.
+"""Finite elements of the clamp: one package, two solvers, one result type, one entry point.
 
-:func:`run_loop` runs the paper's FE load step with a solver of :data:`SOLVERS` (the
-built-in solver, :mod:`microslip.solver`, or CalculiX) and returns one
-:class:`FELoopResult` (:mod:`~microslip.fe.result`) either way; with ``out`` both write
-``result.json`` and a VTU series (:mod:`~microslip.fe.vtu`). Constants shared by both
-solvers: :mod:`~microslip.fe.constants`; load cases: :mod:`microslip.loading`.
+- :mod:`microslip.fe.builtin`: the built-in frictional FE solver (8-node hexahedra, nodal
+  Coulomb friction, semi-smooth Newton); fast, and the one every study uses;
+- :mod:`microslip.fe.calculix`: the same model for the open solver CalculiX (``ccx``), as a
+  check: C3D20R deck, run with a time-out, read back.
 
-The paper validates its models against ANSYS contact simulations (Section 4, Table 1,
-Figs 8-9). This subpackage builds the same model for the open solver CalculiX (``ccx``),
-generated, run and read back from Python:
-
-- :mod:`microslip.meshlevels` (re-exported here): the mesh levels of both solvers;
-- :mod:`~microslip.fe.mesh`: structured C3D20 mesh of the bar on a rigid C3D8 base;
-- :mod:`~microslip.fe.case`: the validated load case (:class:`FECase`);
-- :mod:`~microslip.fe.deck`: the ``.inp`` deck, one tested function per keyword card;
-- :mod:`~microslip.fe.runner`: ``ccx`` with a time-out and typed failures;
-- :mod:`~microslip.fe.readers`: ``.dat``, ``.sta`` and ``.frd`` readers;
-- :mod:`~microslip.fe.results`: the CalculiX run read into an :class:`FELoopResult`.
+:func:`run_loop` runs the paper's FE load step (Section 4, Table 1, Figs 8-9) with a solver
+of :data:`SOLVERS` and returns one :class:`FELoopResult` (:mod:`~microslip.fe.result`) either
+way; with ``out`` both write ``result.json`` and a VTU series (:mod:`~microslip.fe.vtu`).
+Constants shared by both solvers: :mod:`~microslip.fe.constants`; errors:
+:mod:`~microslip.fe.errors`; mesh levels: :mod:`microslip.meshlevels` (re-exported here);
+load cases: :mod:`microslip.loading`.
 
 Nothing here is imported by ``import microslip``; meshio is imported only by the VTU export.
 """
@@ -25,9 +19,20 @@ from __future__ import annotations
 
 from ..loading import LOAD_CASES
 from ..meshlevels import LEVELS, MESH_LEVELS, level_counts
-from .case import ELEMENT_TYPES, FECase
+from .calculix.case import ELEMENT_TYPES, FECase
+from .calculix.collect import CalculixDetails, contact_status, read_results
+from .calculix.deck import build_deck
+from .calculix.mesh import BarMesh, MeshSpec, bar_mesh, mesh_spec
+from .calculix.readers import read_dat, read_frd, read_sta
+from .calculix.runner import (
+    ccx_available,
+    ccx_version,
+    default_timeout,
+    find_ccx,
+    run_case,
+    run_ccx,
+)
 from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from .deck import build_deck
 from .errors import (
     INSTALL_HINT,
     NonConvergenceError,
@@ -37,12 +42,8 @@ from .errors import (
     SolverNotFoundError,
     SolverTimeoutError,
 )
-from .mesh import BarMesh, MeshSpec, bar_mesh, mesh_spec
-from .readers import read_dat, read_frd, read_sta
 from .result import STATUS, ContactHistory, FELoopResult
-from .results import CalculixDetails, contact_status, read_results
 from .run import SOLVERS, SolverEntry, run_loop
-from .runner import ccx_available, ccx_version, default_timeout, find_ccx, run_case, run_ccx
 
 __all__ = [
     "DEFAULT_NORMAL_SLOPE",

@@ -1,6 +1,6 @@
 """The one result of a finite-element loop, whichever solver ran it.
 
-Both solvers (:mod:`microslip.solver`, the built-in one, and CalculiX) return a
+Both solvers (:mod:`microslip.fe.builtin`, the built-in one, and CalculiX) return a
 :class:`FELoopResult`: the paper's load step (Section 4, :class:`~microslip.loading.PaperSine`)
 with the loop t = 0.25 .. 1.25 s as a :class:`~microslip.results.HysteresisLoop`, its damping
 (an attribute, :func:`microslip.energy.damping_from_loop`), the contact status history and

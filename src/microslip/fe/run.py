@@ -70,7 +70,7 @@ class SolverEntry:
 def _run_builtin(load: str, params: ClampParams, amplitude: float, mesh: Any, element: str,
                  stick_slope: float, substeps: int, strain_energy_kind: str,
                  job_dir: Path | None, record: bool, **options: Any) -> FELoopResult:
-    from ..solver import solve_uniaxial
+    from .builtin import solve_uniaxial
 
     return solve_uniaxial(params, load, amplitude, mesh=mesh, stick_slope=stick_slope,
                           increments=substeps, element=element,
@@ -78,7 +78,7 @@ def _run_builtin(load: str, params: ClampParams, amplitude: float, mesh: Any, el
 
 
 def _builtin_fields(result: FELoopResult) -> FieldSeries:
-    from ..solver.results import BuiltinDetails
+    from .builtin.details import BuiltinDetails
 
     d = result.details
     if not isinstance(d, BuiltinDetails) or d.model is None or d.u is None:
@@ -93,8 +93,8 @@ def _builtin_fields(result: FELoopResult) -> FieldSeries:
 def _run_calculix(load: str, params: ClampParams, amplitude: float, mesh: Any, element: str,
                   stick_slope: float, substeps: int, strain_energy_kind: str,
                   job_dir: Path | None, record: bool, **options: Any) -> FELoopResult:
-    from .case import FECase
-    from .runner import find_ccx, run_case
+    from .calculix.case import FECase
+    from .calculix.runner import find_ccx, run_case
 
     normal = {k: options.pop(k) for k in ("normal_slope",) if k in options}
     case = FECase(load, params, amplitude, mesh=mesh, stick_slope=stick_slope,
@@ -114,10 +114,10 @@ def _without_job_dir(r: FELoopResult) -> FELoopResult:
 
 
 def _calculix_fields(result: FELoopResult) -> FieldSeries:
-    from .mesh import bar_mesh
-    from .readers import read_frd
-    from .results import CalculixDetails
-    from .runner import JOBNAME
+    from .calculix.collect import CalculixDetails
+    from .calculix.mesh import bar_mesh
+    from .calculix.readers import read_frd
+    from .calculix.runner import JOBNAME
 
     d = result.details
     if not isinstance(d, CalculixDetails) or result.job_dir is None:
@@ -141,9 +141,9 @@ def _calculix_fields(result: FELoopResult) -> FieldSeries:
 
 def _registry() -> Mapping[str, SolverEntry]:
     from ..meshlevels import LEVELS
-    from ..solver.element import ELEMENTS
-    from ..solver.mesh import ELEMENT as BUILTIN_ELEMENT
-    from .case import ELEMENT_TYPES
+    from .builtin.element import ELEMENTS
+    from .builtin.mesh import ELEMENT as BUILTIN_ELEMENT
+    from .calculix.case import ELEMENT_TYPES
 
     return MappingProxyType({
         "builtin": SolverEntry(

@@ -4,7 +4,7 @@ A :class:`LoadPath` is a sampled in-plane load history on the clamp: the force a
 (component ``tip``, on the end face) and at mid-length (component ``centre``, across the bar
 for the planar cases) at load parameters theta, ending with one closed cycle. The analytical
 planar model (:mod:`microslip.planar.loadpath`) and the built-in FE solver
-(:func:`microslip.solver.solve_load_path`) take the same object; it is validated once, here.
+(:func:`microslip.fe.builtin.solve_load_path`) take the same object; it is validated once, here.
 
 One harmonic convention: F_tip = A_t sin(theta), F_centre = A_c sin(theta + phi), the centre
 force ahead by phi; samples one period apart are equal bit for bit. Two start-ups:

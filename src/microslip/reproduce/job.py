@@ -340,7 +340,7 @@ def _run_coupling(out: Path, fe: bool | None, table: dict[str, Any], say: Echo
     """Coupled 2-D friction with the built-in FE solver: its columns and files."""
     if fe is False:
         return None, ()
-    from ..solver import coupling_sweep
+    from ..fe.builtin import coupling_sweep
 
     try:
         sweep = coupling_sweep(preset("table1"), sorted(PAPER_RATIOS), (0.0, 90.0))

@@ -147,7 +147,7 @@ def equal_level_table(tip_params: Any, centre_params: Any, increments: int,
 
 
 def coupling_table(sweep: Any) -> dict[str, list[Any]]:
-    """Columns of ``coupling_ratio_vs_R.csv`` from a :class:`microslip.solver.CouplingSweep`."""
+    """Columns of ``coupling_ratio_vs_R.csv`` from a :class:`microslip.fe.builtin.CouplingSweep`."""
     cols: dict[str, list[Any]] = {k: [] for k in (
         "R", "eccentricity", "phase_deg", "tip_amplitude_N", "centre_amplitude_N",
         "dissipated_energy_Nmm", "decoupled_dissipated_energy_Nmm", "coupling_ratio",

@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..fe.result import ContactHistory, gross_sliding_message, join_message
-from ..named import result
-from ..results import HysteresisLoop
+from ...named import result
+from ...results import HysteresisLoop
+from ..result import ContactHistory, gross_sliding_message, join_message
 
 if TYPE_CHECKING:
     from .clamping import ClampingPressure
@@ -108,9 +108,9 @@ class BuiltinDetails:
     pressure_law : str
         Name of the clamping pressure law (``uniform``: the paper's).
     clamping : ClampingPressure or None
-        The interface pressure after the clamping step (:mod:`~microslip.solver.clamping`).
+        The interface pressure after the clamping step (:mod:`~microslip.fe.builtin.clamping`).
     normal_contact : str
-        ``fixed`` (the paper's reading) or ``penalty`` (:mod:`~microslip.solver.normal`).
+        ``fixed`` (the paper's reading) or ``penalty`` (:mod:`~microslip.fe.builtin.normal`).
     normal_slope : float or None
         k_n of the penalty, N/mm^3 (None when fixed).
     normal_force : ndarray, shape (n + 1, n_c) or None

@@ -4,7 +4,7 @@ The elastic stiffness K of the free dofs is constant; only the 2 x 2 friction ta
 the contact nodes change from one Newton iteration to the next, and they sit on the diagonal
 and the first off-diagonal (the x and y dofs of a contact node are neighbours in the
 numbering). A backend therefore keeps K once and adds D for every factorisation. With
-penalty normal contact (:mod:`~microslip.solver.normal`) the contact tangent has a fourth
+penalty normal contact (:mod:`~microslip.fe.builtin.normal`) the contact tangent has a fourth
 column, the normal stiffness of each node on the diagonal of its u_z (the dof after u_y).
 
 Backends (:data:`LINEAR_SOLVERS`):
@@ -31,7 +31,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 #: One line for a stiffness matrix that rounding makes indefinite.
 NOT_DEFINITE = ("the finite-element stiffness matrix is not positive definite in double "

@@ -21,13 +21,14 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
-from ..meshlevels import is_graded, level_axes, level_counts
-from ..params import ClampParams, preset
+from ...errors import ParameterError
+from ...meshlevels import is_graded, level_axes, level_counts
+from ...params import ClampParams, preset
 
 __all__ = ["ELEMENT", "BarMesh", "MeshSpec", "bar_mesh", "mesh_spec"]
 
-#: The element type of the CalculiX bar (the default of :data:`~microslip.fe.case.ELEMENT_TYPES`).
+#: The element type of the CalculiX bar (the default of
+#: :data:`~microslip.fe.calculix.case.ELEMENT_TYPES`).
 ELEMENT = "C3D20R"
 
 IntArray = NDArray[np.int64]
@@ -204,7 +205,7 @@ class BarMesh:
     def load_plane(self, model: str) -> int:
         """Lattice index i of the loaded cross-section (:attr:`LoadCase.section` of the 2 nx
         lattice spacings): 2 nx for the tip (x = L), nx for the centre."""
-        from ..loading import load_case
+        from ...loading import load_case
 
         return round(load_case(model).section * 2 * self.spec.nx)
 

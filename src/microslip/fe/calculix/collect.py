@@ -33,14 +33,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..energy import DEFAULT_STRAIN_ENERGY
-from ..named import result
-from ..results import HysteresisLoop
-from .case import FECase
-from .errors import ResultsError
-from .mesh import BarMesh
-from .readers import read_dat, read_frd, read_sta
-from .result import (
+from ...energy import DEFAULT_STRAIN_ENERGY
+from ...named import result
+from ...results import HysteresisLoop
+from ..errors import ResultsError
+from ..result import (
     OPEN,
     SLIP,
     STATUS,
@@ -52,6 +49,9 @@ from .result import (
     join_message,
     loop_damping,
 )
+from .case import FECase
+from .mesh import BarMesh
+from .readers import read_dat, read_frd, read_sta
 
 __all__ = [
     "STATUS",

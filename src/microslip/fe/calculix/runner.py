@@ -20,12 +20,10 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..energy import DEFAULT_STRAIN_ENERGY
-from ..errors import ParameterError
-from ..io import atomic_write, write_json
-from .case import FECase
-from .deck import build_deck
-from .errors import (
+from ...energy import DEFAULT_STRAIN_ENERGY
+from ...errors import ParameterError
+from ...io import atomic_write, write_json
+from ..errors import (
     INSTALL_HINT,
     NonConvergenceError,
     ResultsError,
@@ -34,9 +32,11 @@ from .errors import (
     SolverNotFoundError,
     SolverTimeoutError,
 )
+from ..result import FELoopResult
+from .case import FECase
+from .collect import read_results
+from .deck import build_deck
 from .mesh import bar_mesh
-from .result import FELoopResult
-from .results import read_results
 
 __all__ = [
     "CCX",

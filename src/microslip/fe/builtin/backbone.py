@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_STICK_SLOPE
-from ..named import result
-from ..params import ClampParams
+from ...errors import MacroslipError, ParameterError
+from ...named import result
+from ...params import ClampParams
+from ..constants import DEFAULT_STICK_SLOPE
 from .solve import Simulation
 from .study import DEFAULT_MESH, check_body, model_for
 
@@ -72,7 +72,7 @@ class FEBackbone:
         """The Iwan operator (:class:`~microslip.dynamics.operators.IwanOperator`) whose
         virgin curve is this backbone's concave majorant (:func:`concave_majorant`),
         extended with its last slope to mu F_N."""
-        from ..dynamics.distributions import from_backbone
+        from ...dynamics.distributions import from_backbone
 
         keep = concave_majorant(self.displacement, self.force)
         return from_backbone(name or f"fe-{self.load}", self.displacement[keep],
@@ -123,7 +123,7 @@ def fe_backbone(params: ClampParams, load: str = "centre", *, mesh: Any = DEFAUL
                 centre_direction: str = "transverse", linear_solver: str = "banded"
                 ) -> FEBackbone:
     """The FE's first loading of ``load`` alone in ``increments`` equal force steps up to
-    ``top`` mu F_N (a :class:`~microslip.solver.FrictionModel` may be given as ``mesh``).
+    ``top`` mu F_N (a :class:`~microslip.fe.builtin.FrictionModel` may be given as ``mesh``).
 
     Raises
     ------

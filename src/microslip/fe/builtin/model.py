@@ -15,9 +15,9 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
-from ..models.interface import PressureLaw
-from ..params import ClampParams, check_positive
+from ...errors import ParameterError
+from ...models.interface import PressureLaw
+from ...params import ClampParams, check_positive
 from .linalg import Backend
 from .mesh import BoxMesh
 from .normal import PenaltyNormal
@@ -88,7 +88,7 @@ class FrictionModel:
     params : ClampParams
     mesh : BoxMesh
     element : str
-        Element formulation (:data:`~microslip.solver.element.ELEMENTS`).
+        Element formulation (:data:`~microslip.fe.builtin.element.ELEMENTS`).
     stick_slope : float
         lambda, N/mm^3.
     pressure_law : PressureLaw or None
@@ -162,7 +162,7 @@ class FrictionModel:
 
     @property
     def normal_contact(self) -> str:
-        """``fixed`` or ``penalty`` (:data:`~microslip.solver.normal.NORMAL_CONTACTS`)."""
+        """``fixed`` or ``penalty`` (:data:`~microslip.fe.builtin.normal.NORMAL_CONTACTS`)."""
         return "fixed" if self.normal is None else "penalty"
 
     @property

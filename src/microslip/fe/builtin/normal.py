@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 
 __all__ = ["NORMAL_CONTACTS", "PenaltyNormal", "check_normal_contact"]
 

@@ -1,7 +1,7 @@
 """Runs of the built-in solver: the paper's 1-D loops, planar cyclic paths, and the
 coupled-versus-decoupled study.
 
-* :func:`~microslip.solver.uniaxial.solve_uniaxial` (its own module) — one 1-D loading as
+* :func:`~microslip.fe.builtin.uniaxial.solve_uniaxial` (its own module) — one 1-D loading as
   in the paper's FE (Section 4).
 * :func:`solve_load_path` — a planar cyclic path, repeated until the energy dissipated per
   cycle W = closed integral (F_tip d delta_tip + F_centre d delta_centre) settles.
@@ -23,15 +23,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..energy import loop_work
-from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..fe.result import OPEN, SLIP, STICK, ContactHistory
-from ..loading import LoadPath
-from ..models.interface import PressureLaw
-from ..params import ClampParams, check_amplitude, check_positive
-from ..results import HysteresisLoop
-from .results import (
+from ...energy import loop_work
+from ...errors import MacroslipError, ParameterError
+from ...loading import LoadPath
+from ...models.interface import PressureLaw
+from ...params import ClampParams, check_amplitude, check_positive
+from ...results import HysteresisLoop
+from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..result import OPEN, SLIP, STICK, ContactHistory
+from .details import (
     CouplingResult,
     CycleWork,
     LoadPathResult,

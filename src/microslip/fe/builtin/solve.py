@@ -32,11 +32,11 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..blas import single_threaded_blas
-from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..models.interface import PressureLaw
-from ..params import ClampParams, check_positive
+from ...blas import single_threaded_blas
+from ...errors import MacroslipError, ParameterError
+from ...models.interface import PressureLaw
+from ...params import ClampParams, check_positive
+from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .clamping import clamp_forces
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .element import assemble_stiffness
@@ -84,7 +84,7 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     params : ClampParams
         Geometry, material, friction and clamping force.
     mesh : str, (nx, ny, nz) or BoxMesh
-        See :func:`~microslip.solver.mesh.mesh_from_spec`; nx must be even (mid-length section).
+        See :func:`~microslip.fe.builtin.mesh.mesh_from_spec`; nx must be even (mid-length section).
     stick_slope : float
         lambda, N/mm^3 (default 1e4, CalculiX's).
     element : str
@@ -95,9 +95,9 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
     pressure_law : PressureLaw, optional
         Shape of the clamping traction along the length
         (:mod:`microslip.models.interface`; default uniform, the paper's; see
-        :func:`~microslip.solver.clamping.clamp_forces`).
+        :func:`~microslip.fe.builtin.clamping.clamp_forces`).
     normal_contact : {"fixed", "penalty"}
-        :data:`~microslip.solver.normal.NORMAL_CONTACTS` (default ``fixed``, the paper's).
+        :data:`~microslip.fe.builtin.normal.NORMAL_CONTACTS` (default ``fixed``, the paper's).
     normal_slope : float
         k_n of the penalty, N/mm^3 (``penalty`` only; default 1e5, as the CalculiX model's).
 

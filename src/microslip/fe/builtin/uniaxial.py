@@ -6,16 +6,16 @@ from typing import Any
 
 import numpy as np
 
-from ..energy import DEFAULT_STRAIN_ENERGY
-from ..errors import MacroslipError
-from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..fe.result import FELoopResult, gross_sliding_message, join_message, loop_damping
-from ..loading import PaperSine, load_case
-from ..models.interface import PressureLaw
-from ..params import ClampParams
-from ..results import HysteresisLoop
+from ...energy import DEFAULT_STRAIN_ENERGY
+from ...errors import MacroslipError
+from ...loading import PaperSine, load_case
+from ...models.interface import PressureLaw
+from ...params import ClampParams
+from ...results import HysteresisLoop
+from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..result import FELoopResult, gross_sliding_message, join_message, loop_damping
 from .clamping import clamping_pressure
-from .results import BuiltinDetails
+from .details import BuiltinDetails
 from .solve import FrictionModel, NewtonOptions, Simulation
 from .study import DEFAULT_MESH, check_body, contact_history, model_for, solver_stats
 
@@ -66,12 +66,13 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     normal_contact : {"fixed", "penalty"}
         Normal forces fixed after clamping (the paper's reading) or a unilateral penalty
         of slope ``normal_slope`` (N/mm^3) that follows the load
-        (:mod:`~microslip.solver.normal`).
+        (:mod:`~microslip.fe.builtin.normal`).
 
     Returns
     -------
     FELoopResult
-        ``solver="builtin"``; ``details`` is a :class:`~microslip.solver.results.BuiltinDetails`.
+        ``solver="builtin"``; ``details`` is a
+        :class:`~microslip.fe.builtin.details.BuiltinDetails`.
 
     Examples
     --------

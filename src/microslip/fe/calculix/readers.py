@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import ResultsError
+from ..errors import ResultsError
 
 __all__ = [
     "DatBlock",

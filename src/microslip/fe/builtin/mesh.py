@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
-from ..meshlevels import LEVELS, MESH_LEVELS, MeshLevel, is_graded, level_axes, level_counts
-from ..params import ClampParams
+from ...errors import ParameterError
+from ...meshlevels import LEVELS, MESH_LEVELS, MeshLevel, is_graded, level_axes, level_counts
+from ...params import ClampParams
 
 __all__ = [
     "ELEMENT",
@@ -42,7 +42,7 @@ FloatArray = NDArray[np.float64]
 
 #: Upper bound on the number of nodes of one mesh (memory guard: ~1e6 DOF).
 MAX_NODES = 350_000
-#: The built-in solver's default element (:data:`~microslip.solver.element.ELEMENTS`).
+#: The built-in solver's default element (:data:`~microslip.fe.builtin.element.ELEMENTS`).
 ELEMENT = "C3D8I"
 
 def _count(name: str, value: Any, lower: int) -> int:

@@ -9,7 +9,7 @@ scaled to add up to F_N exactly (a table law whose kinks fall inside elements is
 integrated to the quadrature error).
 
 The z-reactions of the bottom nodes after the clamping step are the normal forces N_i
-(:attr:`~microslip.solver.solve.FrictionModel.normal_force`). :func:`clamping_pressure`
+(:attr:`~microslip.fe.builtin.solve.FrictionModel.normal_force`). :func:`clamping_pressure`
 sums them over each cross-section and divides by the section's tributary length: the line
 load (N/mm) and mean pressure (MPa) along the clamped length, as a table that
 :func:`~microslip.models.interface.table_law` (or ``--pressure-law table:FILE.csv``) turns
@@ -25,10 +25,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
-from ..models.interface import PressureLaw, table_law
-from ..named import result
-from ..params import ClampParams
+from ...errors import ParameterError
+from ...models.interface import PressureLaw, table_law
+from ...named import result
+from ...params import ClampParams
 from .mesh import BoxMesh
 
 if TYPE_CHECKING:
@@ -147,7 +147,7 @@ def clamping_pressure(model: FrictionModel) -> ClampingPressure:
 def fe_pressure_law(params: ClampParams, mesh: Any = "coarse", **model_options: Any
                     ) -> PressureLaw:
     """The interface pressure of the built-in solver's clamping step as a 1-D pressure law, in
-    one call: :func:`~microslip.solver.solve.build_model` (``model_options``: ``stick_slope``,
+    one call: :func:`~microslip.fe.builtin.solve.build_model` (``model_options``: ``stick_slope``,
     ``pressure_law`` of the top face, ``element``, ...) then :meth:`ClampingPressure.law`.
 
     >>> from microslip import preset

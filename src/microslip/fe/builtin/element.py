@@ -21,7 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 from .mesh import BoxMesh
 
 __all__ = [
@@ -34,7 +34,7 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
-#: Natural coordinates of the 8 nodes (see :class:`~microslip.solver.mesh.BoxMesh`).
+#: Natural coordinates of the 8 nodes (see :class:`~microslip.fe.builtin.mesh.BoxMesh`).
 NODE_XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
                     [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
 _G = 1.0 / np.sqrt(3.0)

@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import MacroslipError, ParameterError
-from ..loading import LOAD_CASES, PERIOD, PERIODS, PaperSine, load_case
-from ..params import ClampParams, check_amplitude, check_positive, preset
-from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ...errors import MacroslipError, ParameterError
+from ...loading import LOAD_CASES, PERIOD, PERIODS, PaperSine, load_case
+from ...params import ClampParams, check_amplitude, check_positive, preset
+from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .mesh import MeshSpec, mesh_spec
 
 __all__ = [

@@ -3,7 +3,7 @@
 Every card is generated from validated inputs and is tested as an exact string. The deck of a
 load case (:func:`build_deck`) is:
 
-1. the mesh (:mod:`microslip.fe.mesh`): bar of C3D20R/C3D20 bricks, base of C3D8 bricks;
+1. the mesh (:mod:`microslip.fe.calculix.mesh`): bar of C3D20R/C3D20 bricks, base of C3D8 bricks;
 2. linear elastic material of the bar (and of the base, whose nodes are all held fixed);
 3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the bar's lower face
    (slave) and the base's upper face (master): linear pressure-overclosure law and Coulomb
@@ -28,7 +28,7 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
+from ...errors import ParameterError
 from .case import FECase
 from .mesh import BarMesh, bar_mesh
 

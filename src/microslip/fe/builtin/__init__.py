@@ -11,7 +11,7 @@ See ``docs/solver.md`` for the formulation, the verification and the coupled-ver
 decoupled study. Units: N, mm, MPa, N·mm, s.
 
 >>> from microslip import preset
->>> from microslip.solver import solve_uniaxial
+>>> from microslip.fe.builtin import solve_uniaxial
 >>> r = solve_uniaxial(preset("table1"), "tip", 267.0, mesh=(8, 2, 1))
 >>> r.loop.source, r.solver, r.converged
 ('builtin', 'builtin', True)
@@ -22,17 +22,17 @@ from __future__ import annotations
 from .backbone import FEBackbone, fe_backbone
 from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pressure_law
 from .contact import FrictionResponse, friction_dissipation, return_map
-from .element import ELEMENTS, assemble_stiffness, element_stiffness
-from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
-from .normal import NORMAL_CONTACTS, PenaltyNormal
-from .results import (
+from .details import (
     BuiltinDetails,
     CouplingResult,
     CycleWork,
     LoadPathResult,
     SolverStats,
 )
+from .element import ELEMENTS, assemble_stiffness, element_stiffness
+from .linalg import LINEAR_SOLVERS, available_linear_solvers
+from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
+from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .solve import (
     CENTRE_DIRECTIONS,
     FrictionModel,

@@ -1,0 +1,10 @@
+"""CalculiX (``ccx``) on the clamped bar: deck, run and read-back.
+
+- :mod:`~microslip.fe.calculix.mesh`: structured C3D20 mesh of the bar on a rigid C3D8 base;
+- :mod:`~microslip.fe.calculix.case`: the validated load case (:class:`FECase`);
+- :mod:`~microslip.fe.calculix.deck`: the ``.inp`` deck, one tested function per keyword card;
+- :mod:`~microslip.fe.calculix.runner`: ``ccx`` with a time-out and typed failures;
+- :mod:`~microslip.fe.calculix.readers`: ``.dat``, ``.sta`` and ``.frd`` readers;
+- :mod:`~microslip.fe.calculix.collect`: a CalculiX run read into an
+  :class:`~microslip.fe.result.FELoopResult`.
+"""
