@@ -1,0 +1,118 @@
+"""A hexahedral mesh with named sets: the user's own clamp geometry, whatever file it came from.
+
+:class:`HexMesh` is what the built-in solver and the CalculiX deck writer read; the readers
+(``.inp``, and the formats meshio reads) produce it, and :meth:`HexMesh.box` writes the
+built-in box as one. Node and element numbers are 0-based rows; element connectivity is in
+the CalculiX/Abaqus order (C3D8: corners 1-4 on one face, 5-8 opposite; C3D20: the corners,
+then the 12 edge mid-points). Units: mm.
+
+Element faces are numbered as CalculiX's surfaces S1..S6 (0-based here, 0..5), by the corner
+nodes (1-based in the CalculiX manual): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2, S4 2-6-7-3,
+S5 3-7-8-4, S6 4-8-5-1; in this order the right-hand-rule normal of each points into the
+element (the outward normal is its negative).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ParameterError
+
+__all__ = ["HEX_FACES", "HexMesh"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: Corner nodes (0-based positions in a C3D8/C3D20 connectivity row) of faces S1..S6.
+HEX_FACES: tuple[tuple[int, int, int, int], ...] = (
+    (0, 1, 2, 3), (4, 7, 6, 5), (0, 4, 5, 1), (1, 5, 6, 2), (2, 6, 7, 3), (3, 7, 4, 0))
+
+
+def _frozen(a: Any, dtype: type) -> NDArray[Any]:
+    out: NDArray[Any] = np.array(a, dtype=dtype)
+    out.flags.writeable = False
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class HexMesh:
+    """Hexahedra (8 or 20 nodes) with named node sets and element-face surfaces.
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (n, 3)
+        Node coordinates, mm.
+    elements : ndarray of int, shape (e, 8) or (e, 20)
+        Connectivity, 0-based node rows, CalculiX order.
+    node_sets : mapping of str to ndarray of int
+        Named node sets (sorted, unique 0-based rows).
+    surfaces : mapping of str to ndarray of int, shape (k, 2)
+        Named element-face surfaces: rows (element, face 0..5 as S1..S6).
+    source : str
+        Where the mesh came from (a file name, or ``"box"``), for messages.
+    """
+
+    nodes: FloatArray
+    elements: IntArray
+    node_sets: Mapping[str, IntArray] = field(default_factory=dict)
+    surfaces: Mapping[str, IntArray] = field(default_factory=dict)
+    source: str = "mesh"
+
+    def __post_init__(self) -> None:
+        nodes = _frozen(self.nodes, np.float64)
+        elements = _frozen(self.elements, np.int64)
+        if nodes.ndim != 2 or nodes.shape[1] != 3:
+            raise ParameterError(f"{self.source}: nodes must have shape (n, 3), got {nodes.shape}")
+        if elements.ndim != 2 or elements.shape[1] not in (8, 20) or len(elements) == 0:
+            raise ParameterError(
+                f"{self.source}: no hexahedra (8- or 20-node elements) in the mesh")
+        if elements.min() < 0 or elements.max() >= len(nodes):
+            raise ParameterError(f"{self.source}: an element refers to a node that does not exist")
+        object.__setattr__(self, "nodes", nodes)
+        object.__setattr__(self, "elements", elements)
+        object.__setattr__(self, "node_sets", MappingProxyType(
+            {k: _frozen(np.unique(v), np.int64) for k, v in self.node_sets.items()}))
+        object.__setattr__(self, "surfaces", MappingProxyType(
+            {k: _frozen(np.asarray(v).reshape(-1, 2), np.int64)
+             for k, v in self.surfaces.items()}))
+
+    @property
+    def nodes_per_element(self) -> int:
+        return int(self.elements.shape[1])
+
+    def set_names(self) -> tuple[str, ...]:
+        """Every node-set and surface name, sorted."""
+        return tuple(sorted(set(self.node_sets) | set(self.surfaces)))
+
+    def faces(self, name: str) -> IntArray:
+        """The element faces of a named set, shape (k, 2): (element, face 0..5).
+
+        A surface gives its faces; a node set gives every element face whose corner nodes
+        are all in the set (a face shared by two elements counts for both; a set on the
+        boundary has each face once).
+        """
+        if name in self.surfaces:
+            return self.surfaces[name]
+        if name not in self.node_sets:
+            raise ParameterError(
+                f"{self.source}: no set named {name!r}; the mesh has "
+                f"{', '.join(self.set_names()) or 'no named sets'}")
+        inset = np.zeros(len(self.nodes), dtype=bool)
+        inset[self.node_sets[name]] = True
+        corners = self.elements[:, :8]
+        rows = []
+        for f, idx in enumerate(HEX_FACES):
+            hit = np.flatnonzero(inset[corners[:, list(idx)]].all(axis=1))
+            rows.append(np.stack([hit, np.full_like(hit, f)], axis=1))
+        return np.concatenate(rows).astype(np.int64)
+
+    def face_corners(self, faces: IntArray) -> IntArray:
+        """Corner nodes, shape (k, 4), of faces (element, face), ordered as :data:`HEX_FACES`."""
+        table = np.asarray(HEX_FACES, dtype=np.int64)
+        return self.elements[faces[:, 0][:, None], table[faces[:, 1]]]
