@@ -116,3 +116,62 @@ class HexMesh:
         """Corner nodes, shape (k, 4), of faces (element, face), ordered as :data:`HEX_FACES`."""
         table = np.asarray(HEX_FACES, dtype=np.int64)
         return self.elements[faces[:, 0][:, None], table[faces[:, 1]]]
+
+
+#: Mid-side nodes (0-based positions in a C3D20 row) of faces S1..S6, in the order of the
+#: face's edges (corner k to corner k+1).
+HEX20_FACE_MIDSIDES: tuple[tuple[int, int, int, int], ...] = (
+    (8, 9, 10, 11), (15, 14, 13, 12), (16, 12, 17, 8), (17, 13, 18, 9), (18, 14, 19, 10),
+    (19, 15, 16, 11))
+
+
+def _quad_shapes(xi: float, eta: float, serendipity: bool) -> tuple[FloatArray, FloatArray]:
+    """Shape functions and their (xi, eta) derivatives of a 4- or 8-node quadrilateral."""
+    c = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
+    if not serendipity:
+        n = 0.25 * (1 + c[:, 0] * xi) * (1 + c[:, 1] * eta)
+        d = 0.25 * np.stack([c[:, 0] * (1 + c[:, 1] * eta), c[:, 1] * (1 + c[:, 0] * xi)])
+        return n, d
+    m = np.array([(0, -1), (1, 0), (0, 1), (-1, 0)], dtype=float)
+    a, b = c[:, 0], c[:, 1]
+    nc = 0.25 * (1 + a * xi) * (1 + b * eta) * (a * xi + b * eta - 1)
+    dc = 0.25 * np.stack([a * (1 + b * eta) * (2 * a * xi + b * eta),
+                          b * (1 + a * xi) * (a * xi + 2 * b * eta)])
+    p, q = m[:, 0], m[:, 1]
+    nm = np.where(p == 0, 0.5 * (1 - xi**2) * (1 + q * eta), 0.5 * (1 + p * xi) * (1 - eta**2))
+    dm = np.stack([np.where(p == 0, -xi * (1 + q * eta), 0.5 * p * (1 - eta**2)),
+                   np.where(p == 0, 0.5 * q * (1 - xi**2), -eta * (1 + p * xi))])
+    return np.concatenate([nc, nm]), np.concatenate([dc, dm], axis=1)
+
+
+def face_load(mesh: HexMesh, faces: IntArray) -> tuple[IntArray, FloatArray, float]:
+    """Consistent nodal forces of a uniform traction of total 1 N over element faces.
+
+    Returns the nodes, their shares (summing to 1; the corner shares of 8-node faces are
+    negative, as the consistent load of a serendipity face is) and the faces' area, mm^2.
+    Integrated exactly for flat faces: 2 x 2 Gauss points on 4-node faces, 3 x 3 on 8-node.
+    """
+    quadratic = mesh.nodes_per_element == 20
+    corners = np.asarray(HEX_FACES, dtype=np.int64)[faces[:, 1]]
+    if quadratic:
+        mids = np.asarray(HEX20_FACE_MIDSIDES, dtype=np.int64)[faces[:, 1]]
+        corners = np.concatenate([corners, mids], axis=1)
+    face_nodes = mesh.elements[faces[:, 0][:, None], corners]
+    if quadratic:
+        g, w = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5, 8, 5]) / 9.0
+    else:
+        g, w = np.array([-1.0, 1.0]) / np.sqrt(3.0), np.ones(2)
+    x = mesh.nodes[face_nodes]  # (k, m, 3)
+    share = np.zeros(face_nodes.shape)
+    for i, xi in enumerate(g):
+        for j, eta in enumerate(g):
+            n, d = _quad_shapes(float(xi), float(eta), quadratic)
+            t = np.einsum("am,kmc->kac", d, x)
+            jac = np.linalg.norm(np.cross(t[:, 0], t[:, 1]), axis=1)
+            share += w[i] * w[j] * jac[:, None] * n[None, :]
+    area = float(share.sum())
+    if not area > 0:
+        raise ParameterError(f"{mesh.source}: the faces have no area")
+    nodes, inverse = np.unique(face_nodes.ravel(), return_inverse=True)
+    weights = np.bincount(inverse, weights=share.ravel(), minlength=len(nodes)) / area
+    return nodes.astype(np.int64), weights, area
