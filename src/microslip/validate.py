@@ -39,6 +39,7 @@ from .io import write_csv
 from .loading import LOAD_CASES, load_case
 from .options import ModelOptions
 from .params import PRESETS, ClampParams, preset
+from .plot.validation import LoopPanel, StatusPanel, figure_contact_status, figure_fe_vs_model
 from .progress import progress as progress_bar
 
 __all__ = [
@@ -250,9 +251,6 @@ def validation_row(result: FELoopResult, mesh: str, options: ModelOptions | None
 
 
 # -- figures ---------------------------------------------------------------------------------
-_STATUS_COLOURS = ("#ffffff", "#404040", "#bdbdbd")  # open, stick (dark), slip (light), Fig. 8
-
-
 def _status_grid(result: FELoopResult, k: int) -> tuple[Any, Any, Any]:
     """Status on the lower face's lattice, with x and y cell edges (mm).
 
@@ -287,86 +285,50 @@ def _slipping_force(t: float, force: float, amplitude: float) -> float:
     return abs(force - reversal) / 2.0
 
 
+def _status_panel(result: FELoopResult, t: float) -> StatusPanel:
+    """The lower face's status at time ``t`` of ``result``, with the closed-form bounds of the
+    zone slipping in that substep: the tip zone reaches a distance dF/q from the loaded end,
+    the centre zones dF/(2q) each side of L/2, with dF = |F| on first loading and
+    |F - F_r|/2 after a reversal at F_r (Masing)."""
+    p = _case(result).params
+    f0 = _case(result).amplitude
+    k = result.contact.index(t)
+    xe, ye, grid = _status_grid(result, k)
+    f = float(result.force[k])
+    f = 0.0 if abs(f) < 1e-9 * f0 else f
+    lc = load_case(result.load_case)
+    x_load, reach = lc.section * p.length, lc.slip_length(_slipping_force(t, f, f0),
+                                                          p.friction_per_length)
+    bounds = tuple(x for x, inside in ((x_load - reach, lc.section > 0.0),
+                                       (x_load + reach, lc.section < 1.0)) if inside)
+    return StatusPanel(result.load_case, t, f, xe, ye, grid, p.length, p.width,
+                       x_load if 0.0 < lc.section < 1.0 else None, bounds)
+
+
 def plot_contact_status(results: Sequence[FELoopResult], path: str | os.PathLike[str],
                         times: Sequence[float] = (0.25, 0.5, 0.75, 1.0, 1.25)) -> None:
-    """Fig. 8: stick (dark) and slip (light) zones of the lower face at the end of each 90
-    degrees, one column per load case. Dashed lines bound the closed-form zone slipping in
-    that substep: the tip zone reaches a distance dF/q from the loaded end, the centre zones
-    dF/(2q) each side of L/2, with dF = |F| on first loading and |F - F_r|/2 after a reversal
-    at F_r (Masing); the solid line in the centre panels is L/2."""
-    from matplotlib.colors import ListedColormap
-    from matplotlib.patches import Patch
-
-    from .plot import new_figure, save_figure
-
-    fig, axes = new_figure(ncols=len(results), nrows=len(times), width_mm=85.0, height_mm=22.0)
-    cmap = ListedColormap(list(_STATUS_COLOURS))
-    for col, res in enumerate(results):
-        p = _case(res).params
-        q = p.friction_per_length
-        f0 = _case(res).amplitude
-        for row, t in enumerate(times):
-            ax = axes[row, col]
-            k = res.contact.index(t)
-            xe, ye, grid = _status_grid(res, k)
-            ax.pcolormesh(xe, ye, grid.T, cmap=cmap, vmin=-0.5, vmax=2.5, shading="flat")
-            f = float(res.force[k])
-            f = 0.0 if abs(f) < 1e-9 * f0 else f
-            span = _slipping_force(t, f, f0)
-            lc = load_case(res.load_case)
-            x_load, reach = lc.section * p.length, lc.slip_length(span, q)
-            xs = [x for x, inside in ((x_load - reach, lc.section > 0.0),
-                                      (x_load + reach, lc.section < 1.0)) if inside]
-            if 0.0 < lc.section < 1.0:
-                ax.axvline(x_load, color="k", lw=1.0)
-            for xb in xs:
-                ax.axvline(xb, color="#D55E00", lw=0.9, ls="--")
-            ax.set_xlim(0.0, p.length)
-            ax.set_ylim(0.0, p.width)
-            ax.set_yticks([0.0, p.width])
-            ax.grid(False)
-            ax.set_title(f"{res.load_case}: t = {t:g} s ({round(360 * t)}°), "
-                         f"$F_T$ = {f:.0f} N", fontsize=7)
-            if col == 0:
-                ax.set_ylabel("y (mm)")
-            if row == len(times) - 1:
-                ax.set_xlabel("x along the bar (mm)")
-    handles = [Patch(facecolor=_STATUS_COLOURS[1], label="stick"),
-               Patch(facecolor=_STATUS_COLOURS[2], label="slip"),
-               Patch(facecolor="none", edgecolor="#D55E00", ls="--",
-                     label="closed-form slip zone")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, frameon=False)
-    save_figure(fig, path)
+    """Fig. 8: stick and slip zones of the lower face at the end of each 90 degrees, one
+    column per load case, with the closed-form slip zones (:func:`_status_panel`); drawn by
+    :func:`microslip.plot.validation.figure_contact_status`."""
+    figure_contact_status([[_status_panel(res, t) for t in times] for res in results], path)
 
 
 def plot_fe_vs_model(results: Sequence[FELoopResult], labels: Sequence[str],
                      path: str | os.PathLike[str], options: ModelOptions | None = None) -> None:
-    """Fig. 9: FE loops (markers) against the analytical model (default reading) and the
-    closed form (uncorrected model), one panel per load case."""
-    from .plot import COLOURS, new_figure, plot_loops, save_figure
-
-    models = [m for m in LOAD_CASES if any(r.load_case == m for r in results)]
-    fig, axes = new_figure(ncols=len(models), nrows=1)
-    for col, m in enumerate(models):
-        ax = axes[0, col]
-        runs = [(r, lab) for r, lab in zip(results, labels, strict=True) if r.load_case == m]
-        ref = _case(runs[0][0])
+    """Fig. 9: FE loops against the analytical model (default reading) and the closed form
+    (uncorrected model), one panel per load case; drawn by
+    :func:`microslip.plot.validation.figure_fe_vs_model`."""
+    panels = []
+    for m in (m for m in LOAD_CASES if any(r.load_case == m for r in results)):
+        runs = [(lab, r.loop) for r, lab in zip(results, labels, strict=True)
+                if r.load_case == m]
+        ref = _case(next(r for r in results if r.load_case == m))
         model = damping(m, ref.params, ref.amplitude, MODEL_INCREMENTS,
                         options or ModelOptions()).loop
         exact = damping(m, ref.params, ref.amplitude, MODEL_INCREMENTS,
                         ModelOptions.uncorrected()).loop
-        loops = [model, exact] + [r.loop for r, _ in runs]
-        names = ["model (default reading)", "closed form (rigid base)"] + \
-            [f"FE, {lab}" for _, lab in runs]
-        plot_loops(ax, loops, names, colours=COLOURS)
-        ax.lines[1].set_linestyle("--")
-        for line in ax.lines[2:2 + len(runs)]:
-            line.set_marker("o")
-            line.set_markersize(2.5)
-            line.set_linestyle("none")
-        ax.legend(loc="upper left", frameon=False)
-        ax.set_title(f"({'ab'[col]}) {m} loading, $F_0$ = {ref.amplitude:g} N")
-    save_figure(fig, path)
+        panels.append(LoopPanel(m, ref.amplitude, model, exact, tuple(runs)))
+    figure_fe_vs_model(panels, path)
 
 
 # -- running -----------------------------------------------------------------------------------

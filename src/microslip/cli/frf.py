@@ -170,35 +170,11 @@ def _range(args: argparse.Namespace, structure: Structure, mode: int
 
 def _plot(structure: Structure, curves: list[FrequencyResponse], path: str, mode: int,
           orbits: list[list[dict[str, Any]]]) -> None:
-    """The curves with the backbone over them; beside them the first two-directional
-    joint's orbit at each curve's peak, if there is one."""
-    from ..plot import COLOURS, new_figure, save_figure
+    """The curves with the backbone (EPMC, up to 1.05 times the highest peak) over them, and
+    the joint orbits (:func:`microslip.plot.dynamics.plot_frequency_response`)."""
+    from ..plot.dynamics import plot_frequency_response
 
     top = max(float(c.amplitude.max()) for c in curves)
     backbone = epmc(structure, np.geomspace(top * 1e-3, top * 1.05, 80),
                     curves[0].harmonics, curves[0].samples, mode)
-    planar = any(orbits)
-    fig, axes = new_figure(ncols=2 if planar else 1, width_mm=120.0 if not planar else 80.0)
-    ax = axes[0][0]
-    for c, colour in zip(curves, COLOURS * len(curves), strict=False):
-        ax.plot(c.frequency, c.amplitude, color=colour, label=f"F = {c.force:g} N")
-        ax.plot([c.peak_frequency], [c.peak_amplitude], "o", color=colour, markersize=3)
-    ax.plot(backbone.frequency, backbone.amplitude, color="k", linestyle="--",
-            label="backbone (EPMC)")
-    ax.set_xlabel("excitation frequency f (Hz)")
-    ax.set_ylabel("first-harmonic amplitude a (mm)")
-    ax.legend()
-    if planar:
-        ax = axes[0][1]
-        for c, found, colour in zip(curves, orbits, COLOURS * len(curves), strict=False):
-            if found:
-                x, y = np.append(found[0]["x_mm"], found[0]["x_mm"][0]), \
-                    np.append(found[0]["y_mm"], found[0]["y_mm"][0])
-                ax.plot(x, y, color=colour, label=f"F = {c.force:g} N, "
-                        f"{found[0]['frequency_Hz']:.5g} Hz")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel(f"joint {orbits[0][0]['joint'] if orbits[0] else 0} "
-                      "relative displacement x (mm)")
-        ax.set_ylabel("relative displacement y (mm)")
-        ax.legend()
-    save_figure(fig, path)
+    plot_frequency_response(curves, backbone, orbits, path)

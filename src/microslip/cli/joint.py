@@ -154,7 +154,9 @@ def run(args: argparse.Namespace) -> int:
     result = describing_function(joint, _amplitudes(args, joint), args.samples)
     out = result_json(joint, result)
     if args.plot:
-        _plot(result, args.plot)
+        from ..plot.dynamics import plot_describing_function
+
+        plot_describing_function(result, args.plot)
     if args.json:
         print_json(out)
         return 0
@@ -221,19 +223,3 @@ def elements_from_args(args: argparse.Namespace) -> int:
     if not 2 <= n <= 100_000:
         raise ParameterError(f"--elements must be in [2, 100000], got {n}")
     return int(n)
-
-
-def _plot(result: DescribingFunction, path: str) -> None:
-    from ..plot import COLOURS, new_figure, save_figure
-
-    fig, axes = new_figure(ncols=3, width_mm=60.0)
-    a = result.amplitude
-    for ax, y, label, colour in zip(
-            axes[0], (result.stiffness, result.damping, result.loss_factor),
-            ("equivalent stiffness K_eq (N/mm)", "equivalent damping D_eq (N/mm)",
-             "loss factor eta = D_eq / K_eq (-)"), COLOURS, strict=False):
-        ax.semilogx(a, y, color=colour, marker="." if a.size < 40 else None)
-        ax.set_xlabel("displacement amplitude A (mm)")
-        ax.set_ylabel(label)
-    fig.suptitle(f"describing function of the {result.joint} joint")
-    save_figure(fig, path)

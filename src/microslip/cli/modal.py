@@ -24,7 +24,7 @@ from ..dynamics.assemble import (
 )
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
-from ..dynamics.modal import METHODS, ModalCurve, energy_method
+from ..dynamics.modal import METHODS, energy_method
 from ..dynamics.operators2d import COUPLINGS, PAIRINGS
 from ..dynamics.structure import Structure, one_mode
 from ..errors import ParameterError
@@ -280,7 +280,9 @@ def run(args: argparse.Namespace) -> int:
         write_csv(args.csv, {"amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                              "damping_ratio": curve.damping_ratio})
     if args.plot:
-        _plot(curve, energy, args.plot)
+        from ..plot.dynamics import plot_modal
+
+        plot_modal(curve, energy, args.plot)
     if args.json:
         print_json({"structure": describe_structure(structure, args), "method": curve.method,
                     "harmonics": curve.harmonics, "samples": curve.samples,
@@ -325,21 +327,3 @@ def amplitudes_from_args(args: argparse.Namespace) -> np.ndarray:
         raise ParameterError(f"--amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
                              f"{lo:g} {hi:g}")
     return np.geomspace(lo, hi, n) if n > 1 else np.array([lo])
-
-
-def _plot(curve: ModalCurve, energy: ModalCurve, path: str) -> None:
-    from ..plot import COLOURS, new_figure, save_figure
-
-    fig, axes = new_figure(ncols=2, width_mm=80.0)
-    for ax, attr, label in zip(axes[0], ("frequency", "damping_ratio"),
-                               ("natural frequency f (Hz)", "damping ratio zeta (-)"),
-                               strict=True):
-        ax.semilogx(curve.amplitude, getattr(curve, attr), color=COLOURS[0],
-                    label=f"{curve.method}, {curve.harmonics} harmonic(s)")
-        if energy is not curve:
-            ax.semilogx(energy.amplitude, getattr(energy, attr), color=COLOURS[1],
-                        linestyle="--", label="energy method")
-        ax.set_xlabel("modal amplitude a (mm)")
-        ax.set_ylabel(label)
-        ax.legend()
-    save_figure(fig, path)

@@ -20,7 +20,6 @@ import numpy as np
 
 from ..errors import MicroslipError
 from ..params import preset
-from ..plot.core import COLOURS, displacement_scale, new_figure, save_figure
 
 __all__ = [
     "JOINTS",
@@ -84,35 +83,14 @@ def joint_fe_study(*, mesh: Any = None, ratios: Sequence[float] = JOINT_FE_RATIO
 
 def joint_fe_figure(path: str | Path, cols: dict[str, list[Any]], runs: list[Any]) -> None:
     """(a) W of each joint over the FE's against R; (b) across the bar at the R nearest 1:
-    the FE's centre force and each joint's force against delta_centre."""
-    fig, axes = new_figure(ncols=2, width_mm=85.0, height_mm=72.0)
-    ax = axes[0, 0]
+    the FE's centre force and each joint's force against delta_centre
+    (:func:`microslip.plot.dynamics.figure_joint_fe`)."""
+    from ..plot.dynamics import figure_joint_fe
+
     r = np.asarray(cols["R"], dtype=float)
-    for i, (key, label) in enumerate(JOINTS.items()):
-        ax.plot(r, cols[_col(key, "over_fe")], "os^v"[i] + "-",
-                color=COLOURS[i], label=label)
-    ax.axhline(1.0, color="0.5", lw=0.8, ls=":", label="FE (coupled 2-D friction)")
-    ax.set_xscale("log", base=2)
-    ax.set_xticks(r, [f"{x:g}" for x in r])
-    ax.set_xlabel("Force ratio R = $A_{tip} / A_{centre}$ (-), phase 90°")
-    ax.set_ylabel("$W_{joint} / W_{FE}$ per cycle (-)")
-    ax.set_title("(a) reduced joint on the FE's orbit", loc="left", fontsize=8)
-    ax.legend(loc="best", frameon=False, fontsize=6)
-    ax = axes[0, 1]
-    run = runs[int(np.argmin(np.abs(np.log(r))))]
-    d = np.append(run.orbit[:, 1], run.orbit[0, 1])
-    scale, unit = displacement_scale(float(np.max(np.abs(d))))
-    ax.plot(scale * d, np.append(run.fe_force[:, 1], run.fe_force[0, 1]), color="k", lw=1.6,
-            label="FE (applied centre force)")
-    for i, (key, label) in enumerate(JOINTS.items()):
-        f = run.joint_force[key][:, 1]
-        ax.plot(scale * d, np.append(f, f[0]), color=COLOURS[i], lw=0.9, label=label)
-    ax.set_xlabel(f"Displacement across the bar $δ_{{centre}}$ ({unit})")
-    ax.set_ylabel("Force across the bar $F_{centre}$ (N)")
-    ax.set_title(f"(b) across the bar, R = {r[int(np.argmin(np.abs(np.log(r))))]:g}",
-                 loc="left", fontsize=8)
-    ax.legend(loc="upper left", frameon=False, fontsize=6)
-    save_figure(fig, path)
+    nearest = int(np.argmin(np.abs(np.log(r))))
+    figure_joint_fe(path, cols["R"], JOINTS, {k: cols[_col(k, "over_fe")] for k in JOINTS},
+                    runs[nearest], float(r[nearest]))
 
 
 def joint_fe_section(cols: dict[str, list[Any]]) -> str:
