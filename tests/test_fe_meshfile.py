@@ -136,7 +136,7 @@ def test_bad_inp_files_are_refused_in_one_line(tmp_path: Path, text: str, messag
 
 
 def test_missing_file_is_refused(tmp_path: Path) -> None:
-    with pytest.raises(ParameterError, match="nope.inp: no such mesh file"):
+    with pytest.raises(ParameterError, match=r"nope\.inp: no such mesh file"):
         read_mesh(tmp_path / "nope.inp")
 
 
