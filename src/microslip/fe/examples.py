@@ -106,6 +106,7 @@ def _planes(stops: Sequence[float], size: float) -> FloatArray:
     for a, b in itertools.pairwise(stops):
         n = max(1, math.ceil((b - a) / size - 1e-9))
         seg = a + (b - a) * np.arange(1, n + 1) / n
+        seg = np.round(seg, 10)
         seg[-1] = b
         out.append(seg)
     return np.concatenate(out)
@@ -133,7 +134,7 @@ def cantilever_mesh(nx: int = 24, ny: int = 6, nz: int = 2, quadratic: bool = Fa
     >>> len(m.elements), len(m.faces("contact")), len(m.faces("tip"))
     (6, 2, 1)
     """
-    total = clamped_length + overhang
+    total = round(clamped_length + overhang, 10)
     under = nx * clamped_length / total
     if isinstance(nx, bool) or not isinstance(nx, int) or nx < 2 or not math.isclose(
             under, round(under), abs_tol=1e-9) or round(under) in (0, nx):
@@ -144,6 +145,7 @@ def cantilever_mesh(nx: int = 24, ny: int = 6, nz: int = 2, quadratic: bool = Fa
     n1 = round(under)
     xs = np.concatenate([np.linspace(0.0, clamped_length, n1 + 1),
                          np.linspace(clamped_length, total, nx - n1 + 1)[1:]])
+    xs = np.round(xs, 10)  # planes to 1e-10 mm: 152.4, not 152.39999999999998, in the file
     xs[n1], xs[-1] = clamped_length, total
 
     def clamped(x: FloatArray) -> NDArray[np.bool_]:
@@ -155,7 +157,8 @@ def cantilever_mesh(nx: int = 24, ny: int = 6, nz: int = 2, quadratic: bool = Fa
         "tip": lambda x, y, z: _near(x, total),
         "response": lambda x, y, z: _near(x, total),
     }
-    mesh = grid_mesh(xs, np.linspace(0.0, width, ny + 1), np.linspace(0.0, thickness, nz + 1),
+    mesh = grid_mesh(xs, np.round(np.linspace(0.0, width, ny + 1), 10),
+                     np.round(np.linspace(0.0, thickness, nz + 1), 10),
                      node_sets=sets, surfaces=("contact", "clamp", "tip"),
                      source=f"cantilever {nx}x{ny}x{nz}")
     return to_hex20(mesh) if quadratic else mesh
