@@ -245,3 +245,37 @@ def test_write_refuses_a_set_name_inp_cannot_hold(tmp_path: Path) -> None:
     with pytest.raises(ParameterError, match="'two words' cannot be written"):
         write_inp(bad, tmp_path / "b.inp")
     assert not (tmp_path / "b.inp").exists()
+
+
+GMSH_STYLE_INP = """*Heading
+ cube.inp
+*Node
+1, 0, 0, 0
+2, 1, 0, 0
+3, 1, 1, 0
+4, 0, 1, 0
+5, 0, 0, 1
+6, 1, 0, 1
+7, 1, 1, 1
+8, 0, 1, 1
+******* E L E M E N T S *************
+*Element, type=T3D2, ELSET=Line1
+1, 1, 2
+*Element, type=CPS4, ELSET=Surface1
+2, 1, 4, 3, 2
+*Element, type=C3D8, ELSET=Volume1
+3, 1, 2, 3, 4,
+5, 6, 7, 8
+*ELSET,ELSET=Base
+2,
+*NSET,NSET=Base
+1, 2, 3, 4,
+"""
+
+
+def test_gmsh_style_inp_with_trailing_commas_and_2d_element_sets(tmp_path: Path) -> None:
+    m = read_mesh(_write(tmp_path, GMSH_STYLE_INP, "cube.inp"))
+    assert m.elements.tolist() == [list(range(8))] and m.element_label(0) == 3
+    assert m.surfaces["Base"].tolist() == [[0, 0]] and m.node_sets["Base"].tolist() == [0, 1, 2, 3]
+    assert m.surfaces["Surface1"].tolist() == [[0, 0]]
+    assert m.node_sets["Line1"].tolist() == [0, 1] and "Line1" not in m.surfaces

@@ -77,7 +77,7 @@ def jacobian_dets(mesh: HexMesh) -> FloatArray:
     quadratic = mesh.nodes_per_element == 20
     d = _derivatives(_points(quadratic), quadratic)  # (p, 3, m)
     x = mesh.nodes[mesh.elements]  # (e, m, 3)
-    jac = np.einsum("pim,emj->epij", d, x)
+    jac = np.matmul(d[None], x[:, None])  # (e, p, 3, 3): J_ij = dN_a/dxi_i x_aj
     return np.asarray(np.linalg.det(jac), dtype=float)
 
 
@@ -111,9 +111,12 @@ def boundary_faces(mesh: HexMesh, faces: IntArray) -> NDArray[np.bool_]:
     all_faces = np.stack(np.meshgrid(np.arange(len(mesh.elements)), np.arange(6),
                                      indexing="ij"), axis=-1).reshape(-1, 2)
     keys = np.sort(mesh.face_corners(all_faces), axis=1)
-    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    once = counts[inverse.reshape(-1)] == 1
-    return np.asarray(once.reshape(-1, 6)[faces[:, 0], faces[:, 1]], dtype=bool)
+    order = np.lexsort(keys.T[::-1])
+    same = np.all(keys[order[1:]] == keys[order[:-1]], axis=1)  # equal to the next in order
+    shared = np.zeros(len(keys), dtype=bool)
+    shared[order[1:][same]] = True
+    shared[order[:-1][same]] = True
+    return np.asarray(~shared.reshape(-1, 6)[faces[:, 0], faces[:, 1]], dtype=bool)
 
 
 def _missing(mesh: HexMesh, name: str, role: str) -> ParameterError:

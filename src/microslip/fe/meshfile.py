@@ -128,13 +128,14 @@ def assemble(src: str, points: NDArray[np.float64], elements: IntArray,
     """
     sets = {k: np.asarray(v, dtype=np.int64) for k, v in node_sets.items()}
     faces = dict(surfaces or {})
-    lookup = _face_lookup(elements)
+    lookup: dict[tuple[int, ...], tuple[int, int]] | None = None
     for name, cells in groups.items():
         nodes = np.unique(np.concatenate([c.ravel() for _, c in cells]))
         sets[name] = np.union1d(sets.get(name, np.zeros(0, np.int64)), nodes)
         if name in faces or not all(t in _QUADS for t, _ in cells):
             continue
         quads = np.concatenate([c[:, :4] for _, c in cells])
+        lookup = _face_lookup(elements) if lookup is None else lookup
         found = [lookup.get(tuple(sorted(q.tolist()))) for q in quads]
         if all(f is not None for f in found):
             faces[name] = np.array(found, dtype=np.int64).reshape(-1, 2)

@@ -193,19 +193,28 @@ def parse_inp(path: str | Path) -> InpData:
     if len(hex_size) > 1:
         raise ParameterError(f"{p}: the file mixes 8- and 20-node hexahedra; use one kind")
     node_ids = np.fromiter(nodes, dtype=np.int64, count=len(nodes))
-    row = {i: r for r, i in enumerate(nodes)}
+    sorter = np.argsort(node_ids, kind="stable")
+    sorted_ids = node_ids[sorter]
     element_ids = np.fromiter(hexes, dtype=np.int64, count=len(hexes))
     erow = {i: r for r, i in enumerate(hexes)}
 
-    def rows(ids: list[int], what: str, where: str) -> IntArray:
-        missing = [i for i in ids if i not in row]
-        if missing:
-            raise ParameterError(f"{p}: {where} refers to node {missing[0]}, which is not "
-                                 f"defined ({what})")
-        return np.array([row[i] for i in ids], dtype=np.int64).reshape(-1)
+    def rows(ids: list[int] | IntArray, where: str) -> IntArray:
+        """0-based rows of node numbers (any shape), or one line naming the first unknown."""
+        a = np.asarray(ids, dtype=np.int64)
+        pos = np.minimum(np.searchsorted(sorted_ids, a), len(sorted_ids) - 1)
+        found = sorted_ids[pos] == a if len(sorted_ids) else np.zeros(a.shape, dtype=bool)
+        if not np.all(found):
+            raise ParameterError(f"{p}: {where} refers to node {int(a[~found].flat[0])}, "
+                                 "which is not defined (no *NODE line)")
+        return np.asarray(sorter[pos], dtype=np.int64)
 
-    elements = np.array([rows(c, "no *NODE line", f"element {e}") for e, c in hexes.items()])
-    node_sets = {k: rows(v, "no *NODE line", f"node set {k!r}") for k, v in nsets.items()}
+    conn = np.array(list(hexes.values()), dtype=np.int64)
+    try:
+        elements = rows(conn, "an element")
+    except ParameterError:
+        first = next(e for e, c in hexes.items() if not np.isin(c, sorted_ids).all())
+        elements = rows(hexes[first], f"element {first}")  # raises, naming the element
+    node_sets = {k: rows(v, f"node set {k!r}").reshape(-1) for k, v in nsets.items()}
     faces = {}
     for name, pairs in surfaces.items():
         bad = [e for e, _ in pairs if e not in erow]
@@ -217,9 +226,9 @@ def parse_inp(path: str | Path) -> InpData:
     for name, ids in elsets.items():
         for e in ids:
             if e in others:
-                kind, conn = others[e]
+                kind, nodes_of = others[e]
                 groups.setdefault(name, []).append(
-                    (kind, rows(conn, "no *NODE line", f"element {e}")[None, :]))
+                    (kind, rows(nodes_of, f"element {e}")[None, :]))
     points = np.array(list(nodes.values()), dtype=float).reshape(-1, 3)
     return InpData(points, elements, node_ids, element_ids, node_sets, faces, groups)
 
@@ -238,9 +247,14 @@ def _elements(p: Path, b: _Block, hexes: dict[int, list[int]], hex_size: set[int
     if size is None and kind.startswith("C3D"):
         raise ParameterError(f"{p}, line {b.line}: element TYPE={kind} is not read; use one of "
                              f"{', '.join(HEX_TYPES)}")
+    rows = [(n, _ints(p, n, words)) for n, words in b.data]
+    if size is not None and any(len(v) != size + 1 for _, v in rows):
+        # the numbers in chunks of size + 1, however the lines break
+        flat = [(n, x) for n, v in rows for x in v]
+        rows = [(flat[k][0], [x for _, x in flat[k:k + size + 1]])
+                for k in range(0, len(flat), size + 1)]
     ids = []
-    for n, words in b.data:
-        v = _ints(p, n, words)
+    for n, v in rows:
         if size is not None and len(v) != size + 1:
             raise ParameterError(f"{p}, line {n}: a {kind} element needs its number and "
                                  f"{size} nodes, got {len(v)} numbers")
