@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -109,3 +110,30 @@ def test_box_is_the_built_in_box_node_for_node(tmp_path: Path) -> None:
 
 def test_box_with_odd_nx_has_no_centre() -> None:
     assert "centre" not in box_hexmesh(preset("table1"), "5x2x1").node_sets
+
+
+def _ccx_tension(tmp_path: Path, name: str, load: str) -> float:
+    """Mean u_x (mm) of the load face under 10 MPa tension, the contact face fixed, in ccx."""
+    from microslip.fe.calculix.runner import run_ccx
+
+    (tmp_path / "job.inp").write_text(
+        f"*INCLUDE, INPUT={EXAMPLES_DIR / name}\n*MATERIAL, NAME=AL\n*ELASTIC\n70000, 0.33\n"
+        "*SOLID SECTION, ELSET=EALL, MATERIAL=AL\n*BOUNDARY\ncontact, 1, 3\n*STEP\n*STATIC\n"
+        f"*DSLOAD\n{load}, P, -10.\n*NODE PRINT, NSET={load}\nU\n*END STEP\n")
+    run_ccx(tmp_path, "job", timeout=300)
+    rows = [line.split() for line in (tmp_path / "job.dat").read_text().splitlines()]
+    ux = [float(r[1]) for r in rows if len(r) == 4 and r[0].isdigit()]
+    assert ux
+    return float(np.mean(ux))
+
+
+@pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) not on PATH")
+def test_calculix_reads_the_example_files_and_stretches_the_overhang(tmp_path: Path) -> None:
+    # The free overhang alone stretches 10 * 101.6 / 70000 mm; the whole bar, were it free,
+    # 10 * 152.4 / 70000: the clamped part, held at its bottom, adds a little.
+    u8 = _ccx_tension(tmp_path, "cantilever.inp", "tip")
+    u20 = _ccx_tension(tmp_path, "cantilever_hex20.inp", "tip")
+    assert 10 * 101.6 / 70000 < u8 < 10 * 152.4 / 70000
+    assert u20 == pytest.approx(u8, rel=0.02)
+    assert 10 * 40 / 70000 < _ccx_tension(tmp_path, "bolt_pad.inp", "end") < 10 * 80 / 70000
+    assert _ccx_tension(tmp_path, "box_table1_24x4x1.inp", "tip") > 0

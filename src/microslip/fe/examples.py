@@ -262,8 +262,9 @@ def box_hexmesh(params: ClampParams, spec: Any = "coarse") -> HexMesh:
     """The built-in solver's box (:func:`~microslip.fe.builtin.mesh.mesh_from_spec`) as a
     :class:`HexMesh`, node for node and element for element.
 
-    Sets: ``contact`` (bottom, z = 0), ``clamp`` (top, z = t), ``tip`` (end face x = L) and,
-    when nx is even, ``centre`` (the mid-length section x = L/2, inside the body).
+    Node sets: ``contact`` (bottom, z = 0), ``clamp`` (top, z = t), ``tip`` (end face x = L)
+    and, when nx is even, ``centre`` (the mid-length section x = L/2, inside the body); the
+    first three are also surfaces.
 
     >>> m = box_hexmesh(preset("table1"), "4x2x1")
     >>> len(m.nodes), sorted(m.node_sets)
@@ -274,8 +275,9 @@ def box_hexmesh(params: ClampParams, spec: Any = "coarse") -> HexMesh:
     if box.nx % 2 == 0:
         faces["centre"] = "mid"
     sets = {k: box.face_nodes(v) for k, v in faces.items()}
-    return HexMesh(box.nodes, box.elements, sets,
-                   source=f"box {box.nx}x{box.ny}x{box.nz}")
+    mesh = HexMesh(box.nodes, box.elements, sets, source=f"box {box.nx}x{box.ny}x{box.nz}")
+    surfaces = {k: mesh.faces(k) for k in ("contact", "clamp", "tip")}
+    return HexMesh(box.nodes, box.elements, sets, surfaces, source=mesh.source)
 
 
 def box_inp(params: ClampParams, spec: Any, path: str | Path) -> Path:
