@@ -135,3 +135,10 @@ def test_zero_length_load_direction_is_refused() -> None:
 def test_a_mesh_without_elements_is_refused() -> None:
     with pytest.raises(ParameterError, match=r"x\.inp: no hexahedra"):
         HexMesh(CUBE, np.zeros((0, 8), dtype=int), source="x.inp")
+
+
+def test_contact_and_clamp_on_the_same_faces_are_refused(bar: HexMesh) -> None:
+    with pytest.raises(ParameterError) as err:
+        check_roles(bar, "contact", "contact")
+    assert "the contact set 'contact' and the clamp set 'contact' share 4 faces" in \
+        _one_line(err)

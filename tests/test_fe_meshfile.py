@@ -279,3 +279,20 @@ def test_gmsh_style_inp_with_trailing_commas_and_2d_element_sets(tmp_path: Path)
     assert m.surfaces["Base"].tolist() == [[0, 0]] and m.node_sets["Base"].tolist() == [0, 1, 2, 3]
     assert m.surfaces["Surface1"].tolist() == [[0, 0]]
     assert m.node_sets["Line1"].tolist() == [0, 1] and "Line1" not in m.surfaces
+
+
+def test_meshio_27_node_hexahedra_drop_their_centres(tmp_path: Path) -> None:
+    meshio = pytest.importorskip("meshio")
+    m = cantilever_mesh(3, 1, 1, quadratic=True)
+    e = m.elements
+    centres = [m.nodes[e[:, list(f)]].mean(axis=1) for f in
+               ((0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                (3, 0, 4, 7))] + [m.nodes[e[:, :8]].mean(axis=1)]
+    extra = np.concatenate(centres)  # 7 new nodes per element, element-major below
+    n = len(m.nodes)
+    ids = n + np.arange(7 * len(e)).reshape(7, -1).T
+    p = tmp_path / "h27.vtu"
+    meshio.write(p, meshio.Mesh(np.vstack([m.nodes, extra]),
+                                [("hexahedron27", np.concatenate([e, ids], axis=1))]))
+    r = read_mesh(p)
+    assert np.array_equal(r.nodes, m.nodes) and np.array_equal(r.elements, m.elements)

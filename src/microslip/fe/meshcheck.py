@@ -159,12 +159,18 @@ def check_roles(mesh: HexMesh, contact: str, clamp: str,
     """Check the role sets and the elements of ``mesh`` before a solver builds anything.
 
     ``contact`` (the face on the rigid base) and ``clamp`` (the face carrying the clamping
-    pressure) must be boundary faces; each load's set must hold element faces (it may lie
-    inside the body, as the box's mid-length section does). Then :func:`check_elements`.
+    pressure) must be boundary faces, none in both; each load's set must hold element faces
+    (it may lie inside the body, as the box's mid-length section does). Then
+    :func:`check_elements`.
     A load direction of zero length is refused by :class:`~microslip.fe.meshload.MeshLoad`.
     """
-    check_set(mesh, contact, "contact set", boundary=True)
-    check_set(mesh, clamp, "clamp set", boundary=True)
+    base = check_set(mesh, contact, "contact set", boundary=True)
+    pressed = check_set(mesh, clamp, "clamp set", boundary=True)
+    both = np.intersect1d(base[:, 0] * 6 + base[:, 1], pressed[:, 0] * 6 + pressed[:, 1])
+    if len(both):
+        raise ParameterError(
+            f"{mesh.source}: the contact set {contact!r} and the clamp set {clamp!r} share "
+            f"{len(both)} faces; the clamping pressure must act on other faces than the base")
     for load in loads:
         name = load.set if isinstance(load, MeshLoad) else str(load)
         check_set(mesh, name, "set of a load")
