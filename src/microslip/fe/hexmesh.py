@@ -56,6 +56,9 @@ class HexMesh:
         Named element-face surfaces: rows (element, face 0..5 as S1..S6).
     source : str
         Where the mesh came from (a file name, or ``"box"``), for messages.
+    node_ids, element_ids : ndarray of int, or None
+        The node and element numbers of the file (one per row), for messages and for writing
+        the mesh back; None: the row + 1.
     """
 
     nodes: FloatArray
@@ -63,6 +66,8 @@ class HexMesh:
     node_sets: Mapping[str, IntArray] = field(default_factory=dict)
     surfaces: Mapping[str, IntArray] = field(default_factory=dict)
     source: str = "mesh"
+    node_ids: IntArray | None = None
+    element_ids: IntArray | None = None
 
     def __post_init__(self) -> None:
         nodes = _frozen(self.nodes, np.float64)
@@ -81,10 +86,26 @@ class HexMesh:
         object.__setattr__(self, "surfaces", MappingProxyType(
             {k: _frozen(np.asarray(v).reshape(-1, 2), np.int64)
              for k, v in self.surfaces.items()}))
+        for name, rows in (("node_ids", len(nodes)), ("element_ids", len(elements))):
+            ids = getattr(self, name)
+            if ids is None:
+                continue
+            ids = _frozen(ids, np.int64)
+            if ids.shape != (rows,) or len(np.unique(ids)) != rows:
+                raise ParameterError(f"{self.source}: {name} must be {rows} distinct numbers")
+            object.__setattr__(self, name, ids)
 
     @property
     def nodes_per_element(self) -> int:
         return int(self.elements.shape[1])
+
+    def node_label(self, row: int) -> int:
+        """The file's number of node ``row`` (row + 1 when the mesh has no file numbers)."""
+        return int(row) + 1 if self.node_ids is None else int(self.node_ids[row])
+
+    def element_label(self, row: int) -> int:
+        """The file's number of element ``row`` (row + 1 when the mesh has no file numbers)."""
+        return int(row) + 1 if self.element_ids is None else int(self.element_ids[row])
 
     def set_names(self) -> tuple[str, ...]:
         """Every node-set and surface name, sorted."""
