@@ -13,7 +13,8 @@ Printed per mesh: dofs, the set-up (assembly and clamping step), the cycles run,
 of the loading and of one cycle (the loading's time over the cycles), W and the peak
 displacement, beside the targets (one settled cycle: under 1 s on 24x6x2, under 10 s on
 48x12x4). The time of a "settled cycle" counted against the target is set-up plus one cycle
-(what a user waits for one converged loop after the start-up transient). Best of ``--repeat``.
+(the issue's wording), and set-up plus every cycle until W settles (what a user waits for).
+Best of ``--repeat``.
 """
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ def run(counts: tuple[int, int, int]) -> dict[str, float]:
     r = solve_mesh(model, [MeshLoad("tip", (1.0, 0.0, 0.0), 500.0)], SineCycles(40, 1e-3))
     return {"dof": model.dof, "setup": setup, "loading": r.wall_s, "cycles": r.cycles,
             "cycle": r.wall_s / r.cycles, "W": r.dissipated_energy,
-            "d": r.peak_displacement, "solver": model.backend.name}
+            "d": r.peak_displacement, "solver": model.describe()["linear_solver"]}
 
 
 def main() -> None:
@@ -69,13 +70,17 @@ def main() -> None:
     print("own-mesh built-in FE, cantilever, axial end load 500 N, 40 increments/cycle")
     for counts in meshes:
         best = min((run(counts) for _ in range(args.repeat)), key=lambda r: r["loading"])
-        settled = best["setup"] + best["cycle"]
-        ok = "meets" if settled < TARGETS[counts] else "MISSES"
+        one = best["setup"] + best["cycle"]
+        whole = best["setup"] + best["loading"]
+        target = TARGETS[counts]
         print(f"{'x'.join(map(str, counts)):>8}: {best['dof']:6d} dof ({best['solver']}), "
               f"set-up {best['setup']:.2f} s, {best['cycles']} cycles in {best['loading']:.2f} s "
-              f"({best['cycle']:.2f} s per cycle); set-up + one cycle {settled:.2f} s, target "
-              f"< {TARGETS[counts]:g} s: {ok}; W = {best['W']:.6g} N·mm, peak displacement "
-              f"{best['d']:.6g} mm")
+              f"({best['cycle']:.2f} s per cycle)")
+        print(f"{'':>10}set-up + one cycle {one:.2f} s, set-up + every cycle until settled "
+              f"{whole:.2f} s; target < {target:g} s: "
+              f"{'meets' if one < target else 'MISSES'} / "
+              f"{'meets' if whole < target else 'MISSES'}; W = {best['W']:.6g} N·mm, "
+              f"peak displacement {best['d']:.6g} mm")
 
 
 if __name__ == "__main__":

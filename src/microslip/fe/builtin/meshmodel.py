@@ -34,11 +34,13 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
 
+from ...blas import single_threaded_blas
 from ...errors import ParameterError
 from ...params import ClampParams, check_positive
 from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..hexmesh import HEX_FACES, HexMesh, face_load
 from ..meshload import MeshLoad
+from .condense import Reduced, condense
 from .element import ELEMENTS, assemble_hex8
 from .linalg import Backend, make_backend
 from .mesh import mesh_from_spec
@@ -48,6 +50,7 @@ from .solve import clamping_step
 
 __all__ = [
     "AUTO_BAND_LIMIT",
+    "CONDENSE_MIN_DOF",
     "MESH_LINEAR_SOLVERS",
     "MeshModel",
     "box_hexmesh",
@@ -60,6 +63,8 @@ IntArray = NDArray[np.int64]
 
 #: ``auto`` takes the banded Cholesky while the half-bandwidth (dofs) is at most this.
 AUTO_BAND_LIMIT = 1200
+#: ``condensed=None`` condenses the body onto the contact from this many free dofs on.
+CONDENSE_MIN_DOF = 1000
 #: Linear solvers of the own-mesh model: ``auto`` (banded or splu by the band) and those of
 #: :data:`~microslip.fe.builtin.linalg.LINEAR_SOLVERS`.
 MESH_LINEAR_SOLVERS = ("auto", "banded", "splu", "cholmod")
@@ -147,9 +152,20 @@ def _rotation(outward: FloatArray) -> FloatArray:
     return np.stack([e1, np.cross(e3, e1), e3])
 
 
-def _numbering(elements: IntArray, n_nodes: int) -> IntArray:
+def _numbering(elements: IntArray, contact: IntArray) -> IntArray:
     """The order of the used nodes: as given, or reverse Cuthill-McKee when that narrows the
-    band by a third or more. ``order[k]`` is the mesh node of internal node k."""
+    band by a third or more; then reversed if that moves the first contact node back by a
+    tenth of the nodes or more (the contact last: the banded factor's leading block, which the
+    contact's changes leave alone, grows, and so does the part of K_ii^-1 K_ic that is zero
+    in the condensation). ``order[k]`` is the mesh node of internal node k."""
+    order = _band_order(elements)
+    at = np.flatnonzero(np.isin(order, contact))
+    if at.size and (order.size - 1 - int(at[-1])) - int(at[0]) >= order.size // 10:
+        return order[::-1].copy()
+    return order
+
+
+def _band_order(elements: IntArray) -> IntArray:
     used = np.unique(elements)
     local = np.searchsorted(used, elements)
     width = int(np.max(local.max(axis=1) - local.min(axis=1)))
@@ -214,6 +230,9 @@ class MeshModel:
         Free-dof displacements (mm) and contact slips (n_c, 2; mm) after clamping.
     size : float
         Largest extent of the mesh, mm.
+    reduced : Reduced or None
+        The body condensed onto the contact dofs (:mod:`.condense`), which the tangential
+        loading then steps; None: the loading steps every free dof.
     """
 
     mesh: HexMesh
@@ -245,6 +264,7 @@ class MeshModel:
     backend: Backend = field(repr=False)
     setup_s: float
     newton: NewtonOptions
+    reduced: Reduced | None = field(default=None, repr=False)
 
     @property
     def dof(self) -> int:
@@ -302,7 +322,9 @@ class MeshModel:
                 "elements": len(self.mesh.elements), "element": self.element,
                 "dof": self.dof, "contact_nodes": int(self.contact_nodes.size),
                 "contact_area_mm2": float(self.contact_area.sum()),
-                "normal_contact": self.normal_contact, "linear_solver": self.backend.name}
+                "normal_contact": self.normal_contact,
+                "linear_solver": self.backend.name if self.reduced is None
+                else f"condensed ({self.reduced.keep.size} contact dofs)"}
 
 
 def _poisson(nu: Any) -> float:
@@ -339,8 +361,8 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
                      modulus: float, poisson_ratio: float, friction: float,
                      stick_slope: float = DEFAULT_STICK_SLOPE, normal_contact: str = "fixed",
                      normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str = "C3D8I",
-                     linear_solver: str = "auto", newton: NewtonOptions | None = None
-                     ) -> MeshModel:
+                     linear_solver: str = "auto", newton: NewtonOptions | None = None,
+                     condensed: bool | None = None) -> MeshModel:
     """Assemble the body of a mesh on its rigid base and solve the clamping step.
 
     Parameters
@@ -369,6 +391,11 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         ``auto``: banded Cholesky while the half-bandwidth is at most
         :data:`AUTO_BAND_LIMIT` dofs, SuperLU beyond.
     newton : NewtonOptions, optional
+    condensed : bool, optional
+        Step the tangential loading on the body condensed onto its contact dofs
+        (:mod:`.condense`; the same answer to rounding, much faster when the contact is a
+        small part of the body). Default: when the model has at least
+        :data:`CONDENSE_MIN_DOF` free dofs and the contact at most a quarter of them.
 
     Returns
     -------
@@ -409,7 +436,7 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     clamp_faces = set_faces(mesh, clamp_set)
     clamp_out, _ = _plane(mesh, clamp_faces, clamp_set)
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
-    order = _numbering(mesh.elements, len(mesh.nodes))
+    order = _numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
     if float(np.max(mesh.nodes[order] @ outward - offset)) > FLAT_TOL * size:
         raise ParameterError(f"{mesh.source}: the body reaches through the plane of its "
                              f"contact set {contact_set!r}: the rigid base would cut it")
@@ -441,8 +468,9 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
     kc = lam * area
     springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
-    backend = _backend(linear_solver, k_ff, cdofs, kc,
-                       None if springs is None else springs.stiffness)
+    with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
+        backend = _backend(linear_solver, k_ff, cdofs, kc,
+                           None if springs is None else springs.stiffness)
 
     # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
     k_mesh, k_share, _ = face_load(mesh, clamp_faces)
@@ -455,6 +483,12 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
     normal, limit, u, resp, iters = clamping_step(
         k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+    n_keep = contact.size * (3 if penalty else 2)
+    if condensed is None:
+        condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
+    with single_threaded_blas():
+        reduced = (condense(k_ff, cdofs, springs, clamp, u, AUTO_BAND_LIMIT) if condensed
+                   else None)
     return MeshModel(
         mesh=mesh, contact_set=contact_set, clamp_set=clamp_set, element=element,
         modulus=e_mod, poisson_ratio=nu, friction=mu, clamp_force=f_n, stick_slope=lam,
@@ -462,7 +496,7 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         stiffness=k_ff, contact_nodes=contact_nodes, contact_dofs=cdofs, contact_area=area,
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, clamp_load=clamp,
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
-        setup_s=time.perf_counter() - t0, newton=newton)
+        setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced)
 
 
 def _connected(mesh: HexMesh, elements: IntArray, n: int, contact_faces: IntArray,

@@ -266,17 +266,39 @@ class MeshRunResult:
 
 
 class _Run:
-    """The loading state of a model: displacements, slips, forces, the Newton stepper."""
+    """The loading state of a model: displacements, slips, forces, the Newton stepper; on the
+    condensed body (``model.reduced``) when there is one."""
 
-    def __init__(self, model: MeshModel, vectors: list[FloatArray], record: bool) -> None:
-        self.model, self.vectors, self.record = model, vectors, record
-        self.stepper = _Stepper(model.stiffness, model.backend, model.contact_dofs,
-                                model.contact_stiffness, model.friction_limit, model.newton,
-                                model.force_scale, model.normal,
-                                None if model.normal is None else model.friction)
-        self.u, self.slip = model.u0.copy(), model.slip0.copy()
-        self.base = [float(p @ self.u) for p in vectors]
-        self.last = tuple(0.0 for _ in vectors)
+    def __init__(self, model: MeshModel, loads: Sequence[MeshLoad], record: bool) -> None:
+        self.model, self.record = model, record
+        full = [model.unit_load(ld) for ld in loads]
+        red = model.reduced
+        m = len(full)
+        #: d_j = a_j . u + sum_k B_jk F_k - base_j (B = 0 without condensation)
+        self.coupling = np.zeros((m, m))
+        if red is None:
+            self.vectors, self.weights = full, full
+            k, backend, cdofs, normal = (model.stiffness, model.backend, model.contact_dofs,
+                                         model.normal)
+            clamp, u0 = model.clamp_load, model.u0
+        else:
+            self.vectors, self.weights, self.interior = [], [], []
+            for j, p in enumerate(full):
+                reduced, a, b = red.load(p)
+                self.vectors.append(reduced)
+                self.weights.append(a)
+                self.interior.append(p[red.interior])
+                self.coupling[j] = [float(b @ q[red.interior]) for q in full]
+            k, backend, cdofs, normal = red.stiffness, red.backend, red.contact_dofs, red.normal
+            clamp, u0 = red.clamp_load, red.u0
+        self.clamp = clamp
+        self.stepper = _Stepper(k, backend, cdofs, model.contact_stiffness,
+                                model.friction_limit, model.newton, model.force_scale, normal,
+                                None if normal is None else model.friction)
+        self.normal_springs = normal
+        self.u, self.slip = u0.copy(), model.slip0.copy()
+        self.base = [float(p @ self.u) for p in self.weights]
+        self.last = tuple(0.0 for _ in full)
         self.d: list[FloatArray] = []
         self.status: list[NDArray[np.int8]] = []
         self.slips: list[FloatArray] = []
@@ -284,6 +306,16 @@ class _Run:
         self.its: list[int] = []
         self.fields: list[FloatArray] = []
         self.wall = 0.0
+
+    def full_field(self, u: FloatArray, forces: tuple[float, ...]) -> FloatArray:
+        """Free-dof displacements of a state, mm."""
+        red = self.model.reduced
+        if red is None:
+            return u.copy()
+        f_i = red.clamp_interior.copy()
+        for f, p in zip(forces, self.interior, strict=True):
+            f_i = f_i + f * p
+        return red.expand(u, f_i)
 
     def advance(self, forces: FloatArray, first: int) -> None:
         """Apply the samples ``forces`` (k, loads), one increment each; raise
@@ -293,9 +325,10 @@ class _Run:
         with single_threaded_blas():
             for i, row in enumerate(forces):
                 new = tuple(float(x) for x in row)
-                step = load_increment(self.stepper, model.clamp_load, self.vectors, self.last,
+                step = load_increment(self.stepper, self.clamp, self.vectors, self.last,
                                       new, self.u, self.slip, model.newton.max_cuts)
-                why = (runaway_reason(model.normal, step.u, model.size) if step.converged
+                why = (runaway_reason(self.normal_springs, step.u, model.size)
+                       if step.converged
                        else f"did not converge in {model.newton.max_iterations} Newton "
                             f"iterations, even cut into {model.newton.max_cuts} sub-increments")
                 if why:
@@ -305,16 +338,17 @@ class _Run:
                 self.u, self.slip, self.last = step.u, step.slip, new
                 self.its.append(step.iterations)
                 self.d.append(np.array([float(p @ self.u) - b
-                                        for p, b in zip(self.vectors, self.base, strict=True)]))
+                                        for p, b in zip(self.weights, self.base, strict=True)])
+                              + self.coupling @ np.array(new))
                 status = np.where(step.response.slipping, SLIP, STICK).astype(np.int8)
-                if model.normal is not None:
-                    n = model.normal.forces(self.u)
+                if self.normal_springs is not None:
+                    n = self.normal_springs.forces(self.u)
                     status[n <= 0.0] = OPEN
                     self.normal.append(n)
                 self.status.append(status)
                 self.slips.append(self.slip.copy())
                 if self.record:
-                    self.fields.append(self.u.copy())
+                    self.fields.append(self.full_field(self.u, new))
         self.wall += time.perf_counter() - t0
 
     def displacements(self) -> FloatArray:
@@ -367,9 +401,8 @@ def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad],
         raise ParameterError("give at least one MeshLoad")
     loads = tuple(loads)
     history = SineCycles() if history is None else history
-    vectors = [model.unit_load(ld) for ld in loads]
     amps = np.array([ld.amplitude for ld in loads])
-    run = _Run(model, vectors, record)
+    run = _Run(model, loads, record)
     works: list[float] = []
     settled = True
     if isinstance(history, LoadFactors):
