@@ -149,13 +149,16 @@ def test_a_rotated_mesh_gives_the_same_answer() -> None:
     kw = {"contact_set": "bottom", "clamp_set": "top", "normal_force": 1000.0,
           "modulus": 70000.0, "poisson_ratio": 0.3, "friction": 0.3}
     a = solve_mesh(build_mesh_model(mesh, **kw), [MeshLoad("right", (1.0, 0.0, 0.0), 200.0)],
-                   SineCycles(increments=16))
+                   SineCycles(increments=16), record=True)
     b = solve_mesh(build_mesh_model(turned, **kw),
                    [MeshLoad("right", tuple(rot @ (1.0, 0.0, 0.0)), 200.0)],  # type: ignore
-                   SineCycles(increments=16))
+                   SineCycles(increments=16), record=True)
     assert a.dissipated_energy > 0
     assert b.dissipated_energy == pytest.approx(a.dissipated_energy, rel=1e-8)
     assert b.peak_displacement == pytest.approx(a.peak_displacement, rel=1e-8)
+    assert a.displacement is not None and b.displacement is not None
+    scale = float(np.max(np.abs(a.displacement)))
+    assert np.max(np.abs(b.displacement - a.displacement @ rot.T)) <= 1e-8 * scale
 
 
 def _cantilever(nx: int, ny: int, nz: int) -> HexMesh:
@@ -238,6 +241,12 @@ def test_loose_parts_and_quadratic_meshes_are_refused() -> None:
                   mesh.node_sets, source="two.inp")
     with pytest.raises(ParameterError, match="2 elements are not connected to the contact"):
         build_mesh_model(two, **_kw())  # type: ignore[arg-type]
+    flipped = mesh.elements.copy()
+    flipped[1] = flipped[1][[4, 5, 6, 7, 0, 1, 2, 3]]  # top and bottom swapped: inside out
+    bad = HexMesh(mesh.nodes, flipped, mesh.node_sets, source="bad.inp")
+    with pytest.raises(ParameterError, match=r"bad\.inp: element 2 \(1-based\) has a "
+                                             "non-positive Jacobian"):
+        build_mesh_model(bad, **_kw())  # type: ignore[arg-type]
     hex20 = HexMesh(np.zeros((20, 3)), np.arange(20)[None, :], {}, source="q.inp")
     with pytest.raises(ParameterError, match=r"q\.inp: the built-in solver takes 8-node"):
         build_mesh_model(hex20, **_kw())  # type: ignore[arg-type]

@@ -107,7 +107,9 @@ def hex8_b_matrices(coords: FloatArray) -> tuple[FloatArray, FloatArray, FloatAr
     jac = np.einsum("gia,eaj->egij", dn, coords)
     detj = np.linalg.det(jac)
     if np.any(detj <= 0.0):
-        raise ParameterError("an element has a non-positive Jacobian (inverted or degenerate)")
+        bad = int(np.flatnonzero(np.any(detj <= 0.0, axis=1))[0])
+        raise ParameterError(f"element {bad + 1} (1-based) has a non-positive Jacobian "
+                             "(inverted or degenerate; the nodes must follow the C3D8 order)")
     dndx = np.linalg.solve(jac, np.broadcast_to(dn, (coords.shape[0], *dn.shape)))
     return _strain_operator(dndx), detj, jac
 

@@ -41,7 +41,7 @@ from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..hexmesh import HEX_FACES, HexMesh, face_load
 from ..meshload import MeshLoad
 from .condense import Reduced, condense
-from .element import ELEMENTS, assemble_hex8
+from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
 from .linalg import Backend, make_backend
 from .mesh import mesh_from_spec
 from .model import NewtonOptions
@@ -127,6 +127,9 @@ def _plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float
         raise ParameterError(f"{mesh.source}: set {name!r} has a degenerate face")
     out = -inward / length[:, None]
     n = out.sum(axis=0)
+    if not np.linalg.norm(n) > 0.5 * len(out):
+        raise ParameterError(f"{mesh.source}: set {name!r} is not flat (its faces face "
+                             "opposite ways); the built-in solver needs one flat face")
     n /= np.linalg.norm(n)
     angle = float(np.max(np.linalg.norm(out - n, axis=1)))
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
@@ -430,6 +433,10 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     k_n = check_positive("normal_slope", normal_slope, "N/mm^3")
     newton = NewtonOptions() if newton is None else newton
 
+    try:
+        hex8_b_matrices(mesh.nodes[mesh.elements])
+    except ParameterError as exc:
+        raise ParameterError(f"{mesh.source}: {exc}") from None
     contact_faces = set_faces(mesh, contact_set)
     _boundary_faces(mesh, contact_faces, contact_set)
     outward, offset = _plane(mesh, contact_faces, contact_set)

@@ -330,7 +330,8 @@ class _Run:
                 why = (runaway_reason(self.normal_springs, step.u, model.size)
                        if step.converged
                        else f"did not converge in {model.newton.max_iterations} Newton "
-                            f"iterations, even cut into {model.newton.max_cuts} sub-increments")
+                            f"iterations, even cut into {model.newton.max_cuts} sub-increments "
+                            "(are the loads, or their moment, more than the friction holds?)")
                 if why:
                     loads = ", ".join(f"{f:g}" for f in new)
                     raise NonConvergenceError(
