@@ -246,6 +246,24 @@ class MeshRunResult:
     displacement: FloatArray | None = None
 
     @property
+    def converged(self) -> bool:
+        """Always True: every increment converged (a failed one raises
+        :class:`~microslip.fe.errors.NonConvergenceError` instead of returning a partial
+        result)."""
+        return True
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What makes the figures doubtful: W per cycle not settled, gross sliding."""
+        out = []
+        if not self.settled:
+            out.append(f"W per cycle did not settle in {self.cycles} cycles: "
+                       f"{self.work_per_cycle.tolist()} N·mm")
+        if self.gross_sliding:
+            out.append(gross_sliding_message(self.contact) or "gross sliding")
+        return tuple(out)
+
+    @property
     def cycles(self) -> int:
         """Cycles run."""
         return int(self.work_per_cycle.size)
@@ -262,7 +280,8 @@ class MeshRunResult:
                 "loads": [ld.summary() for ld in self.loads],
                 "cycles": self.cycles, "work_per_cycle_Nmm": self.work_per_cycle.tolist(),
                 "settled": self.settled, "gross_sliding": self.gross_sliding,
-                "dof": self.dof, "wall_s": self.wall_s, "message": self.message}
+                "dof": self.dof, "wall_s": self.wall_s, "warnings": list(self.warnings),
+                "message": self.message}
 
 
 class _Run:
