@@ -7,6 +7,8 @@ lambda A_i, normal forces N_i from the clamping step (or a unilateral penalty th
 the load: :mod:`.normal`), a clamping pressure law (:mod:`.clamping`), radial return with its
 consistent tangent, semi-smooth Newton with a backtracking line search and LAPACK banded
 Cholesky. Mesh levels take their element counts from the geometry (:func:`level_counts`).
+The same physics on the engineer's own hexahedral mesh: :func:`build_mesh_model` and
+:func:`solve_mesh` (:mod:`.meshmodel`, :mod:`.meshrun`, :mod:`.condense`).
 See ``docs/solver.md`` for the formulation, the verification and the coupled-versus-
 decoupled study. Units: N, mm, MPa, N·mm, s.
 
@@ -32,6 +34,8 @@ from .details import (
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
 from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
+from .meshmodel import MeshModel, box_hexmesh, build_mesh_model
+from .meshrun import LoadFactors, MeshLoadResult, MeshRunResult, SineCycles, solve_mesh
 from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .solve import (
     CENTRE_DIRECTIONS,
@@ -71,16 +75,23 @@ __all__ = [
     "FrictionModel",
     "FrictionResponse",
     "History",
+    "LoadFactors",
     "LoadPathResult",
+    "MeshLoadResult",
+    "MeshModel",
+    "MeshRunResult",
     "NewtonOptions",
     "PenaltyNormal",
     "Simulation",
+    "SineCycles",
     "SolverStats",
     "amplitudes_for_ratio",
     "as_load_path",
     "assemble_stiffness",
     "available_linear_solvers",
+    "box_hexmesh",
     "box_mesh",
+    "build_mesh_model",
     "build_model",
     "clamp_forces",
     "clamping_pressure",
@@ -95,5 +106,6 @@ __all__ = [
     "return_map",
     "run_history",
     "solve_load_path",
+    "solve_mesh",
     "solve_uniaxial",
 ]

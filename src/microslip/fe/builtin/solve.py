@@ -25,6 +25,7 @@ default), and a backtracking line search on |r| guards the step. Units: N, mm, M
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -49,10 +50,14 @@ __all__ = [
     "CENTRE_DIRECTIONS",
     "FrictionModel",
     "History",
+    "Increment",
     "NewtonOptions",
     "Simulation",
     "build_model",
+    "clamping_step",
+    "load_increment",
     "run_history",
+    "runaway_reason",
     "single_threaded_blas",
 ]
 
@@ -152,33 +157,9 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
         "centre-transverse": _unit_load(box, "mid", 1, index, free.size),
     }
 
-    # Clamping step. The first pass has no friction limit (all nodes stick); N_i are the
-    # z-reactions. If a node's stick force then exceeds mu N_i, the step is solved again with
-    # the limits mu N_i until the normal forces stop changing (they depend on the slip).
-    limit = np.full(bottom.size, np.inf)
-    normal = np.zeros(bottom.size)
-    iters = 0
-    for attempt in range(20):
-        with single_threaded_blas():
-            ok, it, u, resp = _Stepper(k_ff, backend, cdofs, kc, limit, newton,
-                                       params.macroslip_force, springs).solve(
-                np.zeros(free.size), np.zeros((bottom.size, 2)), clamp)
-        iters += it
-        if not ok:
-            raise MacroslipError("the clamping step did not converge")
-        new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
-        if np.any(new_normal <= 0.0):
-            raise ParameterError("the clamping step gave a non-positive normal force at a "
-                                 "contact node; refine the mesh through the thickness")
-        change = float(np.max(np.abs(new_normal - normal)))
-        normal = new_normal
-        limit_new = params.friction * normal
-        admissible = bool(np.all(np.hypot(*resp.force.T) <= limit_new))
-        limit = limit_new
-        if (attempt == 0 and admissible) or change <= 1e-12 * params.normal_force:
-            break
-    else:
-        raise MacroslipError("the normal forces of the clamping step did not settle")
+    normal, limit, u, resp, iters = clamping_step(
+        k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, params.friction,
+        params.normal_force)
     slip = resp.slip
     return FrictionModel(
         params=params, mesh=box, element=element, stick_slope=lam,
@@ -188,6 +169,62 @@ def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float
         clamp_load=clamp, u0=u, slip0=slip, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton,
     )
+
+
+def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
+                  cdofs: IntArray, kc: FloatArray, springs: PenaltyNormal | None,
+                  clamp: FloatArray, newton: NewtonOptions, friction: float,
+                  normal_force: float, clamp_fixed: FloatArray | None = None
+                  ) -> tuple[FloatArray, FloatArray, FloatArray, FrictionResponse, int]:
+    """Solve the clamping step of a body on its rigid base (any mesh).
+
+    The first pass has no friction limit (all nodes stick); N_i are the normal reactions
+    (``k_rf @ u`` minus the clamping load ``clamp_fixed`` on the held normal dofs, if any; the
+    penalty forces with ``springs``). If a node's stick force then exceeds mu N_i, the step is
+    solved again with the limits mu N_i until the normal forces stop changing (they depend on
+    the slip).
+
+    Returns
+    -------
+    normal : ndarray, shape (n_c,)
+        N_i, N.
+    limit : ndarray, shape (n_c,)
+        mu N_i, N.
+    u : ndarray
+        Free-dof displacements after clamping, mm.
+    resp : FrictionResponse
+        The contact response of the last pass (its ``slip`` is the slip after clamping).
+    iterations : int
+        Newton iterations of all passes.
+    """
+    n_c = cdofs.shape[0]
+    limit = np.full(n_c, np.inf)
+    normal = np.zeros(n_c)
+    iters = 0
+    for attempt in range(20):
+        with single_threaded_blas():
+            ok, it, u, resp = _Stepper(k_ff, backend, cdofs, kc, limit, newton,
+                                       friction * normal_force, springs).solve(
+                np.zeros(k_ff.shape[0]), np.zeros((n_c, 2)), clamp)
+        iters += it
+        if not ok:
+            raise MacroslipError("the clamping step did not converge")
+        new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
+        if springs is None and clamp_fixed is not None:
+            new_normal = new_normal - clamp_fixed
+        if np.any(new_normal <= 0.0):
+            raise ParameterError("the clamping step gave a non-positive normal force at a "
+                                 "contact node; refine the mesh through the thickness")
+        change = float(np.max(np.abs(new_normal - normal)))
+        normal = new_normal
+        limit_new = friction * normal
+        admissible = bool(np.all(np.hypot(*resp.force.T) <= limit_new))
+        limit = limit_new
+        if (attempt == 0 and admissible) or change <= 1e-12 * normal_force:
+            break
+    else:
+        raise MacroslipError("the normal forces of the clamping step did not settle")
+    return normal, limit, u, resp, iters
 
 
 class _Stepper:
@@ -302,6 +339,61 @@ class _Stepper:
 
 
 @dataclass(frozen=True, eq=False)
+class Increment:
+    """The outcome of :func:`load_increment`: converged, Newton iterations (of every
+    sub-increment), friction work (N·mm), the last contact response and the new state."""
+
+    converged: bool
+    iterations: int
+    work: float
+    response: FrictionResponse
+    u: FloatArray
+    slip: FloatArray
+
+
+def load_increment(stepper: _Stepper, clamp: FloatArray, vectors: Sequence[FloatArray],
+                   old: Sequence[float], new: Sequence[float], u0: FloatArray,
+                   s0: FloatArray, max_cuts: int) -> Increment:
+    """One increment of the loads ``f = clamp + sum_j F_j p_j`` from the forces ``old`` to
+    ``new`` (N, one per unit load vector p_j), from the state ``(u0, s0)``.
+
+    If Newton fails, the straight load segment is cut into 2, 4, ... ``max_cuts`` equal
+    sub-increments, each time from ``(u0, s0)`` again.
+    """
+    cuts = 1
+    total_its = 0
+    while True:
+        u, slip, work, ok, resp = u0, s0, 0.0, True, None
+        for k in range(1, cuts + 1):
+            a = k / cuts
+            f = clamp
+            for f0, f1, p in zip(old, new, vectors, strict=True):
+                f = f + (f0 + a * (f1 - f0)) * p
+            ok, it, u_new, resp = stepper.solve(u, slip, f)
+            total_its += it
+            if not ok:
+                break
+            work += friction_dissipation(resp.force, slip, resp.slip)
+            u, slip = u_new, resp.slip
+        if ok and resp is not None:
+            return Increment(True, total_its, work, resp, u, slip)
+        cuts *= 2
+        if cuts > max_cuts:
+            assert resp is not None
+            return Increment(False, total_its, 0.0, resp, u0, s0)
+
+
+def runaway_reason(normal: PenaltyNormal | None, u: FloatArray, size: float) -> str | None:
+    """Why the state ``u`` is no static equilibrium, or None: with unilateral normal contact
+    (``normal``) a body whose load moment exceeds the clamping's tips over, and the
+    displacements run away (here: beyond 1 % of ``size``, the body's largest size, mm)."""
+    if normal is None or float(np.max(np.abs(u))) <= 0.01 * size:
+        return None
+    return ("has no static equilibrium: the displacements exceed 1 % of the body's size "
+            "(the block tips over on its unilateral contact)")
+
+
+@dataclass(frozen=True, eq=False)
 class History:
     """Raw response to a sampled load history (one row per load sample).
 
@@ -377,44 +469,21 @@ class Simulation:
         self.last_force = (0.0, 0.0)
 
     def _increment(self, ft: float, fc: float) -> tuple[bool, int, float, FrictionResponse]:
-        """One increment to (ft, fc); if Newton fails, the straight load segment from the last
-        state is cut into 2, 4, ... ``max_cuts`` equal sub-increments (state restored first).
-        Returns (converged, iterations, friction work, last response)."""
-        model = self.model
-        u0, s0 = self.u, self.slip
-        ft0, fc0 = self.last_force
-        cuts = 1
-        total_its = 0
-        while True:
-            u, slip, work, ok, resp = u0, s0, 0.0, True, None
-            for k in range(1, cuts + 1):
-                a = k / cuts
-                f = (model.clamp_load + (ft0 + a * (ft - ft0)) * self.p_tip
-                     + (fc0 + a * (fc - fc0)) * self.p_cen)
-                ok, it, u_new, resp = self.stepper.solve(u, slip, f)
-                total_its += it
-                if not ok:
-                    break
-                work += friction_dissipation(resp.force, slip, resp.slip)
-                u, slip = u_new, resp.slip
-            if ok and resp is not None:
-                self.u, self.slip, self.last_force = u, slip, (ft, fc)
-                return True, total_its, work, resp
-            cuts *= 2
-            if cuts > model.newton.max_cuts:
-                assert resp is not None
-                return False, total_its, 0.0, resp
+        """One increment to (ft, fc) (:func:`load_increment`). Returns (converged,
+        iterations, friction work, last response)."""
+        step = load_increment(self.stepper, self.model.clamp_load, (self.p_tip, self.p_cen),
+                              self.last_force, (ft, fc), self.u, self.slip,
+                              self.model.newton.max_cuts)
+        if step.converged:
+            self.u, self.slip, self.last_force = step.u, step.slip, (ft, fc)
+        return step.converged, step.iterations, step.work, step.response
 
     def _runaway(self) -> str | None:
         """Why the state just reached is no static equilibrium, or None. With unilateral
         normal contact a block whose load moment exceeds the clamping's tips over: the
         displacements then run away (here: beyond 1 % of the body's largest size)."""
         p = self.model.params
-        size = max(p.length, p.width, p.thickness)
-        if self.model.normal is None or float(np.max(np.abs(self.u))) <= 0.01 * size:
-            return None
-        return ("has no static equilibrium: the displacements exceed 1 % of the body's size "
-                "(the block tips over on its unilateral contact)")
+        return runaway_reason(self.model.normal, self.u, max(p.length, p.width, p.thickness))
 
     def advance(self, f_tip: Any, f_centre: Any, *, record: bool = False) -> History:
         """Apply the next samples of the force history (one increment each).

@@ -1,0 +1,523 @@
+"""The frictional finite-element model on the user's own hexahedral mesh (issue 22).
+
+The same physics as the built-in box (:mod:`.solve`), on any :class:`~microslip.fe.hexmesh.HexMesh`
+of 8-node hexahedra:
+
+* the elastic body (C3D8I or C3D8, :func:`~microslip.fe.builtin.element.assemble_hex8`);
+* a flat *contact* set on a rigid base: its nodes carry the circular Coulomb friction of
+  :mod:`.contact` with the stick stiffness k_i = lambda A_i, A_i the node's share of the
+  contact faces' area (the consistent nodal shares of a uniform traction, as the box's
+  tributary areas); the normal contact is ``fixed`` (u_n = 0 held, N_i the normal reactions
+  of the clamping step) or ``penalty`` (N_i = k_n A_i max(0, -u_n), lift-off allowed),
+  exactly as :mod:`.normal`;
+* the *clamping step* first: a uniform pressure F_N / A_clamp on the clamp set's faces
+  (consistent nodal forces, :func:`~microslip.fe.hexmesh.face_load`), with the friction
+  active from zero slip (:func:`~microslip.fe.builtin.solve.clamping_step`).
+
+The body is solved in the contact plane's frame: the mesh is rotated so that the contact
+face's outward normal is -z (no rotation when it already is), so that every contact node has
+its tangential dofs x, y and its normal dof z, as in the box. Nodes are renumbered by reverse
+Cuthill-McKee when that narrows the band (LAPACK banded Cholesky, :mod:`.linalg`); a mesh
+whose band stays wide is factorised by SuperLU. The tangential loading is :mod:`.meshrun`.
+Units: N, mm, MPa.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
+
+from ...blas import single_threaded_blas
+from ...errors import ParameterError
+from ...params import ClampParams, check_positive
+from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..hexmesh import HEX_FACES, HexMesh, face_load
+from ..meshload import MeshLoad
+from .condense import Reduced, condense
+from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
+from .linalg import Backend, make_backend
+from .mesh import mesh_from_spec
+from .model import NewtonOptions
+from .normal import PenaltyNormal, check_normal_contact
+from .solve import clamping_step
+
+__all__ = [
+    "AUTO_BAND_LIMIT",
+    "CONDENSE_MIN_DOF",
+    "MESH_LINEAR_SOLVERS",
+    "MeshModel",
+    "box_hexmesh",
+    "build_mesh_model",
+    "set_faces",
+]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: ``auto`` takes the banded Cholesky while the half-bandwidth (dofs) is at most this.
+AUTO_BAND_LIMIT = 1200
+#: ``condensed=None`` condenses the body onto the contact from this many free dofs on.
+CONDENSE_MIN_DOF = 1000
+#: Linear solvers of the own-mesh model: ``auto`` (banded or splu by the band) and those of
+#: :data:`~microslip.fe.builtin.linalg.LINEAR_SOLVERS`.
+MESH_LINEAR_SOLVERS = ("auto", "banded", "splu", "cholmod")
+#: Largest angle (rad) between the face normals of a set that counts as flat.
+FLAT_TOL = 1e-6
+
+
+def box_hexmesh(params: ClampParams, mesh: Any = "coarse") -> HexMesh:
+    """The built-in box (:func:`~microslip.fe.builtin.mesh.mesh_from_spec`) as a
+    :class:`~microslip.fe.hexmesh.HexMesh`, same nodes and elements, with the node sets
+    ``contact`` (bottom face z = 0), ``clamp`` (top face z = t), ``tip`` (end face x = L) and
+    ``centre`` (the mid-length section x = L/2, inside the body; nx must be even).
+
+    >>> from microslip import preset
+    >>> m = box_hexmesh(preset("table1"), (8, 2, 1))
+    >>> m.set_names(), len(m.faces("contact")), len(m.faces("centre"))
+    (('centre', 'clamp', 'contact', 'tip'), 16, 4)
+    """
+    box = mesh_from_spec(params, mesh)
+    sets = {"contact": box.face_nodes("bottom"), "clamp": box.face_nodes("top"),
+            "tip": box.face_nodes("end"), "centre": box.face_nodes("mid")}
+    return HexMesh(box.nodes, box.elements, sets, source="box")
+
+
+def set_faces(mesh: HexMesh, name: str) -> IntArray:
+    """The element faces (element, face) of a set, each geometric face once.
+
+    A set on a section inside the body (the box's ``centre``) holds the faces of the elements
+    on both sides of it; the first of the two is kept, so the section's area counts once.
+    """
+    faces = mesh.faces(name)
+    if faces.size == 0:
+        raise ParameterError(f"{mesh.source}: set {name!r} holds no element face (a face needs "
+                             "all its corner nodes in the set)")
+    keys = np.sort(mesh.face_corners(faces), axis=1)
+    _, first = np.unique(keys, axis=0, return_index=True)
+    return faces[np.sort(first)]
+
+
+def _boundary_faces(mesh: HexMesh, faces: IntArray, name: str) -> None:
+    """Refuse a set whose faces are shared by two elements (not on the boundary)."""
+    table = np.asarray(HEX_FACES, dtype=np.int64)
+    every = np.sort(mesh.elements[:, :8][:, table].reshape(-1, 4), axis=1)
+    mine = np.sort(mesh.face_corners(faces), axis=1)
+    _, which = np.unique(np.concatenate([every, mine]), axis=0, return_inverse=True)
+    which = which.ravel()
+    count = np.bincount(which[:len(every)], minlength=int(which.max()) + 1)
+    inner = int(np.count_nonzero(count[which[len(every):]] > 1))
+    if inner:
+        raise ParameterError(f"{mesh.source}: set {name!r} is not on the boundary: {inner} of "
+                             f"its {len(faces)} faces lie between two elements")
+
+
+def _plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float]:
+    """Outward unit normal of a flat set of faces and the plane's offset n . x (mm)."""
+    x = mesh.nodes[mesh.face_corners(faces)]  # (k, 4, 3)
+    inward = np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
+    length = np.linalg.norm(inward, axis=1)
+    if np.any(length <= 0.0):
+        raise ParameterError(f"{mesh.source}: set {name!r} has a degenerate face")
+    out = -inward / length[:, None]
+    n = out.sum(axis=0)
+    if not np.linalg.norm(n) > 0.5 * len(out):
+        raise ParameterError(f"{mesh.source}: set {name!r} is not flat (its faces face "
+                             "opposite ways); the built-in solver needs one flat face")
+    n /= np.linalg.norm(n)
+    angle = float(np.max(np.linalg.norm(out - n, axis=1)))
+    size = float(np.max(np.ptp(mesh.nodes, axis=0)))
+    offset = float(np.mean(x.reshape(-1, 3) @ n))
+    gap = float(np.max(np.abs(x.reshape(-1, 3) @ n - offset)))
+    if angle > FLAT_TOL or gap > FLAT_TOL * size:
+        raise ParameterError(
+            f"{mesh.source}: set {name!r} is not flat (its face normals differ by up to "
+            f"{math.degrees(2 * math.asin(min(angle / 2, 1.0))):.3g} deg, its nodes lie up to "
+            f"{gap:.3g} mm off one plane); the built-in solver needs one flat face")
+    return n, offset
+
+
+def _rotation(outward: FloatArray) -> FloatArray:
+    """R with R @ outward = (0, 0, -1): rows e1, e2 (in the plane) and e3 = -outward. The
+    identity when the normal already is -z."""
+    e3 = -outward
+    if np.allclose(e3, (0.0, 0.0, 1.0), rtol=0.0, atol=1e-12):
+        return np.eye(3)
+    ref = np.eye(3)[int(np.argmin(np.abs(e3)))]
+    e1 = ref - (ref @ e3) * e3
+    e1 /= np.linalg.norm(e1)
+    return np.stack([e1, np.cross(e3, e1), e3])
+
+
+def _numbering(elements: IntArray, contact: IntArray) -> IntArray:
+    """The order of the used nodes: as given, or reverse Cuthill-McKee when that narrows the
+    band by a third or more; then reversed if that moves the first contact node back by a
+    tenth of the nodes or more (the contact last: the banded factor's leading block, which the
+    contact's changes leave alone, grows, and so does the part of K_ii^-1 K_ic that is zero
+    in the condensation). ``order[k]`` is the mesh node of internal node k."""
+    order = _band_order(elements)
+    at = np.flatnonzero(np.isin(order, contact))
+    if at.size and (order.size - 1 - int(at[-1])) - int(at[0]) >= order.size // 10:
+        return order[::-1].copy()
+    return order
+
+
+def _band_order(elements: IntArray) -> IntArray:
+    used = np.unique(elements)
+    local = np.searchsorted(used, elements)
+    width = int(np.max(local.max(axis=1) - local.min(axis=1)))
+    rows = np.repeat(local, local.shape[1], axis=1).ravel()
+    cols = np.tile(local, (1, local.shape[1])).ravel()
+    graph = sp.coo_matrix((np.ones(rows.size), (rows, cols)),
+                          shape=(used.size, used.size)).tocsr()
+    perm = np.asarray(reverse_cuthill_mckee(graph, symmetric_mode=True), dtype=np.int64)
+    inv = np.empty_like(perm)
+    inv[perm] = np.arange(perm.size)
+    renum = inv[local]
+    if int(np.max(renum.max(axis=1) - renum.min(axis=1))) <= 2 * width // 3:
+        return used[perm]
+    return used
+
+
+@dataclass(frozen=True, eq=False)
+class MeshModel:
+    """A clamped body of the user's mesh after the clamping step, ready for tangential loads.
+
+    Attributes
+    ----------
+    mesh : HexMesh
+    contact_set, clamp_set : str
+    element : str
+    modulus, poisson_ratio : float
+        E (MPa) and nu.
+    friction : float
+        mu.
+    clamp_force : float
+        F_N, N.
+    stick_slope : float
+        lambda, N/mm^3.
+    normal : PenaltyNormal or None
+        ``penalty`` normal contact; None: ``fixed``.
+    rotation : ndarray, shape (3, 3)
+        Rows: the contact plane's axes e1, e2 and its inward normal e3 (global components);
+        the model's frame is ``R @ x``.
+    order : ndarray of int, shape (n_used,)
+        Mesh node of each model node (the solver's numbering).
+    index : ndarray of int, shape (3 n_used,)
+        Free-dof position of each model dof (3 node + component, model frame), -1 if held.
+    free : ndarray of int
+        Model dofs that are unknowns.
+    stiffness : scipy.sparse.csr_matrix
+        K of the free dofs, N/mm.
+    contact_nodes : ndarray of int, shape (n_c,)
+        Mesh nodes of the contact set.
+    contact_dofs : ndarray of int, shape (n_c, 2)
+        Free-dof positions of their e1 and e2 dofs.
+    contact_area : ndarray, shape (n_c,)
+        A_i, mm^2 (sum: the contact faces' area).
+    contact_stiffness : ndarray, shape (n_c,)
+        lambda A_i, N/mm.
+    normal_force : ndarray, shape (n_c,)
+        N_i after the clamping step, N.
+    friction_limit : ndarray, shape (n_c,)
+        mu N_i, N.
+    clamp_load : ndarray
+        Nodal forces of the clamping pressure on the free dofs, N.
+    u0, slip0 : ndarray
+        Free-dof displacements (mm) and contact slips (n_c, 2; mm) after clamping.
+    size : float
+        Largest extent of the mesh, mm.
+    reduced : Reduced or None
+        The body condensed onto the contact dofs (:mod:`.condense`), which the tangential
+        loading then steps; None: the loading steps every free dof.
+    """
+
+    mesh: HexMesh
+    contact_set: str
+    clamp_set: str
+    element: str
+    modulus: float
+    poisson_ratio: float
+    friction: float
+    clamp_force: float
+    stick_slope: float
+    normal: PenaltyNormal | None
+    rotation: FloatArray = field(repr=False)
+    order: IntArray = field(repr=False)
+    index: IntArray = field(repr=False)
+    free: IntArray = field(repr=False)
+    stiffness: sp.csr_matrix = field(repr=False)
+    contact_nodes: IntArray = field(repr=False)
+    contact_dofs: IntArray = field(repr=False)
+    contact_area: FloatArray = field(repr=False)
+    contact_stiffness: FloatArray = field(repr=False)
+    normal_force: FloatArray = field(repr=False)
+    friction_limit: FloatArray = field(repr=False)
+    clamp_load: FloatArray = field(repr=False)
+    u0: FloatArray = field(repr=False)
+    slip0: FloatArray = field(repr=False)
+    size: float
+    clamp_iterations: int
+    backend: Backend = field(repr=False)
+    setup_s: float
+    newton: NewtonOptions
+    reduced: Reduced | None = field(default=None, repr=False)
+
+    @property
+    def dof(self) -> int:
+        """Number of unknowns (free dofs)."""
+        return int(self.free.size)
+
+    @property
+    def normal_contact(self) -> str:
+        """``fixed`` or ``penalty``."""
+        return "fixed" if self.normal is None else "penalty"
+
+    @property
+    def force_scale(self) -> float:
+        """mu F_N, N: the largest tangential force the interface carries; the scale of the
+        residual tolerance."""
+        return self.friction * self.clamp_force
+
+    def model_nodes(self, nodes: IntArray) -> IntArray:
+        """Model node numbers of mesh nodes."""
+        inv = np.full(len(self.mesh.nodes), -1, dtype=np.int64)
+        inv[self.order] = np.arange(self.order.size)
+        out = inv[nodes]
+        if np.any(out < 0):
+            raise ParameterError(f"{self.mesh.source}: a set holds nodes of no element")
+        return out
+
+    def unit_load(self, load: MeshLoad) -> FloatArray:
+        """Nodal forces on the free dofs of a uniform traction of total 1 N over the load's
+        set along its direction (consistent shares); also the weights of its work-conjugate
+        displacement (force-weighted mean of the set's displacements along the direction)."""
+        nodes, share, _ = face_load(self.mesh, set_faces(self.mesh, load.set))
+        d = self.rotation @ np.asarray(load.direction, dtype=float)
+        out = np.zeros(self.free.size)
+        base = 3 * self.model_nodes(nodes)
+        for c in range(3):
+            pos = self.index[base + c]
+            held = pos < 0
+            out[pos[~held]] = share[~held] * d[c]
+        return out
+
+    def global_vectors(self, u: FloatArray) -> FloatArray:
+        """Free-dof displacements (..., dof) as mesh-node vectors (..., n_nodes, 3), global
+        frame, mm (held dofs and nodes of no element: 0)."""
+        u = np.asarray(u, dtype=float)
+        full = np.zeros((*u.shape[:-1], self.index.size))
+        full[..., self.free] = u
+        local = full.reshape(*u.shape[:-1], self.order.size, 3)
+        out = np.zeros((*u.shape[:-1], len(self.mesh.nodes), 3))
+        out[..., self.order, :] = local @ self.rotation
+        return out
+
+    def describe(self) -> dict[str, Any]:
+        """Plain summary for reports."""
+        return {"source": self.mesh.source, "nodes": len(self.mesh.nodes),
+                "elements": len(self.mesh.elements), "element": self.element,
+                "dof": self.dof, "contact_nodes": int(self.contact_nodes.size),
+                "contact_area_mm2": float(self.contact_area.sum()),
+                "normal_contact": self.normal_contact,
+                "linear_solver": self.backend.name if self.reduced is None
+                else f"condensed ({self.reduced.keep.size} contact dofs)"}
+
+
+def _poisson(nu: Any) -> float:
+    try:
+        x = float(nu)
+    except (TypeError, ValueError):
+        x = math.nan
+    if not (math.isfinite(x) and -1.0 < x < 0.5):
+        raise ParameterError(f"poisson_ratio must be in (-1, 0.5), got {nu!r}")
+    return x
+
+
+def _backend(name: str, k_ff: sp.csr_matrix, cdofs: IntArray, kc: FloatArray,
+             kn: FloatArray | None) -> Backend:
+    if name not in MESH_LINEAR_SOLVERS:
+        raise ParameterError(f"unknown linear solver {name!r}; choose one of "
+                             f"{', '.join(MESH_LINEAR_SOLVERS)}")
+    if name == "auto":
+        coo = sp.tril(k_ff, format="coo")
+        kd = int(np.max(coo.row - coo.col)) if coo.nnz else 0
+        name = "banded" if kd <= AUTO_BAND_LIMIT else "splu"
+    backend = make_backend(name, k_ff, cdofs[:, 0], cdofs[:, 1], kc, kn)
+    if name != "banded":  # the banded backend factorised the all-stick tangent already
+        d = [kc, np.zeros_like(kc), kc] + ([] if kn is None else [kn])
+        try:
+            backend.factor(np.stack(d, axis=1))
+        except RuntimeError:
+            raise ParameterError("the stiffness is singular with every contact node stuck: "
+                                 "the contact does not hold the body") from None
+    return backend
+
+
+def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
+                     modulus: float, poisson_ratio: float, friction: float,
+                     stick_slope: float = DEFAULT_STICK_SLOPE, normal_contact: str = "fixed",
+                     normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str = "C3D8I",
+                     linear_solver: str = "auto", newton: NewtonOptions | None = None,
+                     condensed: bool | None = None) -> MeshModel:
+    """Assemble the body of a mesh on its rigid base and solve the clamping step.
+
+    Parameters
+    ----------
+    mesh : HexMesh
+        8-node hexahedra, mm.
+    contact_set : str
+        The flat face on the rigid base (a node set or surface of ``mesh``).
+    clamp_set : str
+        The flat face that carries the clamping pressure.
+    normal_force : float
+        F_N, N: the clamping pressure is F_N over the clamp faces' area.
+    modulus : float
+        E, MPa.
+    poisson_ratio : float
+        nu, in (-1, 0.5).
+    friction : float
+        mu.
+    stick_slope : float
+        lambda, N/mm^3.
+    normal_contact : {"fixed", "penalty"}
+    normal_slope : float
+        k_n, N/mm^3 (``penalty``).
+    element : {"C3D8I", "C3D8"}
+    linear_solver : {"auto", "banded", "splu", "cholmod"}
+        ``auto``: banded Cholesky while the half-bandwidth is at most
+        :data:`AUTO_BAND_LIMIT` dofs, SuperLU beyond.
+    newton : NewtonOptions, optional
+    condensed : bool, optional
+        Step the tangential loading on the body condensed onto its contact dofs
+        (:mod:`.condense`; the same answer to rounding, much faster when the contact is a
+        small part of the body). Default: when the model has at least
+        :data:`CONDENSE_MIN_DOF` free dofs and the contact at most a quarter of them.
+
+    Returns
+    -------
+    MeshModel
+
+    Examples
+    --------
+    >>> from microslip import preset
+    >>> p = preset("table1")
+    >>> m = build_mesh_model(box_hexmesh(p, (8, 2, 1)), contact_set="contact",
+    ...                      clamp_set="clamp", normal_force=445.0, modulus=p.modulus,
+    ...                      poisson_ratio=p.poisson_ratio, friction=p.friction)
+    >>> m.dof, round(float(m.normal_force.sum()), 6)
+    (135, 445.0)
+    """
+    t0 = time.perf_counter()
+    if not isinstance(mesh, HexMesh):
+        raise ParameterError(f"mesh must be a HexMesh, got {type(mesh).__name__}")
+    if mesh.nodes_per_element != 8:
+        raise ParameterError(f"{mesh.source}: the built-in solver takes 8-node hexahedra; "
+                             "this mesh has 20-node ones (use --solver calculix, or export "
+                             "linear hexahedra)")
+    if element not in ELEMENTS:
+        raise ParameterError(f"unknown element {element!r}; choose one of "
+                             f"{', '.join(ELEMENTS)}")
+    f_n = check_positive("normal_force", normal_force, "N")
+    e_mod = check_positive("modulus", modulus, "MPa")
+    nu = _poisson(poisson_ratio)
+    mu = check_positive("friction", friction)
+    lam = check_positive("stick_slope", stick_slope, "N/mm^3")
+    penalty = check_normal_contact(normal_contact) == "penalty"
+    k_n = check_positive("normal_slope", normal_slope, "N/mm^3")
+    newton = NewtonOptions() if newton is None else newton
+
+    try:
+        hex8_b_matrices(mesh.nodes[mesh.elements])
+    except ParameterError as exc:
+        raise ParameterError(f"{mesh.source}: {exc}") from None
+    contact_faces = set_faces(mesh, contact_set)
+    _boundary_faces(mesh, contact_faces, contact_set)
+    outward, offset = _plane(mesh, contact_faces, contact_set)
+    clamp_faces = set_faces(mesh, clamp_set)
+    clamp_out, _ = _plane(mesh, clamp_faces, clamp_set)
+    size = float(np.max(np.ptp(mesh.nodes, axis=0)))
+    order = _numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
+    if float(np.max(mesh.nodes[order] @ outward - offset)) > FLAT_TOL * size:
+        raise ParameterError(f"{mesh.source}: the body reaches through the plane of its "
+                             f"contact set {contact_set!r}: the rigid base would cut it")
+    inv = np.full(len(mesh.nodes), -1, dtype=np.int64)
+    inv[order] = np.arange(order.size)
+    elements = inv[mesh.elements]
+    _connected(mesh, elements, order.size, contact_faces, contact_set)
+    rotation = _rotation(outward)
+    nodes = mesh.nodes[order]
+    if not np.array_equal(rotation, np.eye(3)):
+        nodes = nodes @ rotation.T
+    k_all = assemble_hex8(nodes, elements, e_mod, nu, element)
+
+    c_mesh, c_share, c_area = face_load(mesh, contact_faces)
+    c_model = inv[c_mesh]
+    sort = np.argsort(c_model)
+    contact_nodes, contact = c_mesh[sort], c_model[sort]
+    area = c_share[sort] * c_area
+    n_all = 3 * order.size
+    held = 3 * contact + 2
+    mask = np.ones(n_all, dtype=bool)
+    if not penalty:
+        mask[held] = False
+    free = np.flatnonzero(mask).astype(np.int64)
+    index = np.full(n_all, -1, dtype=np.int64)
+    index[free] = np.arange(free.size)
+    k_ff = k_all[free][:, free].tocsr()
+    k_rf = k_all[held][:, free].tocsr()
+    cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
+    kc = lam * area
+    springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
+    with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
+        backend = _backend(linear_solver, k_ff, cdofs, kc,
+                           None if springs is None else springs.stiffness)
+
+    # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
+    k_mesh, k_share, _ = face_load(mesh, clamp_faces)
+    push = -(rotation @ clamp_out)
+    full = np.zeros(n_all)
+    base = 3 * inv[k_mesh]
+    for c in range(3):
+        full[base + c] = f_n * k_share * push[c]
+    clamp = full[free]
+    clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+    normal, limit, u, resp, iters = clamping_step(
+        k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+    n_keep = contact.size * (3 if penalty else 2)
+    if condensed is None:
+        condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
+    with single_threaded_blas():
+        reduced = (condense(k_ff, cdofs, springs, clamp, u, AUTO_BAND_LIMIT) if condensed
+                   else None)
+    return MeshModel(
+        mesh=mesh, contact_set=contact_set, clamp_set=clamp_set, element=element,
+        modulus=e_mod, poisson_ratio=nu, friction=mu, clamp_force=f_n, stick_slope=lam,
+        normal=springs, rotation=rotation, order=order, index=index, free=free,
+        stiffness=k_ff, contact_nodes=contact_nodes, contact_dofs=cdofs, contact_area=area,
+        contact_stiffness=kc, normal_force=normal, friction_limit=limit, clamp_load=clamp,
+        u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
+        setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced)
+
+
+def _connected(mesh: HexMesh, elements: IntArray, n: int, contact_faces: IntArray,
+               name: str) -> None:
+    """Refuse a mesh with parts that the contact does not hold (rigid-body motion)."""
+    rows = np.repeat(elements[:, :1], elements.shape[1], axis=1).ravel()
+    graph = sp.coo_matrix((np.ones(rows.size), (rows, elements.ravel())), shape=(n, n))
+    count, label = connected_components(graph, directed=False)
+    if count == 1:
+        return
+    held = np.unique(label[elements[contact_faces[:, 0], 0]])
+    loose = ~np.isin(label[elements[:, 0]], held)
+    if np.any(loose):
+        raise ParameterError(
+            f"{mesh.source}: {int(np.count_nonzero(loose))} elements are not connected to the "
+            f"contact set {name!r}; nothing holds them (join them to the body or remove them)")
+
