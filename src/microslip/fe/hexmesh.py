@@ -2,7 +2,8 @@
 
 :class:`HexMesh` is what the built-in solver and the CalculiX deck writer read; the readers
 (``.inp``, and the formats meshio reads: :mod:`~microslip.fe.meshfile`) produce it, and
-:func:`microslip.fe.examples.box_hexmesh` writes the built-in box as one. Node and element numbers are 0-based rows; element connectivity is in
+:func:`microslip.fe.examples.box_hexmesh` writes the built-in box as one. Node and element
+numbers are 0-based rows; element connectivity is in
 the CalculiX/Abaqus order (C3D8: corners 1-4 on one face, 5-8 opposite; C3D20: the corners,
 then the 12 edge mid-points). Units: mm.
 

@@ -34,7 +34,7 @@ from .details import (
 from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
 from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
-from .meshmodel import MeshModel, box_hexmesh, build_mesh_model
+from .meshmodel import MeshModel, build_mesh_model
 from .meshrun import LoadFactors, MeshLoadResult, MeshRunResult, SineCycles, solve_mesh
 from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .solve import (
@@ -89,7 +89,6 @@ __all__ = [
     "as_load_path",
     "assemble_stiffness",
     "available_linear_solvers",
-    "box_hexmesh",
     "box_mesh",
     "build_mesh_model",
     "build_model",

@@ -36,14 +36,14 @@ from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
 
 from ...blas import single_threaded_blas
 from ...errors import ParameterError
-from ...params import ClampParams, check_positive
+from ...params import check_positive
 from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..hexmesh import HEX_FACES, HexMesh, face_load
+from ..hexmesh import HexMesh, face_load
+from ..meshcheck import check_set
 from ..meshload import MeshLoad
 from .condense import Reduced, condense
 from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
 from .linalg import Backend, make_backend
-from .mesh import mesh_from_spec
 from .model import NewtonOptions
 from .normal import PenaltyNormal, check_normal_contact
 from .solve import clamping_step
@@ -53,7 +53,6 @@ __all__ = [
     "CONDENSE_MIN_DOF",
     "MESH_LINEAR_SOLVERS",
     "MeshModel",
-    "box_hexmesh",
     "build_mesh_model",
     "set_faces",
 ]
@@ -72,50 +71,17 @@ MESH_LINEAR_SOLVERS = ("auto", "banded", "splu", "cholmod")
 FLAT_TOL = 1e-6
 
 
-def box_hexmesh(params: ClampParams, mesh: Any = "coarse") -> HexMesh:
-    """The built-in box (:func:`~microslip.fe.builtin.mesh.mesh_from_spec`) as a
-    :class:`~microslip.fe.hexmesh.HexMesh`, same nodes and elements, with the node sets
-    ``contact`` (bottom face z = 0), ``clamp`` (top face z = t), ``tip`` (end face x = L) and
-    ``centre`` (the mid-length section x = L/2, inside the body; nx must be even).
-
-    >>> from microslip import preset
-    >>> m = box_hexmesh(preset("table1"), (8, 2, 1))
-    >>> m.set_names(), len(m.faces("contact")), len(m.faces("centre"))
-    (('centre', 'clamp', 'contact', 'tip'), 16, 4)
-    """
-    box = mesh_from_spec(params, mesh)
-    sets = {"contact": box.face_nodes("bottom"), "clamp": box.face_nodes("top"),
-            "tip": box.face_nodes("end"), "centre": box.face_nodes("mid")}
-    return HexMesh(box.nodes, box.elements, sets, source="box")
-
-
-def set_faces(mesh: HexMesh, name: str) -> IntArray:
-    """The element faces (element, face) of a set, each geometric face once.
+def set_faces(mesh: HexMesh, name: str, role: str, boundary: bool = False) -> IntArray:
+    """The element faces (element, face) of a set, checked (:func:`~microslip.fe.meshcheck.
+    check_set`), each geometric face once.
 
     A set on a section inside the body (the box's ``centre``) holds the faces of the elements
     on both sides of it; the first of the two is kept, so the section's area counts once.
     """
-    faces = mesh.faces(name)
-    if faces.size == 0:
-        raise ParameterError(f"{mesh.source}: set {name!r} holds no element face (a face needs "
-                             "all its corner nodes in the set)")
+    faces = check_set(mesh, name, role, boundary)
     keys = np.sort(mesh.face_corners(faces), axis=1)
     _, first = np.unique(keys, axis=0, return_index=True)
     return faces[np.sort(first)]
-
-
-def _boundary_faces(mesh: HexMesh, faces: IntArray, name: str) -> None:
-    """Refuse a set whose faces are shared by two elements (not on the boundary)."""
-    table = np.asarray(HEX_FACES, dtype=np.int64)
-    every = np.sort(mesh.elements[:, :8][:, table].reshape(-1, 4), axis=1)
-    mine = np.sort(mesh.face_corners(faces), axis=1)
-    _, which = np.unique(np.concatenate([every, mine]), axis=0, return_inverse=True)
-    which = which.ravel()
-    count = np.bincount(which[:len(every)], minlength=int(which.max()) + 1)
-    inner = int(np.count_nonzero(count[which[len(every):]] > 1))
-    if inner:
-        raise ParameterError(f"{mesh.source}: set {name!r} is not on the boundary: {inner} of "
-                             f"its {len(faces)} faces lie between two elements")
 
 
 def _plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float]:
@@ -298,7 +264,7 @@ class MeshModel:
         """Nodal forces on the free dofs of a uniform traction of total 1 N over the load's
         set along its direction (consistent shares); also the weights of its work-conjugate
         displacement (force-weighted mean of the set's displacements along the direction)."""
-        nodes, share, _ = face_load(self.mesh, set_faces(self.mesh, load.set))
+        nodes, share, _ = face_load(self.mesh, set_faces(self.mesh, load.set, "set of a load"))
         d = self.rotation @ np.asarray(load.direction, dtype=float)
         out = np.zeros(self.free.size)
         base = 3 * self.model_nodes(nodes)
@@ -408,6 +374,7 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     --------
     >>> from microslip import preset
     >>> p = preset("table1")
+    >>> from microslip.fe.examples import box_hexmesh
     >>> m = build_mesh_model(box_hexmesh(p, (8, 2, 1)), contact_set="contact",
     ...                      clamp_set="clamp", normal_force=445.0, modulus=p.modulus,
     ...                      poisson_ratio=p.poisson_ratio, friction=p.friction)
@@ -437,10 +404,9 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         hex8_b_matrices(mesh.nodes[mesh.elements])
     except ParameterError as exc:
         raise ParameterError(f"{mesh.source}: {exc}") from None
-    contact_faces = set_faces(mesh, contact_set)
-    _boundary_faces(mesh, contact_faces, contact_set)
+    contact_faces = set_faces(mesh, contact_set, "contact set", boundary=True)
     outward, offset = _plane(mesh, contact_faces, contact_set)
-    clamp_faces = set_faces(mesh, clamp_set)
+    clamp_faces = set_faces(mesh, clamp_set, "clamp set", boundary=True)
     clamp_out, _ = _plane(mesh, clamp_faces, clamp_set)
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
     order = _numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
