@@ -260,6 +260,19 @@ def test_a_contact_set_that_is_not_flat_is_refused():
         base_slab(hm, hm.faces("bottom"), "bottom")
 
 
+def test_a_contact_set_inside_the_body_is_refused():
+    b = box_mesh(4.0, 1.0, 2.0, 2, 1, 2)
+    hm = HexMesh(b.nodes, b.elements, {"mid": np.flatnonzero(b.nodes[:, 2] == 1.0)},
+                 source="m.inp")
+    both = hm.faces("mid")  # each inner face twice, once per element: opposite normals
+    with pytest.raises(ParameterError, match="set 'mid': the contact faces have no area"):
+        base_slab(hm, both, "mid")
+    lower = both[both[:, 1] == 1]  # the S2 faces: upper faces of the lower layer
+    assert lower.shape == (2, 2)
+    with pytest.raises(ParameterError, match="body reaches below the contact plane"):
+        base_slab(hm, lower, "mid")
+
+
 def test_a_load_on_a_set_without_faces_is_refused():
     hm = box8(2, 1, 1)
     lone = HexMesh(hm.nodes, hm.elements, {**hm.node_sets, "edge": [0, 1]}, source="m.inp")

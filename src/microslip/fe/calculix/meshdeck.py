@@ -238,10 +238,13 @@ def base_slab(mesh: HexMesh, contact_faces: ArrayLike, set_name: str = "contact"
     tol = 1e-9 * size
     bu = _grid_lines(pts @ e1, tol, edge)
     bv = _grid_lines(pts @ e2, tol, edge)
-    thickness = float(np.max(mesh.nodes @ up) - c)
-    if not thickness > 0:
-        raise ParameterError(f"{mesh.source}: set {set_name!r}: the body does not lie on the "
-                             "contact face's side away from the base")
+    used = mesh.nodes[np.unique(mesh.elements)] @ up
+    thickness = float(np.max(used) - c)
+    if not thickness > 0 or float(np.min(used)) < c - 1e-6 * size:
+        raise ParameterError(
+            f"{mesh.source}: set {set_name!r}: the body reaches below the contact plane (up to "
+            f"{c - float(np.min(used)):.3g} mm); the contact set must be an outer face that "
+            "rests on the base")
     bw = np.array([-thickness, 0.0])
     gi, gj, gk = np.meshgrid(np.arange(bu.size), np.arange(bv.size), np.arange(2), indexing="ij")
     gi, gj, gk = (a.transpose(2, 1, 0).ravel() for a in (gi, gj, gk))  # first index fastest
