@@ -328,6 +328,9 @@ def test_mesh_deck_on_the_box_gives_the_box_decks_loop(box_run, tmp_path):
     assert r.dissipated_energy == pytest.approx(box_run.damping.dissipated_energy, rel=1e-5)
     assert r.peak_displacement[0] == pytest.approx(box_run.loop.peak_displacement, rel=1e-6)
     np.testing.assert_array_equal(r.iterations, box_run.iterations)
+    np.testing.assert_array_equal(r.contact.nodes, box_run.contact.nodes)
+    np.testing.assert_array_equal(r.contact.status, box_run.contact.status)
+    assert r.message == box_run.message == "converged"
 
 
 @pytest.mark.ccx
@@ -393,6 +396,19 @@ def test_cantilever_axial_end_load_dissipates_a_plausible_energy(tmp_path):
     assert 0.0 < r.dissipated_energy < 4.0 * f0 * d0
     assert r.dissipated_energy == pytest.approx(2 * f0**3 / (3 * ea * q), rel=0.25)
     assert d0 == pytest.approx(f0**2 / (2 * ea * q) + f0 * 101.6 / ea, rel=0.02)
+    slipping = r.contact.status[r.last_cycle] == 2
+    assert slipping.any() and not slipping.all(axis=1).any() and r.warnings() == []
+
+
+@pytest.mark.ccx
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("ccx") is None, reason=NO_CCX)
+def test_cantilever_small_load_sticks_and_dissipates_nothing(tmp_path):
+    """20 N: the tractions stay below mu p everywhere, so W = 0 exactly, with the reason."""
+    r = run_mesh_calculix(cantilever(4, 8, 2, 1), loads=[MeshLoad("end", (1, 0, 0), 20.0)],
+                          job_dir=tmp_path, cycles=1, **CANTILEVER)
+    assert r.converged and r.dissipated_energy == 0.0 and r.work.tolist() == [0.0]
+    assert "stick throughout" in r.message and r.peak_displacement[0] > 0.0
 
 
 @pytest.mark.ccx

@@ -14,7 +14,13 @@ Definitions (the built-in solver's, docs/solver.md "Planar paths"):
 - the dissipated energy W is the work of all loads over the last cycle,
   W = sum_l (closed integral of F_l d delta_l), trapezoidal over its increments
   (:func:`microslip.energy.loop_work`; Eq. 21 of the paper for one load);
-- the peak displacement of a load is half the peak-to-peak delta_l over the last cycle.
+- the peak displacement of a load is half the peak-to-peak delta_l over the last cycle;
+- the contact status of every node of the contact faces at every state (open, stick, slip)
+  comes from the ``.frd`` file's slips and tractions by the box's rule
+  (:func:`~microslip.fe.calculix.collect.contact_status`, docs/validation.md Section 1); a
+  last cycle in which no node slips has W = 0 with the reason (stick throughout, or
+  shakedown), and states in which no node sticks are flagged as gross sliding, with the
+  sentences of :mod:`microslip.fe.result`.
 
 Units: N, mm, N·mm; time in cycles.
 """
@@ -36,8 +42,16 @@ from ...errors import ParameterError
 from ...io import atomic_write
 from ...named import result
 from ..errors import ResultsError
-from ..hexmesh import HexMesh
+from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
+from ..result import (
+    ContactHistory,
+    column_lengths,
+    gross_sliding_message,
+    idle_loop_reason,
+    join_message,
+)
+from .collect import contact_status
 from .meshdeck import (
     CLAMP_TIME,
     MESH_ELEMENTS,
@@ -47,10 +61,11 @@ from .meshdeck import (
     load_plan,
     load_times,
 )
-from .readers import read_dat, read_sta
+from .readers import read_dat, read_frd, read_sta
 from .runner import JOBNAME, find_ccx, run_ccx
 
-__all__ = ["MeshCalculixResult", "mesh_timeout", "read_mesh_results", "run_mesh_calculix"]
+__all__ = ["MeshCalculixResult", "mesh_timeout", "read_contact", "read_mesh_results",
+           "run_mesh_calculix"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -91,6 +106,9 @@ class MeshCalculixResult:
         3 per node of the body (the base is fixed).
     wall_s : float
         Wall time of ccx, s.
+    contact : ContactHistory or None
+        Status (0 open, 1 stick, 2 slip) and slip of every node of the contact faces at every
+        state (None when read without the contact set).
     job_dir : Path or None
         Where the deck and the solver's files are (None: a removed temporary directory).
     """
@@ -111,6 +129,7 @@ class MeshCalculixResult:
     element: str
     dof: int
     wall_s: float
+    contact: ContactHistory | None
     job_dir: Path | None
 
     @property
@@ -131,8 +150,19 @@ class MeshCalculixResult:
                                           strict=True)],
             "increments_per_cycle": self.increments_per_cycle, "cycles": self.cycles,
             "iterations": int(self.iterations.sum()), "converged": self.converged,
-            "wall_s": self.wall_s, "message": self.message,
+            "wall_s": self.wall_s, "message": self.message, "warnings": self.warnings(),
         }
+
+    def warnings(self) -> list[str]:
+        """What the user should know about the run: not converged, gross sliding."""
+        out = []
+        if not self.converged:
+            out.append("an increment was cut back: the loop is not at the stated increments")
+        if self.contact is not None:
+            gross = gross_sliding_message(self.contact)
+            if gross:
+                out.append(gross)
+        return out
 
 
 def mesh_timeout(mesh: HexMesh) -> float:
@@ -141,10 +171,52 @@ def mesh_timeout(mesh: HexMesh) -> float:
     return 120.0 + 0.15 * 3 * int(np.unique(mesh.elements).size)
 
 
+def _states(blocks: list[Any], n: int, what: str, job_dir: Path) -> list[Any]:
+    """The clamped state and the load step's increments: blocks from the end of step 1 on
+    (step 1 may have taken more than one increment)."""
+    kept = [b for b in blocks if b.time >= CLAMP_TIME - 1e-9]
+    if len(kept) != n + 1:
+        raise ResultsError(f"{what} holds {len(kept)} result blocks from the clamped state on, "
+                           f"expected {n + 1} (clamped state and {n} increments): the run "
+                           "stopped early", job_dir)
+    return kept
+
+
+def read_contact(frd: str | Path, nodes: IntArray, coords: FloatArray, times: FloatArray,
+                 friction: float, stick_slope: float) -> ContactHistory:
+    """The contact status and slip of ``nodes`` (0-based) at every state, from the ``.frd``
+    file's CONTACT blocks (CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2); a node missing from a
+    block has no contact element there (open)."""
+    frd = Path(frd)
+    n = int(times.size - 1)
+    blocks = _states(read_frd(frd, names=("CONTACT",)).select("CONTACT"), n, frd.name,
+                     frd.parent)
+    ids = np.asarray(nodes, dtype=np.int64) + 1
+    values = np.zeros((n + 1, ids.size, 6))
+    for k, cb in enumerate(blocks):
+        if cb.nodes.size == 0:
+            continue
+        order = np.argsort(cb.nodes, kind="stable")
+        sorted_ids = cb.nodes[order]
+        pos = np.minimum(np.searchsorted(sorted_ids, ids), sorted_ids.size - 1)
+        found = sorted_ids[pos] == ids
+        values[k, found] = cb.values[order][pos[found]]
+    status = contact_status(values[:, :, 3], values[:, :, 4:6], values[:, :, 1:3], friction,
+                            stick_slope)
+    return ContactHistory(np.asarray(nodes, dtype=np.int64), np.asarray(coords, dtype=float),
+                          np.asarray(times, dtype=float).copy(), status,
+                          column_lengths(np.asarray(coords, dtype=float)[:, 0]),
+                          values[:, :, 1:3].copy())
+
+
 def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycle: int,
                       job_dir: str | Path, jobname: str = JOBNAME, *, element: str = "",
-                      dof: int = 0, wall_s: float = math.nan) -> MeshCalculixResult:
-    """Read a finished run's ``.dat`` and ``.sta`` files into a :class:`MeshCalculixResult`.
+                      dof: int = 0, wall_s: float = math.nan,
+                      contact: tuple[HexMesh, IntArray, float, float] | None = None
+                      ) -> MeshCalculixResult:
+    """Read a finished run's ``.dat`` and ``.sta`` files into a :class:`MeshCalculixResult`;
+    with ``contact = (mesh, contact faces, friction, stick_slope)`` also the contact status
+    from the ``.frd`` file.
 
     Raises
     ------
@@ -154,12 +226,8 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
     """
     job_dir = Path(job_dir)
     n = int(times.size - 1)
-    blocks = read_dat(job_dir / f"{jobname}.dat", "displacements",
-                      expected_rows=plan.loaded.size)
-    if len(blocks) != n + 1:
-        raise ResultsError(f"{jobname}.dat holds {len(blocks)} displacement blocks, expected "
-                           f"{n + 1} (clamped state and {n} increments): the run stopped early",
-                           job_dir)
+    blocks = _states(read_dat(job_dir / f"{jobname}.dat", "displacements",
+                              expected_rows=plan.loaded.size), n, f"{jobname}.dat", job_dir)
     expected = CLAMP_TIME + times
     got = np.array([b.time for b in blocks])
     if not np.allclose(got, expected, rtol=0.0, atol=2e-6 * (1.0 + expected)):
@@ -183,13 +251,20 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
     work = np.array([loop_work(force[last, j], displacement[last, j])
                      for j in range(len(plan.loads))])
     peak = 0.5 * np.ptp(displacement[last], axis=0)
+    history = None
+    idle = gross = None
+    if contact is not None:
+        mesh, faces, friction, stick_slope = contact
+        nodes = face_load(mesh, faces)[0]
+        history = read_contact(job_dir / f"{jobname}.frd", nodes, mesh.nodes[nodes], times,
+                               friction, stick_slope)
+        idle = idle_loop_reason(history, increments_per_cycle + 1)
+        gross = gross_sliding_message(history)
+        if idle is not None:
+            work = np.zeros_like(work)
     total = float(work.sum())
-    if not converged:
-        message = "cut back: an increment needed more than one attempt"
-    elif total <= 1e-9 * float(np.sum([ld.amplitude for ld in plan.loads]) * peak.max()):
-        message = "converged; no dissipation over the last cycle (stick or shakedown)"
-    else:
-        message = "converged"
+    message = (join_message("converged", idle, gross) if converged
+               else "cut back: an increment needed more than one attempt")
     return MeshCalculixResult(
         loads=plan.loads, time=np.asarray(times, dtype=float).copy(), force=force,
         displacement=displacement, work=work, dissipated_energy=total, peak_displacement=peak,
@@ -198,7 +273,7 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
         cycles=(n - increments_per_cycle // 4) // increments_per_cycle,
         iterations=np.asarray(sta.iterations, dtype=np.int64).copy(),
         converged=converged, message=message, element=element, dof=int(dof),
-        wall_s=float(wall_s), job_dir=job_dir)
+        wall_s=float(wall_s), contact=history, job_dir=job_dir)
 
 
 def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
@@ -257,7 +332,9 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                       executable=exe)
         try:
             return read_mesh_results(plan, times, increments_per_cycle, d, JOBNAME,
-                                     element=element, dof=dof, wall_s=run.wall_s)
+                                     element=element, dof=dof, wall_s=run.wall_s,
+                                     contact=(mesh, mesh.faces(contact_set), friction,
+                                              stick_slope))
         except ResultsError as exc:
             raise type(exc)(exc.message, d, run.log_tail) from None
 
