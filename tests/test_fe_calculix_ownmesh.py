@@ -424,6 +424,8 @@ def test_cantilever_axial_and_lateral_at_90_degrees(tmp_path):
     assert r.force.shape == r.displacement.shape == (91, 2)
     assert np.all(r.work > 0.0)
     assert r.dissipated_energy == pytest.approx(float(r.work.sum()), rel=1e-12)
+    assert r.cycle_work.shape == (2,) and r.cycle_work[-1] == pytest.approx(r.dissipated_energy)
+    assert r.cycle_work[0] != r.cycle_work[1]  # the first cycle still ratchets a little
     summary = r.summary()
     assert summary["loads"][1]["work_Nmm"] == pytest.approx(r.work[1])
     assert summary["peak_displacement_mm"] == r.peak_displacement[0]

@@ -90,6 +90,9 @@ class MeshCalculixResult:
         Work of each load over the last cycle, N·mm.
     dissipated_energy : float
         W = sum of ``work``, N·mm.
+    cycle_work : ndarray, shape (cycles,)
+        The work of all loads over each full cycle, N·mm (the last is W before a stick or
+        shakedown verdict sets it to 0): whether the cycles have settled.
     peak_displacement : ndarray, shape (loads,)
         Half the peak-to-peak delta_l over the last cycle, mm.
     clamp_displacement : ndarray, shape (loads,)
@@ -119,6 +122,7 @@ class MeshCalculixResult:
     displacement: FloatArray
     work: FloatArray
     dissipated_energy: float
+    cycle_work: FloatArray
     peak_displacement: FloatArray
     clamp_displacement: FloatArray
     increments_per_cycle: int
@@ -149,6 +153,7 @@ class MeshCalculixResult:
                       for ld, w, d in zip(self.loads, self.work, self.peak_displacement,
                                           strict=True)],
             "increments_per_cycle": self.increments_per_cycle, "cycles": self.cycles,
+            "cycle_work_Nmm": [float(w) for w in self.cycle_work],
             "iterations": int(self.iterations.sum()), "converged": self.converged,
             "wall_s": self.wall_s, "message": self.message, "warnings": self.warnings(),
         }
@@ -251,6 +256,12 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
     work = np.array([loop_work(force[last, j], displacement[last, j])
                      for j in range(len(plan.loads))])
     peak = 0.5 * np.ptp(displacement[last], axis=0)
+    start = increments_per_cycle // 4
+    cycle_work = np.array([
+        sum(loop_work(force[a:a + increments_per_cycle + 1, j],
+                      displacement[a:a + increments_per_cycle + 1, j])
+            for j in range(len(plan.loads)))
+        for a in range(start, n, increments_per_cycle)])
     history = None
     idle = gross = None
     if contact is not None:
@@ -267,7 +278,8 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
                else "cut back: an increment needed more than one attempt")
     return MeshCalculixResult(
         loads=plan.loads, time=np.asarray(times, dtype=float).copy(), force=force,
-        displacement=displacement, work=work, dissipated_energy=total, peak_displacement=peak,
+        displacement=displacement, work=work, dissipated_energy=total, cycle_work=cycle_work,
+        peak_displacement=peak,
         clamp_displacement=np.asarray(absolute[0], dtype=float).copy(),
         increments_per_cycle=int(increments_per_cycle),
         cycles=(n - increments_per_cycle // 4) // increments_per_cycle,
