@@ -24,6 +24,7 @@ from microslip.fe.calculix.meshdeck import (
     dsload_card,
     element_surface_card,
     load_factors,
+    load_history,
     load_plan,
     load_times,
 )
@@ -153,6 +154,25 @@ def test_several_loads_ramp_straight_then_cycle():
         load_times(8, 0)
 
 
+def test_ramp_start_is_the_builtin_solvers_sine_cycles():
+    """``ramp``: cycles from t = 0; a quarter cycle of straight ramp before it only when a
+    phase makes the loads non-zero at t = 0 (the built-in own-mesh solver's SineCycles)."""
+    a, b = MeshLoad("s", (1, 0, 0), 2.0, 0.0), MeshLoad("s", (0, 1, 0), 1.0, 60.0)
+    h = load_history([a], 8, 2, "ramp")
+    np.testing.assert_array_equal(h.time, np.arange(17) / 8)
+    np.testing.assert_array_equal(h.factors[:, 0], np.r_[0.0, a.force(h.time[1:]) / 2.0])
+    assert (h.first_cycle, h.cycles) == (0, 2)
+    h = load_history([a, b], 8, 2, "ramp")
+    assert h.time[0] == -0.25 and h.time.size == 19 and (h.first_cycle, h.cycles) == (2, 2)
+    np.testing.assert_array_equal(h.factors[:2, 1], [0.0, 0.5 * np.sin(np.pi / 3)])
+    np.testing.assert_array_equal(h.factors[2:, 1], b.force(h.time[2:]))
+    np.testing.assert_array_equal(h.step_time, np.arange(19) / 8)
+    q = load_history([a, b], 8, 2)  # quarter: the paper's start
+    assert q.time[0] == 0.0 and q.first_cycle == 2 and q.cycles == 2
+    with pytest.raises(ParameterError, match="startup must be one of quarter, ramp"):
+        load_history([a], 8, 2, "jump")
+
+
 def _applied_forces(deck: str, n_nodes: int, times: np.ndarray) -> np.ndarray:
     """Nodal forces (time, node, dof) of the deck's *CLOAD cards and amplitudes."""
     amps = {}
@@ -187,6 +207,19 @@ def test_loads_sharing_nodes_and_dofs_add_up():
             w[None, :, None] * np.asarray(ld.direction)[None, None, :])
     np.testing.assert_allclose(got, want, atol=1e-11)
     assert "AMPLITUDE=M1" in deck and "AMPLITUDE=L3" in deck
+    ramped = build_mesh_deck(mesh, contact_set="bottom", clamp_set="top", normal_force=10.0,
+                             loads=loads, friction=0.5, stick_slope=1e4, modulus=1000.0,
+                             poisson_ratio=0.25, increments_per_cycle=8, cycles=2,
+                             startup="ramp")
+    h = load_history(loads, 8, 2, "ramp")
+    got = _applied_forces(ramped, 8, h.step_time)
+    want = np.zeros_like(got)
+    for j, (ld, nodes, w) in enumerate(zip(plan.loads, plan.nodes, plan.shares, strict=True)):
+        want[:, nodes, :] += (ld.amplitude * h.factors[:, j])[:, None, None] * (
+            w[None, :, None] * np.asarray(ld.direction)[None, None, :])
+    np.testing.assert_allclose(got, want, atol=1e-11)
+    assert "*STATIC, DIRECT\n0.125, 2.25\n" in ramped
+    assert "after a straight ramp if needed" in ramped
 
 
 def test_conjugate_displacement_is_the_share_weighted_mean_along_the_load():

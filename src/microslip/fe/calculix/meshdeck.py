@@ -18,7 +18,7 @@ named sets:
 5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
    as ``*CLOAD`` nodal forces, the consistent shares of a uniform traction on each load's
    faces (:func:`~microslip.fe.hexmesh.face_load`) times its direction, each scaled by a
-   tabular ``*AMPLITUDE`` exact at every increment end (:func:`load_times`, ``DIRECT``
+   tabular ``*AMPLITUDE`` exact at every increment end (:func:`load_history`, ``DIRECT``
    increments); u of every loaded node to the ``.dat`` file, u and the contact slips and
    tractions to the ``.frd`` file at every increment.
 
@@ -72,13 +72,16 @@ __all__ = [
     "LOADED_NSET",
     "MESH_ELEMENTS",
     "NORMAL_CONTACTS",
+    "STARTUPS",
     "BaseSlab",
+    "LoadHistory",
     "MeshLoadPlan",
     "base_slab",
     "build_mesh_deck",
     "dsload_card",
     "element_surface_card",
     "load_factors",
+    "load_history",
     "load_plan",
     "load_times",
 ]
@@ -160,6 +163,78 @@ def load_factors(load: MeshLoad, times: ArrayLike) -> FloatArray:
     cyc = np.sin(2 * np.pi * np.mod(t, 1.0) + phi)  # exact zeros at whole cycles
     ramp = np.sin(2 * np.pi * np.minimum(t, 0.25)) * math.cos(phi)
     return np.where(t < 0.25, ramp, cyc)
+
+
+@dataclass(frozen=True, eq=False)
+class LoadHistory:
+    """The load samples of step 2: one per increment end.
+
+    Attributes
+    ----------
+    time : ndarray, shape (k + 1,)
+        Time of each sample, cycles (negative during a start-up ramp before t = 0).
+    factors : ndarray, shape (k + 1, loads)
+        F_l / A_l at each sample.
+    increments_per_cycle : int
+    first_cycle : int
+        Index of the first sample of the first full cycle; the cycles follow back to back and
+        the last one ends at the last sample.
+    """
+
+    time: FloatArray
+    factors: FloatArray
+    increments_per_cycle: int
+    first_cycle: int
+
+    @property
+    def step_time(self) -> FloatArray:
+        """CalculiX's step time of each sample, s (1 s per cycle, from 0)."""
+        return self.time - self.time[0]
+
+    @property
+    def cycles(self) -> int:
+        return (self.time.size - 1 - self.first_cycle) // self.increments_per_cycle
+
+
+def _quarter(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
+    t = load_times(n, cycles)
+    return LoadHistory(t, np.column_stack([load_factors(ld, t) for ld in loads]), n, n // 4)
+
+
+def _ramp(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
+    load_times(n, cycles)  # the same checks
+    t = np.arange(n * cycles + 1) / n
+    f = np.column_stack([ld.force(t) / ld.amplitude for ld in loads])
+    if float(np.max(np.abs(f[0]))) <= 1e-12:
+        f[0] = 0.0
+        return LoadHistory(t, f, n, 0)
+    m = n // 4
+    ramp = np.arange(m) / m
+    return LoadHistory(np.concatenate([(ramp - 1.0) / 4.0, t]),
+                       np.concatenate([ramp[:, None] * f[0][None, :], f]), n, m)
+
+
+#: How step 2 starts, name -> history(loads, increments_per_cycle, cycles). ``quarter``: the
+#: paper's load step (:func:`load_times`, :func:`load_factors`: a quarter-cycle start, cycles
+#: from t = 1/4). ``ramp``: the built-in own-mesh solver's sine cycles: cycles from t = 0, a
+#: straight ramp of a quarter cycle's increments from rest to the loads at t = 0 only when a
+#: phase makes them non-zero there.
+STARTUPS = {"quarter": _quarter, "ramp": _ramp}
+_STARTUP_TEXT = {"quarter": "a quarter-cycle start", "ramp": "a straight ramp if needed"}
+
+
+def load_history(loads: Sequence[MeshLoad], increments_per_cycle: int, cycles: int,
+                 startup: str = "quarter") -> LoadHistory:
+    """The samples of step 2 (:data:`STARTUPS`).
+
+    >>> from microslip.fe.meshload import MeshLoad
+    >>> h = load_history([MeshLoad("a", (1, 0, 0), 1.0, 90.0)], 4, 1, "ramp")
+    >>> h.time.tolist(), h.factors[:, 0].round(12).tolist(), h.first_cycle, h.cycles
+    ([-0.25, 0.0, 0.25, 0.5, 0.75, 1.0], [0.0, 1.0, 0.0, -1.0, -0.0, 1.0], 1, 1)
+    """
+    if startup not in STARTUPS:
+        raise ParameterError(f"startup must be one of {', '.join(STARTUPS)}, got {startup!r}")
+    return STARTUPS[startup](loads, increments_per_cycle, cycles)
 
 
 @dataclass(frozen=True, eq=False)
@@ -314,7 +389,8 @@ def load_plan(mesh: HexMesh, loads: Sequence[MeshLoad]) -> MeshLoadPlan:
     return MeshLoadPlan(tuple(loads), tuple(nodes), tuple(shares), tuple(areas), loaded)
 
 
-def _load_cards(plan: MeshLoadPlan, times: FloatArray, first_node: int = 1) -> tuple[str, str]:
+def _load_cards(plan: MeshLoadPlan, history: LoadHistory, first_node: int = 1
+                ) -> tuple[str, str]:
     """The amplitudes and the ``*CLOAD`` cards of the loads.
 
     One amplitude ``L<j>`` per load; the force of load j on node i along dof k is
@@ -323,7 +399,8 @@ def _load_cards(plan: MeshLoadPlan, times: FloatArray, first_node: int = 1) -> t
     sum of their forces, r sin(2 pi t + psi), with an amplitude ``M<m>`` per distinct psi.
     """
     nl = len(plan.loads)
-    f_all = [load_factors(ld, times) for ld in plan.loads]
+    times = history.step_time
+    f_all = [history.factors[:, j] for j in range(nl)]
     # coefficient of each load on each (node, dof)
     coef: dict[tuple[int, int], np.ndarray] = {}
     for j, (ld, nodes, w) in enumerate(zip(plan.loads, plan.nodes, plan.shares, strict=True)):
@@ -345,8 +422,7 @@ def _load_cards(plan: MeshLoadPlan, times: FloatArray, first_node: int = 1) -> t
         if nz.size == 1:
             single.setdefault((int(nz[0]), k), []).append((n, float(c[nz[0]])))
             continue
-        # sum_j c_j f_j(t): every f_j is a sin(2 pi t) + b cos(2 pi t) after t = 1/4 and a
-        # multiple of sin(2 pi t) before, so the sum is one such function; tabulate it
+        # sum_j c_j f_j(t), tabulated as one amplitude per distinct shape
         total = sum(c[j] * f_all[j] for j in range(nl))
         scale = float(np.max(np.abs(total)))
         if scale == 0.0:
@@ -401,7 +477,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
                     normal_contact: str = "penalty", normal_slope: float = 1.0e5,
                     modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                     cycles: int = 1, max_iterations: int = 26,
-                    fixed: Sequence[tuple[str, int, int]] = ()) -> str:
+                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter"
+                    ) -> str:
     """The complete ``.inp`` deck of the user's mesh on a rigid frictional base.
 
     Parameters
@@ -432,6 +509,9 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         Node sets of the mesh with the dofs first..last (1 x, 2 y, 3 z) held at zero, e.g.
         ``[("sym", 2, 2)]`` for a symmetry plane y = const. None by default: the in-plane
         rigid-body motions are held by friction alone, as in the built-in solver.
+    startup : str
+        How the loads start (:data:`STARTUPS`): ``"quarter"`` (the paper's load step) or
+        ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
 
     Returns
     -------
@@ -447,7 +527,6 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             "overclosure, so normal forces frozen at the clamping step ('fixed') have no "
             "counterpart; compare with the built-in solver's 'penalty'")
     fn = _check_positive("normal_force", normal_force, "N")
-    times = load_times(increments_per_cycle, cycles)
     contact = mesh.faces(contact_set)
     clamp = mesh.faces(clamp_set)
     for name, faces in ((contact_set, contact), (clamp_set, clamp)):
@@ -455,14 +534,15 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
     _, _, clamp_area = face_load(mesh, clamp)
     plan = load_plan(mesh, loads)
+    history = load_history(plan.loads, increments_per_cycle, cycles, startup)
     base = base_slab(mesh, contact, contact_set)
     etype = MESH_ELEMENTS[mesh.nodes_per_element]
     n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
     base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
     base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
-    amps, cloads = _load_cards(plan, times)
+    amps, cloads = _load_cards(plan, history)
     fixed_sets, fixed_rows = _fixed_cards(mesh, fixed)
-    n = int(times.size - 1)
+    n = int(history.time.size - 1)
     dt = 1.0 / increments_per_cycle
     ext = np.ptp(mesh.nodes, axis=0)
     loads_txt = "; ".join(
@@ -497,10 +577,10 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         node_file_card(),
         contact_file_card(),
         end_step_card(),
-        f"** step 2: {loads_txt}; {cycles} cycle(s) after a quarter-cycle start, "
+        f"** step 2: {loads_txt}; {cycles} cycle(s) after {_STARTUP_TEXT[startup]}, "
         f"{increments_per_cycle} increments per cycle\n",
         step_card(n + 10),
-        static_card(dt, float(times[-1]), direct=True),
+        static_card(dt, float(history.step_time[-1]), direct=True),
         controls_card(max_iterations),
         cloads,
         node_print_card(LOADED_NSET),

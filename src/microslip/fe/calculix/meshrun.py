@@ -55,11 +55,11 @@ from .collect import contact_status
 from .meshdeck import (
     CLAMP_TIME,
     MESH_ELEMENTS,
+    LoadHistory,
     MeshLoadPlan,
     build_mesh_deck,
-    load_factors,
+    load_history,
     load_plan,
-    load_times,
 )
 from .readers import read_dat, read_frd, read_sta
 from .runner import JOBNAME, find_ccx, run_ccx
@@ -81,7 +81,8 @@ class MeshCalculixResult:
     ----------
     loads : tuple of MeshLoad
     time : ndarray, shape (k + 1,)
-        Increment ends of the load step, cycles (0 = the clamped state).
+        Increment ends of the load step, cycles (the first sample is the clamped state; a
+        ``ramp`` start-up has negative times, :data:`~.meshdeck.STARTUPS`).
     force : ndarray, shape (k + 1, loads)
         F_l(t), N.
     displacement : ndarray, shape (k + 1, loads)
@@ -214,8 +215,8 @@ def read_contact(frd: str | Path, nodes: IntArray, coords: FloatArray, times: Fl
                           values[:, :, 1:3].copy())
 
 
-def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycle: int,
-                      job_dir: str | Path, jobname: str = JOBNAME, *, element: str = "",
+def read_mesh_results(plan: MeshLoadPlan, history: LoadHistory, job_dir: str | Path,
+                      jobname: str = JOBNAME, *, element: str = "",
                       dof: int = 0, wall_s: float = math.nan,
                       contact: tuple[HexMesh, IntArray, float, float] | None = None
                       ) -> MeshCalculixResult:
@@ -230,10 +231,12 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
         increment of the load step (a partial loop is never returned).
     """
     job_dir = Path(job_dir)
+    times = history.time
+    increments_per_cycle = history.increments_per_cycle
     n = int(times.size - 1)
     blocks = _states(read_dat(job_dir / f"{jobname}.dat", "displacements",
                               expected_rows=plan.loaded.size), n, f"{jobname}.dat", job_dir)
-    expected = CLAMP_TIME + times
+    expected = CLAMP_TIME + history.step_time
     got = np.array([b.time for b in blocks])
     if not np.allclose(got, expected, rtol=0.0, atol=2e-6 * (1.0 + expected)):
         raise ResultsError(f"{jobname}.dat: increment times do not match the {n} equal "
@@ -251,26 +254,26 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
         raise ResultsError(f"{jobname}.sta lists {sta.iterations.size} converged increments "
                            f"of the load step, expected {n}", job_dir)
     converged = bool(np.all(sta.attempts == 1))
-    force = np.column_stack([ld.amplitude * load_factors(ld, times) for ld in plan.loads])
+    force = history.factors * np.array([ld.amplitude for ld in plan.loads])[None, :]
     last = slice(n - increments_per_cycle, n + 1)
     work = np.array([loop_work(force[last, j], displacement[last, j])
                      for j in range(len(plan.loads))])
     peak = 0.5 * np.ptp(displacement[last], axis=0)
-    start = increments_per_cycle // 4
+    start = history.first_cycle
     cycle_work = np.array([
         sum(loop_work(force[a:a + increments_per_cycle + 1, j],
                       displacement[a:a + increments_per_cycle + 1, j])
             for j in range(len(plan.loads)))
         for a in range(start, n, increments_per_cycle)])
-    history = None
+    states = None
     idle = gross = None
     if contact is not None:
         mesh, faces, friction, stick_slope = contact
         nodes = face_load(mesh, faces)[0]
-        history = read_contact(job_dir / f"{jobname}.frd", nodes, mesh.nodes[nodes], times,
-                               friction, stick_slope)
-        idle = idle_loop_reason(history, increments_per_cycle + 1)
-        gross = gross_sliding_message(history)
+        states = read_contact(job_dir / f"{jobname}.frd", nodes, mesh.nodes[nodes], times,
+                              friction, stick_slope)
+        idle = idle_loop_reason(states, increments_per_cycle + 1)
+        gross = gross_sliding_message(states)
         if idle is not None:
             work = np.zeros_like(work)
     total = float(work.sum())
@@ -282,10 +285,10 @@ def read_mesh_results(plan: MeshLoadPlan, times: FloatArray, increments_per_cycl
         peak_displacement=peak,
         clamp_displacement=np.asarray(absolute[0], dtype=float).copy(),
         increments_per_cycle=int(increments_per_cycle),
-        cycles=(n - increments_per_cycle // 4) // increments_per_cycle,
+        cycles=history.cycles,
         iterations=np.asarray(sta.iterations, dtype=np.int64).copy(),
         converged=converged, message=message, element=element, dof=int(dof),
-        wall_s=float(wall_s), contact=history, job_dir=job_dir)
+        wall_s=float(wall_s), contact=states, job_dir=job_dir)
 
 
 def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
@@ -293,7 +296,7 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                       normal_contact: str = "penalty", normal_slope: float = 1.0e5,
                       modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                       cycles: int = 1, max_iterations: int = 26,
-                      fixed: Sequence[tuple[str, int, int]] = (),
+                      fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
                       job_dir: str | Path | None = None, timeout: float | None = None,
                       threads: int = 1, executable: str | None = None) -> MeshCalculixResult:
     """Write the deck of the user's mesh (:func:`build_mesh_deck`, same parameters), run ccx
@@ -325,9 +328,9 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                            normal_slope=normal_slope, modulus=modulus,
                            poisson_ratio=poisson_ratio,
                            increments_per_cycle=increments_per_cycle, cycles=cycles,
-                           max_iterations=max_iterations, fixed=fixed)
+                           max_iterations=max_iterations, fixed=fixed, startup=startup)
     plan = load_plan(mesh, loads)
-    times = load_times(increments_per_cycle, cycles)
+    history = load_history(loads, increments_per_cycle, cycles, startup)
     exe = find_ccx(executable)  # fail before touching the directory
     if timeout is not None and not (isinstance(timeout, (int, float)) and timeout > 0):
         raise ParameterError(f"timeout must be > 0 s, got {timeout!r}")
@@ -343,7 +346,7 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         run = run_ccx(d, JOBNAME, timeout=timeout or mesh_timeout(mesh), threads=threads,
                       executable=exe)
         try:
-            return read_mesh_results(plan, times, increments_per_cycle, d, JOBNAME,
+            return read_mesh_results(plan, history, d, JOBNAME,
                                      element=element, dof=dof, wall_s=run.wall_s,
                                      contact=(mesh, mesh.faces(contact_set), friction,
                                               stick_slope))
