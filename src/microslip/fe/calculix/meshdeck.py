@@ -502,7 +502,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         E (MPa) and nu of the body (and of the base, whose nodes are all fixed).
     increments_per_cycle, cycles : int
         Equal ``DIRECT`` increments per cycle (a multiple of 4) and full cycles after the
-        quarter-cycle start (:func:`load_times`).
+        start-up (:func:`load_history`).
     max_iterations : int
         Equilibrium iterations per increment (``*CONTROLS`` I_C; the box deck's 26).
     fixed : sequence of (str, int, int)
