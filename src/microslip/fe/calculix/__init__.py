@@ -6,5 +6,10 @@
 - :mod:`~microslip.fe.calculix.runner`: ``ccx`` with a time-out and typed failures;
 - :mod:`~microslip.fe.calculix.readers`: ``.dat``, ``.sta`` and ``.frd`` readers;
 - :mod:`~microslip.fe.calculix.collect`: a CalculiX run read into an
-  :class:`~microslip.fe.result.FELoopResult`.
+  :class:`~microslip.fe.result.FELoopResult`;
+- :mod:`~microslip.fe.calculix.meshdeck`: the deck of the user's own
+  :class:`~microslip.fe.hexmesh.HexMesh` with named sets and
+  :class:`~microslip.fe.meshload.MeshLoad` loads (issue 22);
+- :mod:`~microslip.fe.calculix.meshrun`: that deck run and read into a
+  :class:`~microslip.fe.calculix.meshrun.MeshCalculixResult`.
 """

@@ -1,0 +1,591 @@
+"""CalculiX input deck of the user's own clamp mesh (issue 22, item 4), one card per function.
+
+The deck of :func:`build_mesh_deck` is the box deck of :mod:`~microslip.fe.calculix.deck`
+(docs/validation.md) on any :class:`~microslip.fe.hexmesh.HexMesh`, with the roles given by
+named sets:
+
+1. the user's mesh: C3D8I for 8-node hexahedra (the built-in solver's element), C3D20R for
+   20-node ones; node and element ids are the mesh's rows + 1;
+2. a rigid base under the contact set (:func:`base_slab`): a flat slab of fixed C3D8 bricks
+   below the contact plane, larger than the contact faces by one grid spacing all round, as
+   the box deck's base (on the box it is that base, node for node);
+3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the contact set's faces
+   (slave) and the base's upper face (master): linear pressure-overclosure law with the normal
+   slope (``normal_contact="penalty"``, lift-off allowed) and Coulomb friction mu with the stick
+   slope lambda (``*FRICTION``);
+4. step 1: the clamping pressure F_N / A on the clamp set's faces (``*DSLOAD``, P), friction
+   active;
+5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
+   as ``*CLOAD`` nodal forces, the consistent shares of a uniform traction on each load's
+   faces (:func:`~microslip.fe.hexmesh.face_load`) times its direction, each scaled by a
+   tabular ``*AMPLITUDE`` exact at every increment end (:func:`load_history`, ``DIRECT``
+   increments); u of every loaded node to the ``.dat`` file, u and the contact slips and
+   tractions to the ``.frd`` file at every increment.
+
+Unlike the box deck there is no symmetry plane (a general mesh has none): as in the built-in
+solver, the in-plane rigid-body motions are held by friction alone.
+
+``normal_contact="fixed"`` (the built-in solver's default: normal forces frozen at the clamping
+step's) has no CalculiX counterpart: a face-to-face contact's pressure always follows the
+overclosure. It is refused with one line; compare with the built-in solver's ``penalty``.
+
+Units: N, mm, MPa; time in cycles (1 s per cycle).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ...errors import ParameterError
+from ..hexmesh import HexMesh, face_load
+from ..meshload import MeshLoad
+from .deck import (
+    _name,
+    _num,
+    amplitude_card,
+    boundary_card,
+    cload_card,
+    contact_file_card,
+    contact_pair_card,
+    controls_card,
+    elements_card,
+    end_step_card,
+    heading_card,
+    material_card,
+    node_file_card,
+    node_print_card,
+    nodes_card,
+    nset_card,
+    solid_section_card,
+    static_card,
+    step_card,
+    surface_interaction_card,
+)
+
+__all__ = [
+    "CLAMP_TIME",
+    "LOADED_NSET",
+    "MESH_ELEMENTS",
+    "NORMAL_CONTACTS",
+    "STARTUPS",
+    "BaseSlab",
+    "LoadHistory",
+    "MeshLoadPlan",
+    "base_slab",
+    "build_mesh_deck",
+    "dsload_card",
+    "element_surface_card",
+    "load_factors",
+    "load_history",
+    "load_plan",
+    "load_times",
+]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: CalculiX element of the user's mesh by nodes per element.
+MESH_ELEMENTS = {8: "C3D8I", 20: "C3D20R"}
+#: Normal contact laws CalculiX can model: name -> what it means.
+NORMAL_CONTACTS = {
+    "penalty": "linear pressure-overclosure law (slope normal_slope, N/mm^3), lift-off allowed",
+}
+#: Name of the node set of every loaded node (its displacements go to the .dat file).
+LOADED_NSET = "NLOADED"
+#: Step time of the clamping step, s (step 2's increment times follow it).
+CLAMP_TIME = 1.0
+#: Most grid lines of the base along one in-plane axis before it falls back to a uniform grid.
+MAX_BASE_LINES = 400
+
+
+def element_surface_card(name: str, faces: ArrayLike) -> str:
+    """Element-face ``*SURFACE`` from rows (element, face) with 0-based element rows and faces
+    0..5 (S1..S6), as :meth:`HexMesh.faces` returns them.
+
+    >>> element_surface_card("SCONTACT", [[0, 0], [3, 1]])
+    '*SURFACE, NAME=SCONTACT, TYPE=ELEMENT\\n1, S1\\n4, S2\\n'
+    """
+    f = np.asarray(faces)
+    if (f.ndim != 2 or f.shape[1] != 2 or f.shape[0] == 0 or not np.issubdtype(f.dtype, np.integer)
+            or np.any(f[:, 0] < 0) or np.any((f[:, 1] < 0) | (f[:, 1] > 5))):
+        raise ParameterError(f"surface {name}: faces must be rows (element >= 0, face 0..5)")
+    return (f"*SURFACE, NAME={_name('surface', name)}, TYPE=ELEMENT\n"
+            + "".join(f"{int(e) + 1}, S{int(k) + 1}\n" for e, k in f))
+
+
+def dsload_card(surface: str, pressure: float) -> str:
+    """``*DSLOAD``: uniform pressure (MPa, positive into the faces) on an element-face surface.
+
+    >>> dsload_card("SCLAMP", 0.5)
+    '*DSLOAD\\nSCLAMP, P, 0.5\\n'
+    """
+    return (f"*DSLOAD\n{_name('surface', surface)}, P, "
+            f"{_num(pressure, 'pressure (MPa)', positive=True)}\n")
+
+
+def load_times(increments_per_cycle: int, cycles: int) -> FloatArray:
+    """Increment ends of the load step, cycles: 0, 1/n, ..., cycles + 1/4.
+
+    The first quarter cycle brings the loads from zero onto their cycle (:func:`load_factors`);
+    then ``cycles`` full cycles follow, from t = 1/4 to cycles + 1/4. The last of them is the
+    settled one whose work is reported. One cycle is the paper's load step (t = 0 .. 1.25 s).
+
+    >>> load_times(8, 1).tolist()
+    [0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0, 1.125, 1.25]
+    """
+    n = increments_per_cycle
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 4 or n % 4:
+        raise ParameterError(f"increments_per_cycle must be a multiple of 4 (>= 4), got {n!r}")
+    c = cycles
+    if isinstance(c, bool) or not isinstance(c, (int, np.integer)) or not 1 <= c <= 100:
+        raise ParameterError(f"cycles must be an integer in [1, 100], got {c!r}")
+    return np.arange(int(n) * int(c) + int(n) // 4 + 1) / float(n)
+
+
+def load_factors(load: MeshLoad, times: ArrayLike) -> FloatArray:
+    """F_l(t) / A_l at the increment ends: sin(2 pi t + phi) from t = 1/4 on, and before it the
+    straight ramp sin(2 pi t) cos(phi) from zero to the cycle's value at t = 1/4.
+
+    For phi = 0 this is the paper's sine over the whole step (PaperSine); for several loads it
+    is a straight ramp in force space to their values at t = 1/4, then the cycles.
+
+    >>> from microslip.fe.meshload import MeshLoad
+    >>> load_factors(MeshLoad("a", (1, 0, 0), 1.0, 90.0), [0, .25, .5]).round(12).tolist()
+    [0.0, 0.0, -1.0]
+    """
+    t = np.asarray(times, dtype=float)
+    phi = math.radians(load.phase_deg)
+    cyc = np.sin(2 * np.pi * np.mod(t, 1.0) + phi)  # exact zeros at whole cycles
+    ramp = np.sin(2 * np.pi * np.minimum(t, 0.25)) * math.cos(phi)
+    return np.where(t < 0.25, ramp, cyc)
+
+
+@dataclass(frozen=True, eq=False)
+class LoadHistory:
+    """The load samples of step 2: one per increment end.
+
+    Attributes
+    ----------
+    time : ndarray, shape (k + 1,)
+        Time of each sample, cycles (negative during a start-up ramp before t = 0).
+    factors : ndarray, shape (k + 1, loads)
+        F_l / A_l at each sample.
+    increments_per_cycle : int
+    first_cycle : int
+        Index of the first sample of the first full cycle; the cycles follow back to back and
+        the last one ends at the last sample.
+    """
+
+    time: FloatArray
+    factors: FloatArray
+    increments_per_cycle: int
+    first_cycle: int
+
+    @property
+    def step_time(self) -> FloatArray:
+        """CalculiX's step time of each sample, s (1 s per cycle, from 0)."""
+        return self.time - self.time[0]
+
+    @property
+    def cycles(self) -> int:
+        return (self.time.size - 1 - self.first_cycle) // self.increments_per_cycle
+
+
+def _quarter(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
+    t = load_times(n, cycles)
+    return LoadHistory(t, np.column_stack([load_factors(ld, t) for ld in loads]), n, n // 4)
+
+
+def _ramp(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
+    load_times(n, cycles)  # the same checks
+    t = np.arange(n * cycles + 1) / n
+    f = np.column_stack([ld.force(t) / ld.amplitude for ld in loads])
+    if float(np.max(np.abs(f[0]))) <= 1e-12:
+        f[0] = 0.0
+        return LoadHistory(t, f, n, 0)
+    m = n // 4
+    ramp = np.arange(m) / m
+    return LoadHistory(np.concatenate([(ramp - 1.0) / 4.0, t]),
+                       np.concatenate([ramp[:, None] * f[0][None, :], f]), n, m)
+
+
+#: How step 2 starts, name -> history(loads, increments_per_cycle, cycles). ``quarter``: the
+#: paper's load step (:func:`load_times`, :func:`load_factors`: a quarter-cycle start, cycles
+#: from t = 1/4). ``ramp``: the built-in own-mesh solver's sine cycles: cycles from t = 0, a
+#: straight ramp of a quarter cycle's increments from rest to the loads at t = 0 only when a
+#: phase makes them non-zero there.
+STARTUPS = {"quarter": _quarter, "ramp": _ramp}
+_STARTUP_TEXT = {"quarter": "a quarter-cycle start", "ramp": "a straight ramp if needed"}
+
+
+def load_history(loads: Sequence[MeshLoad], increments_per_cycle: int, cycles: int,
+                 startup: str = "quarter") -> LoadHistory:
+    """The samples of step 2 (:data:`STARTUPS`).
+
+    >>> from microslip.fe.meshload import MeshLoad
+    >>> h = load_history([MeshLoad("a", (1, 0, 0), 1.0, 90.0)], 4, 1, "ramp")
+    >>> h.time.tolist(), h.factors[:, 0].round(12).tolist(), h.first_cycle, h.cycles
+    ([-0.25, 0.0, 0.25, 0.5, 0.75, 1.0], [0.0, 1.0, 0.0, -1.0, -0.0, 1.0], 1, 1)
+    """
+    if startup not in STARTUPS:
+        raise ParameterError(f"startup must be one of {', '.join(STARTUPS)}, got {startup!r}")
+    return STARTUPS[startup](loads, increments_per_cycle, cycles)
+
+
+@dataclass(frozen=True, eq=False)
+class BaseSlab:
+    """The rigid base: fixed C3D8 bricks below the contact plane (ids follow the mesh's).
+
+    Attributes
+    ----------
+    nodes : ndarray, shape (m, 3)
+        Base node coordinates, mm.
+    elements : ndarray of int, shape (k, 8)
+        Base connectivity, 0-based rows of ``nodes`` (C3D8 order; face S2 is the upper face).
+    normal : ndarray, shape (3,)
+        Unit normal of the contact plane pointing from the base into the body.
+    """
+
+    nodes: FloatArray
+    elements: IntArray
+    normal: FloatArray
+
+
+def _grid_lines(values: FloatArray, tol: float, fallback: float) -> FloatArray:
+    """Distinct coordinates of the contact nodes along an in-plane axis (merged within tol),
+    with one more line each side at the mean spacing; a uniform grid if there are too many."""
+    v = np.sort(values)
+    keep = np.concatenate([[True], np.diff(v) > tol])
+    lines = v[keep]
+    if lines.size > MAX_BASE_LINES:
+        n = max(1, math.ceil((lines[-1] - lines[0]) / fallback))
+        lines = np.linspace(lines[0], lines[-1], min(n, MAX_BASE_LINES - 1) + 1)
+    if lines.size < 2:
+        raise ParameterError("the contact faces have no extent in the contact plane")
+    h = (lines[-1] - lines[0]) / (lines.size - 1)
+    return np.concatenate([[lines[0] - h], lines, [lines[-1] + h]])
+
+
+def base_slab(mesh: HexMesh, contact_faces: ArrayLike, set_name: str = "contact") -> BaseSlab:
+    """A rigid flat base just below the contact faces (they must lie in one plane).
+
+    The base is a structured slab of C3D8 bricks whose upper face is the contact plane and
+    whose grid lines, in the plane, pass through the contact faces' corner nodes plus one
+    line each side (at most :data:`MAX_BASE_LINES` per axis, else a uniform grid of about the
+    faces' size); its thickness is the body's extent normal to the plane. For a plane normal to
+    a coordinate axis the in-plane axes are the other two, so on the box it is the box deck's
+    base (:func:`~microslip.fe.calculix.mesh.bar_mesh`) node for node.
+    """
+    faces = np.asarray(contact_faces, dtype=np.int64).reshape(-1, 2)
+    corners = mesh.face_corners(faces)
+    x = mesh.nodes[corners]  # (k, 4, 3)
+    area_vec = 0.5 * np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])  # along the inward normal
+    s = area_vec.sum(axis=0)
+    if not np.linalg.norm(s) > 0:
+        raise ParameterError(f"{mesh.source}: set {set_name!r}: the contact faces have no area")
+    up = s / np.linalg.norm(s)  # HEX_FACES order: right-hand normal points into the element
+    pts = mesh.nodes[np.unique(corners)]
+    size = float(np.ptp(mesh.nodes, axis=0).max())
+    level = pts @ up
+    if np.ptp(level) > 1e-6 * size:
+        raise ParameterError(
+            f"{mesh.source}: set {set_name!r} is not flat (its nodes lie up to "
+            f"{np.ptp(level):.3g} mm apart normal to it); the rigid base needs a flat contact face")
+    axis = int(np.argmax(np.abs(up)))
+    if abs(abs(up[axis]) - 1.0) < 1e-12:
+        up = np.zeros(3)
+        up[axis] = np.sign(s[axis])
+        others = [a for a in range(3) if a != axis]
+        e1, e2 = np.eye(3)[others[0]], np.eye(3)[others[1]]
+        if np.dot(np.cross(e1, e2), up) < 0:
+            e1, e2 = e2, e1
+    else:
+        e1 = np.cross(up, np.eye(3)[int(np.argmin(np.abs(up)))])
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(up, e1)
+    c = float(np.mean(pts @ up)) if np.ptp(pts @ up) > 0 else float((pts @ up)[0])
+    edge = float(np.mean(np.linalg.norm(x - np.roll(x, 1, axis=1), axis=2)))
+    tol = 1e-9 * size
+    bu = _grid_lines(pts @ e1, tol, edge)
+    bv = _grid_lines(pts @ e2, tol, edge)
+    used = mesh.nodes[np.unique(mesh.elements)] @ up
+    thickness = float(np.max(used) - c)
+    if not thickness > 0 or float(np.min(used)) < c - 1e-6 * size:
+        raise ParameterError(
+            f"{mesh.source}: set {set_name!r}: the body reaches below the contact plane (up to "
+            f"{c - float(np.min(used)):.3g} mm); the contact set must be an outer face that "
+            "rests on the base")
+    bw = np.array([-thickness, 0.0])
+    gi, gj, gk = np.meshgrid(np.arange(bu.size), np.arange(bv.size), np.arange(2), indexing="ij")
+    gi, gj, gk = (a.transpose(2, 1, 0).ravel() for a in (gi, gj, gk))  # first index fastest
+    bid = np.zeros((bu.size, bv.size, 2), dtype=np.int64)
+    bid[gi, gj, gk] = np.arange(gi.size)
+    xyz = (bu[gi][:, None] * e1 + bv[gj][:, None] * e2 + (c + bw[gk])[:, None] * up)
+    ci, cj = np.meshgrid(np.arange(bu.size - 1), np.arange(bv.size - 1), indexing="ij")
+    ci, cj = ci.T.ravel(), cj.T.ravel()
+    corner = ((0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
+              (0, 1, 1))
+    conn = np.stack([bid[ci + a, cj + b, k] for a, b, k in corner], axis=1)
+    return BaseSlab(np.asarray(xyz, dtype=float), conn.astype(np.int64), up)
+
+
+@dataclass(frozen=True, eq=False)
+class MeshLoadPlan:
+    """Where each load acts and how it is read back.
+
+    Attributes
+    ----------
+    loads : tuple of MeshLoad
+    nodes : tuple of ndarray of int
+        Per load, the 0-based nodes of its faces.
+    shares : tuple of ndarray
+        Per load, the consistent shares of a uniform traction of 1 N (sum 1); the
+        work-conjugate displacement of load l is sum_i shares_i (u_i . d_l).
+    areas : tuple of float
+        Per load, the area of its faces, mm^2.
+    loaded : ndarray of int
+        Every loaded node, 0-based, sorted (the printed node set).
+    """
+
+    loads: tuple[MeshLoad, ...]
+    nodes: tuple[IntArray, ...]
+    shares: tuple[FloatArray, ...]
+    areas: tuple[float, ...]
+    loaded: IntArray
+
+    def conjugate(self, u: FloatArray) -> FloatArray:
+        """Work-conjugate displacement of each load, shape (k, loads), from nodal displacements
+        ``u`` of the loaded nodes, shape (k, len(loaded), 3), mm."""
+        out = np.empty((u.shape[0], len(self.loads)))
+        for j, (ld, nodes, w) in enumerate(zip(self.loads, self.nodes, self.shares,
+                                               strict=True)):
+            rows = np.searchsorted(self.loaded, nodes)
+            out[:, j] = (u[:, rows, :] @ np.asarray(ld.direction)) @ w
+        return out
+
+
+def load_plan(mesh: HexMesh, loads: Sequence[MeshLoad]) -> MeshLoadPlan:
+    """The faces, nodes and consistent shares of every load (sets resolved by
+    :meth:`HexMesh.faces`)."""
+    if not loads:
+        raise ParameterError("at least one load is needed (SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG])")
+    nodes, shares, areas = [], [], []
+    for ld in loads:
+        if not isinstance(ld, MeshLoad):
+            raise ParameterError(f"loads must be MeshLoad, got {type(ld).__name__}")
+        faces = mesh.faces(ld.set)
+        if faces.size == 0:
+            raise ParameterError(f"{mesh.source}: set {ld.set!r} holds no element face")
+        n, w, a = face_load(mesh, faces)
+        nodes.append(n)
+        shares.append(w)
+        areas.append(a)
+    loaded = np.unique(np.concatenate(nodes))
+    return MeshLoadPlan(tuple(loads), tuple(nodes), tuple(shares), tuple(areas), loaded)
+
+
+def _load_cards(plan: MeshLoadPlan, history: LoadHistory, first_node: int = 1
+                ) -> tuple[str, str]:
+    """The amplitudes and the ``*CLOAD`` cards of the loads.
+
+    One amplitude ``L<j>`` per load; the force of load j on node i along dof k is
+    A_j share_i d_jk. CalculiX keeps one load per node and dof (a second ``*CLOAD`` on the
+    same node and dof replaces the first), so a node and dof loaded by several loads gets the
+    sum of their forces, r sin(2 pi t + psi), with an amplitude ``M<m>`` per distinct psi.
+    """
+    nl = len(plan.loads)
+    times = history.step_time
+    f_all = [history.factors[:, j] for j in range(nl)]
+    # coefficient of each load on each (node, dof)
+    coef: dict[tuple[int, int], np.ndarray] = {}
+    for j, (ld, nodes, w) in enumerate(zip(plan.loads, plan.nodes, plan.shares, strict=True)):
+        for k in range(3):
+            d = ld.direction[k]
+            if d == 0.0:
+                continue
+            for n, s in zip(nodes.tolist(), w.tolist(), strict=True):
+                c = coef.setdefault((n, k), np.zeros(nl))
+                c[j] += ld.amplitude * s * d
+    amps = [amplitude_card(f"L{j + 1}", times, f_all[j]) for j in range(nl)]
+    single: dict[tuple[int, int], list[tuple[int, float]]] = {}
+    mixed: dict[tuple[bytes, int], list[tuple[int, float]]] = {}
+    mixed_names: dict[bytes, str] = {}
+    for (n, k), c in sorted(coef.items(), key=lambda kv: (kv[0][1], kv[0][0])):
+        nz = np.flatnonzero(c)
+        if nz.size == 0:
+            continue
+        if nz.size == 1:
+            single.setdefault((int(nz[0]), k), []).append((n, float(c[nz[0]])))
+            continue
+        # sum_j c_j f_j(t), tabulated as one amplitude per distinct shape
+        total = sum(c[j] * f_all[j] for j in range(nl))
+        scale = float(np.max(np.abs(total)))
+        if scale == 0.0:
+            continue
+        shape = np.round(total / scale, 12)
+        key = shape.tobytes()
+        if key not in mixed_names:
+            name = f"M{len(mixed_names) + 1}"
+            mixed_names[key] = name
+            amps.append(amplitude_card(name, times, total / scale))
+        mixed.setdefault((key, k), []).append((n, scale))
+    cloads = []
+    for (j, k), rows in sorted(single.items()):
+        ids = [first_node + n for n, _ in rows]
+        cloads.append(cload_card(ids, k + 1, [v for _, v in rows], amplitude=f"L{j + 1}"))
+    for (key, k), rows in mixed.items():
+        ids = [first_node + n for n, _ in rows]
+        cloads.append(cload_card(ids, k + 1, [v for _, v in rows], amplitude=mixed_names[key]))
+    return "".join(amps), "".join(cloads)
+
+
+def _fixed_cards(mesh: HexMesh, fixed: Sequence[tuple[str, int, int]]
+                 ) -> tuple[str, list[tuple[str, int, int]]]:
+    """``*NSET`` cards ``NFIX<j>`` of the held node sets and their ``*BOUNDARY`` rows."""
+    cards, rows = [], []
+    for j, row in enumerate(fixed):
+        try:
+            name, first, last = row
+        except (TypeError, ValueError):
+            raise ParameterError(f"fixed entries must be (set, first dof, last dof), got "
+                                 f"{row!r}") from None
+        if name not in mesh.node_sets or mesh.node_sets[name].size == 0:
+            raise ParameterError(f"{mesh.source}: no non-empty node set named {name!r} to hold "
+                                 f"fixed; the node sets are {', '.join(sorted(mesh.node_sets))}")
+        cards.append(nset_card(f"NFIX{j + 1}", mesh.node_sets[name] + 1))
+        rows.append((f"NFIX{j + 1}", first, last))
+    return "".join(cards), rows
+
+
+def _check_positive(name: str, value: float, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ParameterError(f"{name} must be > 0 {unit}, got {value!r}")
+    return v
+
+
+def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
+                    loads: Sequence[MeshLoad], friction: float, stick_slope: float,
+                    normal_contact: str = "penalty", normal_slope: float = 1.0e5,
+                    modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
+                    cycles: int = 1, max_iterations: int = 26,
+                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter"
+                    ) -> str:
+    """The complete ``.inp`` deck of the user's mesh on a rigid frictional base.
+
+    Parameters
+    ----------
+    mesh : HexMesh
+        8-node (C3D8I) or 20-node (C3D20R) hexahedra, mm.
+    contact_set, clamp_set : str
+        Sets (node sets or surfaces, :meth:`HexMesh.faces`) of the face on the rigid base and
+        of the face that carries the clamping pressure.
+    normal_force : float
+        F_N, N: the pressure F_N / A on the clamp set's faces of area A.
+    loads : sequence of MeshLoad
+        F_l(t) = A_l sin(2 pi t + phi_l) on their sets (:func:`load_factors`).
+    friction, stick_slope : float
+        mu and lambda (N/mm^3) of ``*FRICTION``.
+    normal_contact : str
+        A key of :data:`NORMAL_CONTACTS` (``"penalty"``); ``"fixed"`` is refused.
+    normal_slope : float
+        Slope of the linear pressure-overclosure law, N/mm^3.
+    modulus, poisson_ratio : float
+        E (MPa) and nu of the body (and of the base, whose nodes are all fixed).
+    increments_per_cycle, cycles : int
+        Equal ``DIRECT`` increments per cycle (a multiple of 4) and full cycles after the
+        start-up (:func:`load_history`).
+    max_iterations : int
+        Equilibrium iterations per increment (``*CONTROLS`` I_C; the box deck's 26).
+    fixed : sequence of (str, int, int)
+        Node sets of the mesh with the dofs first..last (1 x, 2 y, 3 z) held at zero, e.g.
+        ``[("sym", 2, 2)]`` for a symmetry plane y = const. None by default: the in-plane
+        rigid-body motions are held by friction alone, as in the built-in solver.
+    startup : str
+        How the loads start (:data:`STARTUPS`): ``"quarter"`` (the paper's load step) or
+        ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
+
+    Returns
+    -------
+    str
+        The deck text, ending with a newline.
+    """
+    if not isinstance(mesh, HexMesh):
+        raise ParameterError("build_mesh_deck needs a HexMesh")
+    if normal_contact not in NORMAL_CONTACTS:
+        raise ParameterError(
+            f"normal_contact must be {' or '.join(repr(k) for k in NORMAL_CONTACTS)} for "
+            f"CalculiX, got {normal_contact!r}: its contact pressure always follows the "
+            "overclosure, so normal forces frozen at the clamping step ('fixed') have no "
+            "counterpart; compare with the built-in solver's 'penalty'")
+    fn = _check_positive("normal_force", normal_force, "N")
+    contact = mesh.faces(contact_set)
+    clamp = mesh.faces(clamp_set)
+    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
+        if faces.size == 0:
+            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
+    _, _, clamp_area = face_load(mesh, clamp)
+    plan = load_plan(mesh, loads)
+    history = load_history(plan.loads, increments_per_cycle, cycles, startup)
+    base = base_slab(mesh, contact, contact_set)
+    etype = MESH_ELEMENTS[mesh.nodes_per_element]
+    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
+    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
+    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
+    amps, cloads = _load_cards(plan, history)
+    fixed_sets, fixed_rows = _fixed_cards(mesh, fixed)
+    n = int(history.time.size - 1)
+    dt = 1.0 / increments_per_cycle
+    ext = np.ptp(mesh.nodes, axis=0)
+    loads_txt = "; ".join(
+        f"{ld.set} {ld.amplitude:g} N along ({', '.join(f'{d:g}' for d in ld.direction)}) "
+        f"at {ld.phase_deg:g} deg" for ld in plan.loads)
+    parts = [
+        heading_card(f"microslip own mesh {mesh.source}: {n_el} {etype}, "
+                     f"{ext[0]:g} x {ext[1]:g} x {ext[2]:g} mm, on a rigid base"),
+        nodes_card(np.vstack([mesh.nodes, base.nodes])),
+        elements_card(etype, "BODY", mesh.elements + 1, first=1),
+        elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=int(base_ids[0])),
+        nset_card("NBASE", base_nodes),
+        nset_card(LOADED_NSET, plan.loaded + 1),
+        fixed_sets,
+        element_surface_card("SCONTACT", contact),
+        element_surface_card("SCLAMP", clamp),
+        element_surface_card("SBASE", np.column_stack([base_ids - 1,
+                                                       np.ones_like(base_ids)])),
+        material_card("BODY", modulus, poisson_ratio),
+        solid_section_card("BODY", "BODY"),
+        solid_section_card("BASE", "BODY"),
+        surface_interaction_card("SI", normal_slope, friction, stick_slope),
+        contact_pair_card("SI", "SCONTACT", "SBASE"),
+        boundary_card([("NBASE", 1, 3), *fixed_rows]),
+        amps,
+        f"** step 1: clamping pressure F_N / A = {fn:g} N / {clamp_area:g} mm^2 on "
+        f"{clamp_set}\n",
+        step_card(100),
+        static_card(1.0, CLAMP_TIME, direct=False),
+        dsload_card("SCLAMP", fn / clamp_area),
+        node_print_card(LOADED_NSET),
+        node_file_card(),
+        contact_file_card(),
+        end_step_card(),
+        f"** step 2: {loads_txt}; {cycles} cycle(s) after {_STARTUP_TEXT[startup]}, "
+        f"{increments_per_cycle} increments per cycle\n",
+        step_card(n + 10),
+        static_card(dt, float(history.step_time[-1]), direct=True),
+        controls_card(max_iterations),
+        cloads,
+        node_print_card(LOADED_NSET),
+        node_file_card(),
+        contact_file_card(),
+        end_step_card(),
+    ]
+    return "".join(parts)
