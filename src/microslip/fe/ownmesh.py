@@ -1,0 +1,220 @@
+"""One run of the user's own clamp mesh: read, check, solve (built-in or CalculiX), write.
+
+The library side of ``microslip fe --mesh FILE``: :class:`OwnMeshCase` holds what a case
+file or the command line gives (the mesh, its role sets, the clamp, the contact law, the
+loads), :func:`run_own_mesh` reads the mesh (:func:`~microslip.fe.meshfile.read_mesh`),
+checks the roles (:func:`~microslip.fe.meshcheck.check_roles`) and runs a solver of
+:data:`OWN_MESH_SOLVERS` on it; with ``out`` it writes ``result.json``, one loop CSV per load
+and (built-in solver) a VTU series with the contact status, slip and pressure on the user's
+mesh. Units: N, mm, MPa, N·mm.
+
+Both solvers run the same load history: a ramp from rest where a phase makes a load non-zero
+at t = 0, then whole cycles of F_j = A_j sin(2 pi t + phi_j). The built-in solver runs cycles
+until the work per cycle settles to ``tol``; CalculiX runs ``cycles`` cycles (its
+``cycle_work_Nmm`` shows whether they settled).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..io import atomic_write, write_loop_csv
+from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from .hexmesh import HexMesh
+from .meshload import MeshLoad
+
+__all__ = ["HISTORIES", "OWN_MESH_SOLVERS", "OwnMeshCase", "OwnMeshRun", "run_own_mesh"]
+
+#: Load histories of an own-mesh run (see :class:`OwnMeshCase`).
+HISTORIES = {"settle": "cycles until the work per cycle settles to the tolerance",
+             "paper": "the paper's load step: a quarter-cycle rise, then one cycle"}
+
+
+@dataclass(frozen=True)
+class OwnMeshCase:
+    """A clamp described by its mesh: the file, the role sets, the clamp and the loads.
+
+    ``normal_contact`` is ``fixed`` (normal forces of the clamping step) or ``penalty``
+    (``normal_slope`` N/mm^3, lift-off allowed); CalculiX takes ``penalty`` only.
+    ``substeps`` as the box's ``fe --substeps``: equal substeps over 1.25 cycles (a multiple of
+    5; 50 gives 40 increments per cycle). ``history`` is one of :data:`HISTORIES`: ``settle``
+    runs cycles until the work of a cycle is within ``tol`` (relative) of the last, at most
+    ``max_cycles`` (CalculiX runs ``cycles``); ``paper`` is the paper's load step of the box
+    (a quarter-cycle rise, then one cycle; W over that cycle), loads at phase 0 only.
+    """
+
+    mesh_file: str
+    contact_set: str
+    clamp_set: str
+    normal_force: float
+    loads: tuple[MeshLoad, ...]
+    friction: float
+    modulus: float
+    poisson_ratio: float
+    stick_slope: float = DEFAULT_STICK_SLOPE
+    normal_contact: str = "fixed"
+    normal_slope: float = DEFAULT_NORMAL_SLOPE
+    substeps: int = 50
+    history: str = "settle"
+    tol: float = 1e-3
+    max_cycles: int = 10
+    cycles: int = 3
+    options: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not self.loads:
+            raise ParameterError("give at least one --load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
+        if self.history not in HISTORIES:
+            raise ParameterError(f"history must be one of {', '.join(HISTORIES)}, got "
+                                 f"{self.history!r}")
+        if isinstance(self.substeps, bool) or not isinstance(self.substeps, int) or not (
+                self.substeps >= 10 and self.substeps % 5 == 0):
+            raise ParameterError(f"--substeps must be a multiple of 5, at least 10, got "
+                                 f"{self.substeps!r}")
+        if self.history == "paper" and any(ld.phase_deg % 360 for ld in self.loads):
+            raise ParameterError("the paper's load step starts every load from rest at phase "
+                                 "0; with phases use the default history (settle)")
+
+    @property
+    def increments(self) -> int:
+        """Increments per cycle: 4/5 of the substeps over 1.25 cycles."""
+        return self.substeps * 4 // 5
+
+
+@dataclass(frozen=True)
+class OwnMeshRun:
+    """What a run gives: the JSON summary, the files written, the solver's own result."""
+
+    summary: dict[str, Any]
+    files: tuple[Path, ...]
+    result: Any
+
+
+def _mesh_of(case: OwnMeshCase) -> HexMesh:
+    from .meshcheck import check_roles
+    from .meshfile import read_mesh
+
+    mesh = read_mesh(case.mesh_file)
+    check_roles(mesh, case.contact_set, case.clamp_set, case.loads)
+    return mesh
+
+
+def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
+    from .builtin.meshmodel import build_mesh_model
+    from .builtin.meshrun import LoadFactors, SineCycles, solve_mesh
+
+    model = build_mesh_model(
+        mesh, contact_set=case.contact_set, clamp_set=case.clamp_set,
+        normal_force=case.normal_force, modulus=case.modulus,
+        poisson_ratio=case.poisson_ratio, friction=case.friction,
+        stick_slope=case.stick_slope, normal_contact=case.normal_contact,
+        normal_slope=case.normal_slope)
+    history: SineCycles | LoadFactors
+    if case.history == "paper":
+        time = np.arange(case.substeps + 1) / case.increments
+        history = LoadFactors(np.repeat(np.sin(2 * np.pi * time)[:, None], len(case.loads), 1),
+                              case.increments // 4, time)
+    else:
+        history = SineCycles(increments=case.increments, tol=case.tol,
+                             max_cycles=case.max_cycles)
+    result = solve_mesh(model, case.loads, history, record=record)
+    return {"solver": "builtin", "element": "C3D8I", **result.summary(),
+            "converged": result.converged}, result
+
+
+def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
+    from .calculix.meshrun import run_mesh_calculix
+
+    result = run_mesh_calculix(
+        mesh, contact_set=case.contact_set, clamp_set=case.clamp_set,
+        normal_force=case.normal_force, loads=case.loads, friction=case.friction,
+        stick_slope=case.stick_slope, normal_contact=case.normal_contact,
+        normal_slope=case.normal_slope, modulus=case.modulus,
+        poisson_ratio=case.poisson_ratio, increments_per_cycle=case.increments,
+        cycles=1 if case.history == "paper" else case.cycles,
+        startup="quarter" if case.history == "paper" else "ramp", **case.options)
+    return result.summary(), result
+
+
+#: Solvers of an own-mesh run: name -> function (mesh, case, record) -> (summary, result).
+OWN_MESH_SOLVERS: dict[str, Callable[[HexMesh, OwnMeshCase, bool],
+                                     tuple[dict[str, Any], Any]]] = {
+    "builtin": _builtin, "calculix": _calculix}
+
+
+def _loops(result: Any) -> list[tuple[str, Any, Any]]:
+    """(set, force, displacement) of every load over the settled (last) cycle."""
+    out = []
+    if hasattr(result, "cycle_start"):  # built-in
+        for ld in result.loads:
+            out.append((ld.load.set, ld.loop.force, ld.loop.displacement))
+    else:
+        n = result.increments_per_cycle
+        for j, ld in enumerate(result.loads):
+            out.append((ld.set, result.force[-n - 1:, j], result.displacement[-n - 1:, j]))
+    return out
+
+
+def _vtu(mesh: HexMesh, result: Any, out: Path) -> list[Path]:
+    """The VTU series of a built-in run on the user's mesh: displacement, contact status
+    (-1 not a contact node, 0 open, 1 stick, 2 slip as :data:`~microslip.fe.result.STATUS`),
+    slip (global components, mm) and contact pressure (MPa) at every state."""
+    from .vtu import FieldSeries, write_vtu_series
+
+    n = len(mesh.nodes)
+    nodes = result.contact.nodes
+    pressure = np.zeros((result.time.size, n))
+    pressure[:, nodes] = result.pressure
+    slip = np.zeros((result.time.size, n, 3))
+    if result.contact.slip is not None:
+        slip[:, nodes] = result.contact.slip @ result.tangent_axes
+    cell = "hexahedron" if mesh.nodes_per_element == 8 else "hexahedron20"
+    fields = FieldSeries(mesh.nodes, [(cell, mesh.elements)], result.displacement,
+                         point_data={"contact_pressure": pressure, "contact_slip": slip})
+    return write_vtu_series(result, fields, out, basename="fe_mesh")
+
+
+def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path | None = None,
+                 vtu: bool = True) -> OwnMeshRun:
+    """Read, check and solve the mesh of ``case``; with ``out`` write its files there.
+
+    Raises
+    ------
+    ParameterError
+        A bad mesh, set or value (one line naming it).
+    NonConvergenceError, MacroslipError
+        From the solver.
+    """
+    if solver not in OWN_MESH_SOLVERS:
+        raise ParameterError(f"unknown solver {solver!r}; choose one of "
+                             f"{', '.join(OWN_MESH_SOLVERS)}")
+    mesh = _mesh_of(case)
+    record = out is not None and vtu and solver == "builtin"
+    summary, result = OWN_MESH_SOLVERS[solver](mesh, case, record)
+    summary = {"mesh": str(case.mesh_file), "nodes": len(mesh.nodes),
+               "elements": len(mesh.elements), **summary}
+    files: list[Path] = []
+    if out is not None:
+        d = Path(out)
+        for k, (name, force, disp) in enumerate(_loops(result)):
+            files.append(write_loop_csv(d / f"loop_{k + 1}_{name}.csv", force, disp))
+        if record:
+            files.extend(_vtu(mesh, result, d))
+        listed = [f for f in files if f.suffix != ".vtu"]  # the .pvd lists the VTU files
+        summary["files"] = [str(f) for f in listed] + [str(d / "result.json")]
+        with atomic_write(d / "result.json") as fh:
+            json.dump(summary, fh, indent=2, default=float)
+        files.append(d / "result.json")
+    return OwnMeshRun(summary, tuple(files), result)
+
+
+def loops_of(run: OwnMeshRun) -> Sequence[tuple[str, Any, Any]]:
+    """(set, force N, work-conjugate displacement mm) of every load over the settled cycle."""
+    return _loops(run.result)
