@@ -29,14 +29,15 @@ and adding one :class:`ModelSpec` entry, which must provide:
 The step functions return flat tuples (state first, then what is observed): numba's parallel
 analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
 on-disk cache keys a compiled function on its own file only: after editing a step in
-``tip.py`` or ``centre.py`` (or :func:`~microslip.energy.masing_energies`), touch
+``tip.py`` or ``centre.py`` (or :func:`~microslip.models.masing.masing_energies`), touch
 ``layered.py`` and ``batch_kernels.py`` (both inline those steps) or remove
 ``__pycache__/*.nbi`` so that they are rebuilt (``tests/test_batch.py`` compares them
 bit for bit with :func:`first_loading` and fails on a stale cache).
 
-This package may import ``closedform``, ``energy`` (its compiled sums), ``options``,
-``params``, ``results``, ``named`` and ``errors``; never ``batch``, ``planar``, the FE code
-or the command line.
+This package may import ``closedform``, ``options``, ``params``, ``results``, ``named`` and
+``errors``; never ``energy`` (it imports the models; the compiled Masing sums the kernels
+share with it are :mod:`.masing`, here), ``batch``, ``planar``, the FE code or the command
+line.
 
 >>> from microslip import preset, first_loading, ModelOptions
 >>> b = first_loading("tip", preset("table1"), 267.0, increments=100,
