@@ -20,7 +20,7 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 from __future__ import annotations
 
 from .backbone import FEBackbone, fe_backbone
-from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pressure_law
+from .clamping import ClampingPressure, clamp_forces, clamping_pressure
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .details import (
     BuiltinDetails,
@@ -33,6 +33,7 @@ from .element import ELEMENTS, assemble_stiffness, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
 from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
 from .normal import NORMAL_CONTACTS, PenaltyNormal
+from .pressure import fe_pressure_law
 from .solve import (
     CENTRE_DIRECTIONS,
     FrictionModel,
