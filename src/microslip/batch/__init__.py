@@ -20,6 +20,7 @@ True
 
 from __future__ import annotations
 
+from .. import _kernelcache  # noqa: F401  (before any kernel: the folder-stamped cache)
 from .driver import (
     BACKENDS,
     PARAM_FIELDS,
