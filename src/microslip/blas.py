@@ -6,7 +6,8 @@ from __future__ import annotations
 import contextlib
 from collections.abc import Iterator
 
-__all__ = ["single_threaded_blas"]
+#: Nothing public: :func:`single_threaded_blas` is an internal of the solvers.
+__all__: list[str] = []
 
 
 @contextlib.contextmanager
