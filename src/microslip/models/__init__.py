@@ -32,10 +32,10 @@ on-disk cache is stamped with the whole folder (:mod:`microslip._kernelcache`), 
 kernel inlining an edited step (``layered.py`` and ``batch_kernels.py`` inline those of
 ``tip.py``, ``centre.py``, ``layer.py`` and ``masing.py``) is rebuilt, never loaded stale.
 
-This package may import ``closedform``, ``options``, ``params``, ``results``, ``named`` and
-``errors``; never ``energy`` (it imports the models; the compiled Masing sums the kernels
-share with it are :mod:`.masing`, here), ``batch``, ``planar``, the FE code or the command
-line.
+This package may import ``closedform``, ``options``, ``params``, ``results``, ``named``,
+``errors`` and ``_kernelcache``; never ``energy`` (it imports the models; the compiled Masing
+sums the kernels share with it are :mod:`.masing`, here), ``batch``, ``planar``, the FE code
+or the command line.
 
 >>> from microslip import preset, first_loading, ModelOptions
 >>> b = first_loading("tip", preset("table1"), 267.0, increments=100,
