@@ -176,12 +176,6 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "Not run (failed): ccx failed" in (tmp_path / "b" / "report.md").read_text("utf-8")
 
 
-def test_fe_missing_is_reported_not_fatal(monkeypatch):
-    monkeypatch.setattr(reproduce_job.importlib.util, "find_spec", lambda name: None)
-    run, why = reproduce_job._fe_module()
-    assert run is None and "microslip.validate" in why
-
-
 # -- microslip planar ----------------------------------------------------------------------
 def test_planar_json(capsys, tmp_path):
     png = tmp_path / "p.png"

@@ -11,8 +11,9 @@ import pytest
 from microslip import preset
 from microslip.cli.main import main
 from microslip.fe.builtin import build_model, solve_uniaxial
-from microslip.fe.builtin.clamping import clamp_forces, clamping_pressure, fe_pressure_law
+from microslip.fe.builtin.clamping import clamp_forces, clamping_pressure
 from microslip.fe.builtin.mesh import box_mesh
+from microslip.fe.builtin.pressure import fe_pressure_law
 from microslip.models.interface import (
     masing_dissipation,
     power_law,

@@ -6,36 +6,98 @@ incremental models, Masing's rule, the planar coupling and the energy measures, 
 references and finite-element validation.
 
 Units throughout: force N, length mm, modulus MPa, energy N·mm.
+
+The user-facing entry points, in one flat namespace (as scikit-fem's ``skfem`` and felupe's
+``fem``); the rest lives in the subpackages, the layers of pyproject.toml:
+
+- the clamp and its options: :class:`ClampParams`, :func:`preset`, :class:`ModelOptions`,
+  :class:`Contact`;
+- the 1-D models and their loops (Eqs 2-23): :func:`first_loading`, :func:`masing_loop`,
+  :func:`damping`, :func:`damping_from_loop`, :func:`loss_factor`, :func:`batch_damping`;
+- circular and elliptical loading: :func:`paper_coupling`, :func:`analytical_response`,
+  :func:`loss_factor_vs_ratio`, :func:`ratio_sweep`;
+- the finite elements: :func:`run_loop` (either solver), :func:`solve_uniaxial`,
+  :func:`fe_backbone`, :func:`coupling_study`;
+- the joint in a structure: :class:`Structure`, :func:`one_mode`, :func:`from_matrices`,
+  :func:`jenkins`, :func:`iwan4`, :func:`clamp_joint`, :func:`describing_function`,
+  :func:`frequency_response`, :func:`epmc`, :func:`energy_method`;
+- studies: :func:`make_sweep`, :func:`run_sweep`, :func:`write_sweep`, :func:`fit_loops`,
+  :func:`write_report`.
+
+``import microslip`` loads only the parameters, options, results and errors; every other name
+is imported from its module on first use (PEP 562), so the package starts without numba,
+scipy.sparse, matplotlib, xarray or dask. Modules inside the package import from the modules
+that define a name, never from this namespace.
 """
 
 from __future__ import annotations
 
-from . import closedform, planar
-from .energy import (
-    DEFAULT_STRAIN_ENERGY,
-    STRAIN_ENERGY,
-    damping,
-    damping_from_loop,
-    dissipated_energy,
-    loss_factor,
-    strain_energy,
-)
+from ._lazy import lazy_names
 from .errors import MacroslipError, MicroslipError, ParameterError
-from .hysteresis import VirginCurve, masing_loop, masing_response
-from .models import MODELS, first_loading, macroslip_force
 from .options import CENTRE_READINGS, POISSON_MODES, ModelOptions
 from .params import PRESETS, ClampParams, preset
 from .results import Backbone, DampingResult, HysteresisLoop
 
 __version__ = "0.1.0"
 
+#: Public name -> the module that defines it, imported on first use.
+_LAZY = {
+    # modules
+    "closedform": ".closedform",
+    "planar": ".planar",
+    # the 1-D models, their loops and energies
+    "MODELS": ".models",
+    "Contact": ".models",
+    "first_loading": ".models",
+    "macroslip_force": ".models",
+    "VirginCurve": ".hysteresis",
+    "masing_loop": ".hysteresis",
+    "masing_response": ".hysteresis",
+    "DEFAULT_STRAIN_ENERGY": ".energy",
+    "STRAIN_ENERGY": ".energy",
+    "damping": ".energy",
+    "damping_from_loop": ".energy",
+    "dissipated_energy": ".energy",
+    "loss_factor": ".energy",
+    "strain_energy": ".energy",
+    "batch_damping": ".batch",
+    # circular and elliptical loading
+    "analytical_response": ".planar",
+    "loss_factor_vs_ratio": ".planar",
+    "paper_coupling": ".planar",
+    "ratio_sweep": ".sweep.ratio",
+    # finite elements
+    "FELoopResult": ".fe.result",
+    "run_loop": ".fe.run",
+    "coupling_study": ".fe.builtin.study",
+    "fe_backbone": ".fe.builtin.backbone",
+    "solve_uniaxial": ".fe.builtin.uniaxial",
+    # the joint in a structure
+    "IwanOperator": ".dynamics.operators",
+    "jenkins": ".dynamics.operators",
+    "clamp_joint": ".dynamics.distributions",
+    "iwan4": ".dynamics.distributions",
+    "describing_function": ".dynamics.describing",
+    "Structure": ".dynamics.structure",
+    "one_mode": ".dynamics.structure",
+    "from_matrices": ".dynamics.assemble",
+    "FrequencyResponse": ".dynamics.response",
+    "frequency_response": ".dynamics.response",
+    "ModalCurve": ".dynamics.modal",
+    "energy_method": ".dynamics.modal",
+    "epmc": ".dynamics.modal",
+    # studies
+    "make_sweep": ".sweep.spec",
+    "run_sweep": ".sweep.run",
+    "write_sweep": ".sweep.output",
+    "fit_loops": ".fit",
+    "write_report": ".report",
+}
+
 __all__ = [
     "CENTRE_READINGS",
-    "DEFAULT_STRAIN_ENERGY",
-    "MODELS",
     "POISSON_MODES",
     "PRESETS",
-    "STRAIN_ENERGY",
     "Backbone",
     "ClampParams",
     "DampingResult",
@@ -44,17 +106,12 @@ __all__ = [
     "MicroslipError",
     "ModelOptions",
     "ParameterError",
-    "VirginCurve",
-    "closedform",
-    "damping",
-    "damping_from_loop",
-    "dissipated_energy",
-    "first_loading",
-    "loss_factor",
-    "macroslip_force",
-    "masing_loop",
-    "masing_response",
-    "planar",
     "preset",
-    "strain_energy",
+    *_LAZY,
 ]
+
+__getattr__ = lazy_names(__name__, _LAZY)
+
+
+def __dir__() -> list[str]:
+    return sorted({*__all__, "__version__"})

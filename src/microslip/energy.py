@@ -13,8 +13,9 @@ Two ways in, one set of definitions:
   integrates the sampled loop (trapezoidal rule) by the functions of :data:`STRAIN_ENERGY`;
 * a Masing loop completed from a model's backbone (:func:`damping`, the batch engine): the
   same integrals over the 2n + 1 loop points reduce to sums accumulated along the first
-  loading, :func:`masing_energies` (compiled; the batch kernels call it per case and
-  :func:`damping_from_backbone` once). The two agree to rounding (tested).
+  loading, :func:`masing_energies` (compiled, in :mod:`microslip.models.masing` below the
+  models; the batch kernels call it per case and :func:`damping_from_backbone` once). The
+  two agree to rounding (tested).
 """
 
 from __future__ import annotations
@@ -24,10 +25,10 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 
 from .errors import ParameterError
+from .models.masing import backbone_sums, masing_energies
 from .options import ModelOptions
 from .params import ClampParams
 from .results import Backbone, DampingResult, HysteresisLoop
@@ -113,76 +114,6 @@ STRAIN_ENERGY: dict[str, tuple[Callable[[HysteresisLoop, Backbone | None], float
 
 #: Integer code of each definition, as the compiled :func:`masing_energies` takes it.
 STRAIN_ENERGY_CODES: dict[str, int] = {k: i for i, k in enumerate(STRAIN_ENERGY)}
-
-
-@njit(cache=True, fastmath=False, inline="always")
-def masing_energies(f0, d0, q, q_k0, d_km1, d_k0, fr_km1, fr_k0, stored, kind):
-    """W_d, U and eta of the Masing loop of one backbone from sums along the first loading.
-
-    Parameters
-    ----------
-    f0, d0 : float
-        Peak force (N) and displacement (mm) of the backbone F_k = f0 k/n, d_k (k = 0..n).
-    q, q_k0 : float
-        Q = sum_(k=1..n) (F_(k-1) + F_k)(d_k - d_(k-1)) = 2 trapz(F, d), N·mm, and the same
-        sum up to k0 = ceil(n/2).
-    d_km1, d_k0 : float
-        d at k0 - 1 and k0, mm; ``fr_km1``, ``fr_k0`` = (k0 - 1)/n and k0/n.
-    stored : float
-        The model's stored energy at the peak, N·mm (used by kind ``stored``).
-    kind : int
-        :data:`STRAIN_ENERGY_CODES` of the definition of U.
-
-    Returns
-    -------
-    W_d, U, eta
-
-    Notes
-    -----
-    The Masing loop at the backbone samples (:func:`microslip.hysteresis.masing_loop`) has
-    descending branch F = F0 - 2 F_k, d = d0 - 2 d_k and ascending branch
-    F = -F0 + 2 F_k, d = -d0 + 2 d_k. Its trapezoidal integrals are:
-
-    - W_d = 4 (Q - F0 d0), the closed integral around the 2n + 1 points (Eq. 21;
-      = 4 F0 d0 - 8 trapz(d, F) by summation by parts);
-    - U secant = F0 d0 / 2, backbone = Q / 2, stored = the model's elastic energy;
-    - U branch (Eq. 22): the ascending branch from its zero crossing (between k0 - 1 and
-      k0, linear interpolation) to the peak:
-      0.5 F(k0) (d(k0) - d_zero) + 2 (Q_n - Q_k0) - 2 F0 (d0 - d_k0);
-
-    and eta = W_d / (2 pi U) (Eq. 23).
-    """
-    w = 4.0 * (q - f0 * d0)
-    if kind == 0:
-        u = 0.5 * f0 * d0
-    elif kind == 1:
-        u = 0.5 * q
-    elif kind == 2:
-        fa1 = -f0 + 2.0 * (f0 * fr_k0)
-        fa0 = -f0 + 2.0 * (f0 * fr_km1)
-        da1 = -d0 + 2.0 * d_k0
-        da0 = -d0 + 2.0 * d_km1
-        s = -fa0 / (fa1 - fa0)
-        d_zero = da0 + s * (da1 - da0)
-        u = 0.5 * fa1 * (da1 - d_zero) + 2.0 * (q - q_k0) - 2.0 * f0 * (d0 - d_k0)
-    else:
-        u = stored
-    return w, u, w / (2.0 * math.pi * u)
-
-
-@njit(cache=True, fastmath=False)
-def backbone_sums(force, displacement):
-    """(Q, Q_k0, d_(k0-1), d_k0, k0) of :func:`masing_energies` for a sampled backbone,
-    accumulated in the order of the batch kernels."""
-    n = force.shape[0] - 1
-    k0 = (n + 1) // 2
-    q = 0.0
-    q_k0 = 0.0
-    for k in range(1, n + 1):
-        q += (force[k - 1] + force[k]) * (displacement[k] - displacement[k - 1])
-        if k == k0:
-            q_k0 = q
-    return q, q_k0, displacement[max(k0 - 1, 0)], displacement[k0], k0
 
 
 def _kind_name(kind: str) -> str:

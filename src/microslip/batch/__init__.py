@@ -6,8 +6,9 @@ never stored, its energies are accumulated increment by increment. This package 
 and dispatches; the compiled kernels (numba, parallel over chunks of cases) are each
 model's own (:attr:`microslip.models.ModelSpec.batch_kernel`), built on the same step
 function as :func:`microslip.first_loading`, and the energies are
-:func:`microslip.energy.masing_energies`, as for :func:`microslip.damping`. It may import
-``models``, ``energy``, ``options``, ``params``, ``named`` and ``errors``.
+:func:`microslip.models.masing.masing_energies`, as for :func:`microslip.damping`. It may
+import ``models``, ``energy``, ``options``, ``params``, ``named``, ``errors`` and
+``_kernelcache``.
 
 >>> import numpy as np
 >>> from microslip import preset, damping
@@ -20,6 +21,7 @@ True
 
 from __future__ import annotations
 
+from .. import _kernelcache  # noqa: F401  (before any kernel: the folder-stamped cache)
 from .driver import (
     BACKENDS,
     PARAM_FIELDS,

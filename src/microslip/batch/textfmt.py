@@ -14,7 +14,7 @@ table); M = round(y) is taken in 64-bit integers (M exceeds 2^53: the high part 
 integer-valued double and the low part carries the fraction). The 15- and 16-digit roundings
 are taken from y directly (not from M, which would round twice) and kept when they lie within
 half an ulp of x. Values within 1e-9 (relative) of a tie or of that limit, exact ties
-included, are decided by Python. Without numba every value goes through Python.
+included, are decided by Python. :func:`format_table_python` is the plain-Python reference.
 """
 
 from __future__ import annotations
@@ -27,8 +27,6 @@ from fractions import Fraction
 import numpy as np
 from numba import njit, prange
 from numpy.typing import ArrayLike, NDArray
-
-HAVE_NUMBA = True  # numba is a core dependency; the pure-Python path stays as reference
 
 __all__ = ["fewest_digits", "format_number", "format_table", "format_table_python"]
 
@@ -326,13 +324,12 @@ def format_table(columns: Sequence[ArrayLike | float]) -> bytes | NDArray[np.uin
     """CSV text of equal-length float columns, every value as ``"%.17g" % x``.
 
     A column given as a single number has that value on every row (it is formatted once).
-    Returns a bytes-like object (a uint8 array when compiled) to hand to a binary file.
+    Returns a bytes-like object (a uint8 array, or bytes when no column varies) to hand to
+    a binary file.
 
     >>> bytes(format_table([[1.0, 0.1, 1e-5], 0.8, [20000.0, -2.5, float("nan")]]))
     b'1,0.8,20000\\n0.1,0.8,-2.5\\n1e-05,0.8,nan\\n'
     """
-    if not HAVE_NUMBA:
-        return format_table_python(columns)
     arrays = [np.asarray(c, dtype=np.float64) for c in columns]
     varying = [a.ravel() for a in arrays if a.ndim]
     if not arrays:

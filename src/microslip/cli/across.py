@@ -23,16 +23,7 @@ from .common import model_options
 from .fe import mesh_level
 from .joint import clamp_from_args, describe_joint, elements_from_args
 
-__all__ = ["ACROSS_WARNING", "across_from_args", "across_joint", "across_warnings",
-           "add_across_options", "describe_across"]
-
-#: The warning for a two-directional tip or centre joint that is its own 1-D model across
-#: (docs/dynamics.md, "The reduced bar against the FE").
-ACROSS_WARNING = (
-    "{who}: the {model} model is also the joint across (its second direction); a clamped "
-    "bar loaded across bends in its plane, which no 1-D model describes (on the Table 1 bar "
-    "such joints dissipate 53-79 % more than the coupled FE at R = 1, docs/dynamics.md): "
-    "give {fix} to take the FE's first loading across")
+__all__ = ["across_from_args", "across_joint", "add_across_options", "describe_across"]
 
 
 def add_across_options(group: Any) -> None:
@@ -117,26 +108,3 @@ def describe_across(transverse: str | None, pairing: str | None, coupling: str,
     if coupling == "circular":
         out["pairing"] = DEFAULT_PAIRING if pairing is None else pairing
     return out
-
-
-def across_warnings(args: argparse.Namespace) -> list[str]:
-    """Warnings (sentences) for the two-directional tip or centre joints that are their own
-    model across: each [[joint]] table of a case, or the command line's joint where its
-    connectivity (``--joint-dof`` or the structure file's) has two directions."""
-    specs = getattr(args, "case_joints", ())
-    if specs:
-        return [ACROSS_WARNING.format(who=f"joint {s.number}", model=s.model,
-                                      fix='transverse = "fe"')
-                for s in specs if s.directions == 2 and s.model in ("tip", "centre")
-                and s.transverse is None]
-    if args.structure is None or args.joint not in ("tip", "centre") or \
-            getattr(args, "transverse", None) is not None:
-        return []
-    from ..dynamics.files import read_structure
-    from .modal import connectivity_from_args
-
-    joints = np.asarray(connectivity_from_args(args, read_structure(args.structure)))
-    if joints.ndim != 3 or joints.shape[1] != 2:
-        return []
-    return [ACROSS_WARNING.format(who=f"--joint {args.joint}", model=args.joint,
-                                  fix="--transverse fe --stick-slope N/MM3")]

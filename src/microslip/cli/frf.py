@@ -16,10 +16,10 @@ from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_respo
 from ..dynamics.structure import Structure
 from ..errors import ParameterError
 from ..progress import progress
-from .across import across_warnings
 from .common import number
 from .contact import report_warnings
-from .modal import (
+from .structure import (
+    across_warnings,
     add_balance_options,
     add_structure_options,
     balance_from_args,

@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 
-from .. import MODELS
 from ..dynamics.describing import (
     DEFAULT_SAMPLES,
     DescribingFunction,
@@ -23,6 +22,7 @@ from ..dynamics.describing import (
 from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
 from ..dynamics.operators import IwanOperator, jenkins
 from ..errors import ParameterError
+from ..models import MODELS
 from ..params import ClampParams
 from .common import add_model_options, add_params, model_options, number, params_from_args
 

@@ -3,28 +3,47 @@
 Each subcommand lives in its own module ``microslip.cli.<name>`` that defines
 ``add_parser(subparsers)``; the parser it adds sets ``func`` to a callable
 ``(args) -> int``. The command line parses and delegates; no physics here.
+
+Only the module of the command that runs is imported (:func:`build_parser` with ``argv``):
+the others appear in ``microslip --help`` by their one-line summary in :data:`COMMANDS`, so
+that a small call does not pay for importing every command's physics (FE, harmonic balance,
+fitting, plotting).
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.util
 import sys
 from collections.abc import Sequence
+from types import MappingProxyType
 from typing import NoReturn
 
 from .. import __version__
 from ..case.options import case_output, parse_args
 from ..errors import MicroslipError
 
-__all__ = ["SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
+__all__ = ["COMMANDS", "SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
+
+#: Subcommand -> its one-line summary in ``microslip --help``, in the order listed there; the
+#: module ``microslip.cli.<name>`` is imported only when the command runs.
+COMMANDS = MappingProxyType({
+    "loop": "hysteresis loop and damping of the tip or centre model",
+    "planar": "circular/elliptical loading: paper's coupling and work-based damping",
+    "reproduce": "regenerate the paper's figures and tables and check its claims",
+    "fe": "finite-element run (built-in solver or CalculiX) of the tip or centre case",
+    "validate": "run the FE validation (CalculiX) and write Figs 8 and 9",
+    "sweep": "parameter study: damping over grids and random samples",
+    "fit": "identify friction and contact stiffness from measured loops",
+    "case": "case files: write a template, check a file",
+    "joint": "describing function of a joint: stiffness, damping, loss factor",
+    "modal": "nonlinear modal analysis: frequency and damping ratio vs amplitude",
+    "frf": "forced response: frequency-response curves through the resonance",
+    "report": "HTML report of a case: loops, damping, FE comparison, validity",
+})
 
 #: Subcommand modules, in the order ``--help`` lists them.
-SUBCOMMANDS = (
-    "loop", "planar", "reproduce", "fe", "validate", "sweep", "fit", "case",
-    "joint", "modal", "frf", "report",
-)
+SUBCOMMANDS = tuple(COMMANDS)
 
 
 class UsageError(Exception):
@@ -38,7 +57,11 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message}")
 
 
-def build_parser() -> Parser:
+def build_parser(argv: Sequence[str] | None = None) -> Parser:
+    """The parser of the command line ``argv``: the full parser of the command it names (the
+    first argument that is not an option), the others by their summary only; without
+    ``argv`` every command's full parser."""
+    chosen = _command(argv) if argv is not None else None
     parser = Parser(
         prog="microslip",
         description="Microslip friction damping in clamped joints (Lord & Rongong 2016). "
@@ -47,11 +70,17 @@ def build_parser() -> Parser:
     parser.add_argument("--version", action="version", version=f"microslip {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
-    for name in SUBCOMMANDS:
-        module = f"{__package__}.{name}"
-        if importlib.util.find_spec(module) is not None:
-            importlib.import_module(module).add_parser(sub)
+    for name, summary in COMMANDS.items():
+        if argv is None or name == chosen:
+            importlib.import_module(f"{__package__}.{name}").add_parser(sub)
+        else:
+            sub.add_parser(name, help=summary)
     return parser
+
+
+def _command(argv: Sequence[str]) -> str | None:
+    """The command that ``argv`` names (its first argument not an option), or None."""
+    return next((a for a in argv if not a.startswith("-")), None)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -82,7 +111,8 @@ def _interrupted(exc: BaseException) -> bool:
 
 
 def _main(argv: Sequence[str] | None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(argv)
     try:
         args = parse_args(parser, argv)  # with --case FILE.toml: the file's keys as defaults
     except UsageError as exc:

@@ -1,8 +1,7 @@
 """``microslip modal``: natural frequency and damping ratio of a mode versus amplitude.
 
-Also the options of a one-mode structure and of harmonic balance that ``microslip frf``
-shares (:func:`add_structure_options`, :func:`structure_from_args`,
-:func:`add_balance_options`).
+The options of the structure and of harmonic balance, shared with ``microslip frf``, are in
+:mod:`.structure`.
 """
 
 from __future__ import annotations
@@ -13,226 +12,22 @@ from typing import Any
 
 import numpy as np
 
-from ..case.options import add_case_option
-from ..dynamics.assemble import (
-    PlacedJoint,
-    describe_matrices,
-    from_joints,
-    from_matrices,
-    modal_output,
-    with_output,
-)
-from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
-from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, energy_method
-from ..dynamics.operators2d import COUPLINGS, PAIRINGS
-from ..dynamics.structure import Structure, one_mode
 from ..errors import ParameterError
-from .across import (
-    across_from_args,
-    across_joint,
-    across_warnings,
-    add_across_options,
-    describe_across,
-)
 from .common import number
 from .contact import report_warnings
-from .joint import add_joint_options, describe_joint, joint_from_args
+from .structure import (
+    across_warnings,
+    add_balance_options,
+    add_structure_options,
+    balance_from_args,
+    describe_structure,
+    headline,
+    mode_from_args,
+    structure_from_args,
+)
 
-__all__ = ["DEFAULT_HARMONICS", "add_balance_options", "add_parser", "add_structure_options",
-           "balance_from_args", "connectivity_from_args", "describe_structure", "headline",
-           "mode_from_args", "placed_joints", "run", "structure_from_args"]
-
-#: Harmonics of the balance unless --harmonics is given.
-DEFAULT_HARMONICS = 7
-
-
-def add_structure_options(parser: argparse.ArgumentParser) -> None:
-    """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
-    ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode``,
-    ``--coupling`` and the joint across (``--transverse``, ``--pairing``, ``--fe-mesh``);
-    and the joint's options."""
-    g = parser.add_argument_group("structure: one mode (units Hz, kg)")
-    g.add_argument("--frequency", type=number, metavar="HZ",
-                   help="natural frequency with the joint removed, Hz")
-    g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
-    g.add_argument("--damping-ratio", type=number, metavar="X",
-                   help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
-                        "(default 0)")
-    g.add_argument("--participation", type=number, metavar="X",
-                   help="joint displacement per unit modal displacement, != 0 (default 1)")
-    f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
-    f.add_argument("--structure", metavar="FILE",
-                   help="FILE.npz with arrays M, K, optional C and joints, or a directory "
-                        "with M.mtx, K.mtx, optional C.mtx (Matrix Market); see "
-                        "docs/dynamics.md")
-    f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
-                   help="a joint between DOF I (0-based) and the ground, or I J between two "
-                        "DOFs; give it twice for a two-directional joint (one per "
-                        "direction); replaces the file's joints")
-    f.add_argument("--mode", type=int, metavar="N",
-                   help="mode followed and reported, 1-based by stuck frequency (default 1)")
-    f.add_argument("--coupling", choices=list(COUPLINGS),
-                   help="two-directional joints: one circular Coulomb limit (default) or "
-                        "two independent directions (the paper's decoupled sum)")
-    add_across_options(f)
-    add_joint_options(parser)
-    add_case_option(parser)
-    for action in parser._actions:
-        if action.dest == "case":
-            action.help = ("a case file with [structure] file and [[joint]] tables: several "
-                           "joints, each with its own model (docs/casefile.md); or a clamp "
-                           "for --joint tip|centre")
-
-
-def structure_from_args(args: argparse.Namespace) -> Structure:
-    """The structure with its joints that the options describe; for a file structure the
-    output is the modal coordinate of ``--mode``."""
-    if getattr(args, "case_joints", ()) and args.structure is None:
-        raise ParameterError(f"case {args.case} has [[joint]] tables but no structure: give "
-                             "[structure] file = \"FILE.npz\" in it or --structure FILE")
-    if args.structure is None:
-        _refuse(args, ("joint_dof", "--joint-dof"), ("mode", "--mode"),
-                ("coupling", "--coupling"), ("excitation", "--excitation"),
-                why="a one-mode structure (they need --structure)")
-        across_from_args(args, None)
-        if args.frequency is None or args.modal_mass is None:
-            raise ParameterError("give --frequency HZ and --modal-mass KG (one mode) or "
-                                 "--structure FILE")
-        return one_mode(args.frequency, args.modal_mass,
-                        0.0 if args.damping_ratio is None else args.damping_ratio,
-                        joint_from_args(args),
-                        1.0 if args.participation is None else args.participation)
-    _refuse(args, ("frequency", "--frequency"), ("modal_mass", "--modal-mass"),
-            ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
-            why="--structure (the file's matrices give them)")
-    matrices = read_structure(args.structure)
-    if getattr(args, "case_joints", ()):
-        structure = from_joints(matrices, placed_joints(args, matrices))
-        return with_output(structure, modal_output(structure, mode_from_args(args)))
-    joints = connectivity_from_args(args, matrices)
-    if args.coupling is not None and not np.any(np.asarray(joints).shape[1:2] == (2,)):
-        raise ParameterError("--coupling applies to two-directional joints only (give "
-                             "--joint-dof twice or a (n, 2, 2) joints array)")
-    across = across_from_args(args, np.asarray(joints))
-    structure = from_matrices(matrices, np.asarray(joints), joint_from_args(args),
-                              args.coupling or "circular", across, args.pairing)
-    return with_output(structure, modal_output(structure, mode_from_args(args)))
-
-
-def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
-    """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
-    coupling wins over --coupling (or [structure] coupling), which wins over circular."""
-    from ..case.joints import joint_operator, transverse_operator
-    from .common import model_options
-
-    specs = args.case_joints
-    if args.coupling is not None and all(s.directions == 1 for s in specs):
-        raise ParameterError("--coupling ([structure] coupling) applies to two-directional "
-                             "joints only; the case's joints all have one direction")
-    out = []
-    for spec in specs:
-        where = f"case {args.case}: joint {spec.number}"
-        dofs = check_joint_dofs(f"{where}: dofs", np.array(spec.dofs, dtype=np.int64),
-                                matrices.mass.shape[0])
-        coupling = spec.coupling or args.coupling or "circular"
-        if spec.pairing is not None and coupling == "decoupled":
-            raise ParameterError(f"{where}: joint.pairing ({' | '.join(PAIRINGS)}) applies "
-                                 "to coupling circular only, and this joint's coupling is "
-                                 "decoupled ([structure] coupling or --coupling): its "
-                                 "directions are independent")
-        opts = model_options(args)
-        out.append(PlacedJoint(dofs, joint_operator(spec, opts), coupling,
-                               transverse_operator(spec, opts), spec.pairing))
-    return out
-
-
-def mode_from_args(args: argparse.Namespace) -> int:
-    """The followed mode, 0-based."""
-    mode = 1 if getattr(args, "mode", None) is None else args.mode
-    return int(mode) - 1
-
-
-def connectivity_from_args(args: argparse.Namespace, matrices: MatrixFile
-                           ) -> np.ndarray | list[np.ndarray]:
-    """The joints' [i, j] per direction ((n, d, 2), or one (d, 2) array per joint of a case
-    file): the case's [[joint]] tables, --joint-dof, else the file's."""
-    if getattr(args, "case_joints", ()):
-        return [np.array(spec.dofs, dtype=np.int64) for spec in args.case_joints]
-    if args.joint_dof is None:
-        return np.asarray(matrices.joints)
-    rows = args.joint_dof
-    if len(rows) > 2 or any(len(r) > 2 for r in rows):
-        raise ParameterError("--joint-dof takes I or I J, at most twice (two directions), "
-                             f"got {rows}")
-    pairs = [[r[0], r[1] if len(r) == 2 else -1] for r in rows]
-    return check_joint_dofs("--joint-dof", np.array([pairs], dtype=np.int64),
-                            matrices.mass.shape[0])
-
-
-def _refuse(args: argparse.Namespace, *flags: tuple[str, str], why: str) -> None:
-    given = [flag for dest, flag in flags if getattr(args, dest, None) is not None]
-    if given:
-        raise ParameterError(f"{', '.join(given)} not used with {why}")
-
-
-def describe_structure(structure: Structure, args: argparse.Namespace | None = None
-                       ) -> dict[str, Any]:
-    """JSON description of the structure and its joint (keys carry units)."""
-    if args is not None and args.structure is not None:
-        out = {"file": args.structure, "mode": mode_from_args(args) + 1,
-               **describe_matrices(structure)}
-        specs = getattr(args, "case_joints", ())
-        if not specs and getattr(args, "transverse", None) is not None:
-            return {**out, "joint": {**describe_joint(joint_from_args(args)), **describe_across(
-                args.transverse, args.pairing, args.coupling or "circular",
-                across_joint(args), args.fe_mesh)}}
-        if not specs:
-            return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
-        from ..case.joints import joint_operator, transverse_operator
-        from .common import model_options
-
-        opts = model_options(args)
-        return {**out, "case_joints": [
-            {"number": s.number, "model": s.model, "dofs": [list(d) for d in s.dofs],
-             "coupling": (s.coupling or args.coupling or "circular") if s.directions == 2
-             else None, **describe_joint(joint_operator(s, opts)),
-             **describe_across(s.transverse, s.pairing, s.coupling or args.coupling
-                               or "circular", transverse_operator(s, opts), s.fe_mesh)}
-            for s in specs]}
-    m = float(structure.mass[0, 0])
-    k = float(structure.stiffness[0, 0])
-    link = structure.joints[0]
-    return {"modal_mass_kg": m,
-            "frequency_Hz": math.sqrt(k / m) / (2.0 * math.pi),
-            "damping_ratio": float(structure.damping[0, 0]) / (2.0 * math.sqrt(k * m)),
-            "participation": float(link.participation[0]),
-            "stuck_frequency_Hz": float(structure.linear_frequencies(stuck=True)[0]),
-            "joint": describe_joint(link.operator)}  # type: ignore[arg-type]
-
-
-def add_balance_options(parser: argparse.ArgumentParser) -> None:
-    """``--harmonics`` and ``--samples``."""
-    g = parser.add_argument_group("harmonic balance")
-    g.add_argument("--harmonics", type=int, metavar="H",
-                   help=f"harmonics, 1 = single-harmonic (describing-function) balance "
-                        f"(default {DEFAULT_HARMONICS})")
-    g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
-                   help=f"time samples per period of the alternating frequency-time scheme "
-                        f"(default {DEFAULT_HB_SAMPLES})")
-
-
-def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
-    """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
-    if args.harmonics is None:
-        args.harmonics = DEFAULT_HARMONICS
-    if not 1 <= args.harmonics <= 256:
-        raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
-    low = 2 * args.harmonics + 2
-    if not low <= args.samples <= 65536:
-        raise ParameterError(f"--samples must be in [{low}, 65536] for {args.harmonics} "
-                             f"harmonics, got {args.samples}")
-    return int(args.harmonics), int(args.samples)
+__all__ = ["add_parser", "amplitudes_from_args", "run"]
 
 
 def add_parser(sub: Any) -> None:
@@ -298,23 +93,6 @@ def run(args: argparse.Namespace) -> int:
     for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
         print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
     return 0
-
-
-def headline(structure: Structure, mode: int) -> str:
-    """'mode F Hz with the joint removed, F Hz stuck'; for a file structure the linear
-    modes (stuck and joint-free) on a line before it."""
-    free = structure.linear_frequencies(stuck=False)[mode]
-    stuck = structure.linear_frequencies(stuck=True)[mode]
-    label = "mode" if structure.dofs == 1 else f"{structure.dofs} DOFs, mode {mode + 1}:"
-    joints = "the joint" if len(structure.joints) == 1 else "the joints"
-    line = f"{label} {free:.6g} Hz with {joints} removed, {stuck:.6g} Hz stuck"
-    if structure.dofs == 1:
-        return line
-    modes = ("linear modes (Hz), stuck: "
-             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=True))
-             + "; joints removed: "
-             + ", ".join(f"{f:.6g}" for f in structure.linear_frequencies(stuck=False)))
-    return f"{modes}\n{line}"
 
 
 def amplitudes_from_args(args: argparse.Namespace) -> np.ndarray:

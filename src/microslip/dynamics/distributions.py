@@ -14,9 +14,10 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import ClampParams, ModelOptions, first_loading, macroslip_force
 from ..errors import ParameterError
-from ..params import check_positive
+from ..models import first_loading, macroslip_force
+from ..options import ModelOptions
+from ..params import ClampParams, check_positive
 from .operators import IwanOperator
 
 __all__ = ["CONCAVITY_TOLERANCE", "DEFAULT_ELEMENTS", "clamp_joint", "from_backbone", "iwan4",

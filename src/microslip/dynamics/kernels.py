@@ -15,22 +15,10 @@ A parallel set of such elements obeys Masing's rule and its extended memory rule
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
+from numba import njit
 
-try:
-    from numba import njit
-except ImportError:  # pragma: no cover - exercised only without numba
-    HAVE_NUMBA = False
-
-    def njit(*args: Any, **kwargs: Any) -> Any:  # type: ignore[no-redef]
-        """Stand-in decorator: the kernels stay plain (slow) Python functions."""
-        return lambda f: f
-else:
-    HAVE_NUMBA = True
-
-__all__ = ["HAVE_NUMBA", "history_kernel", "periodic_harmonics_kernel", "periodic_kernel"]
+__all__ = ["history_kernel", "periodic_harmonics_kernel", "periodic_kernel"]
 
 
 @njit(cache=True, fastmath=False, nogil=True)

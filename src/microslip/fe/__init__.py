@@ -13,25 +13,15 @@ Constants shared by both solvers: :mod:`~microslip.fe.constants`; errors:
 load cases: :mod:`microslip.loading`.
 
 Nothing here is imported by ``import microslip``; meshio is imported only by the VTU export.
+Importing this package loads only the constants, the errors and the mesh levels; every other
+name is imported from its module on first use (PEP 562), so that a module needing one FE
+constant does not pay for the solvers.
 """
 
 from __future__ import annotations
 
-from ..loading import LOAD_CASES
+from .._lazy import lazy_names
 from ..meshlevels import LEVELS, MESH_LEVELS, level_counts
-from .calculix.case import ELEMENT_TYPES, FECase
-from .calculix.collect import CalculixDetails, contact_status, read_results
-from .calculix.deck import build_deck
-from .calculix.mesh import BarMesh, MeshSpec, bar_mesh, mesh_spec
-from .calculix.readers import read_dat, read_frd, read_sta
-from .calculix.runner import (
-    ccx_available,
-    ccx_version,
-    default_timeout,
-    find_ccx,
-    run_case,
-    run_ccx,
-)
 from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from .errors import (
     INSTALL_HINT,
@@ -42,46 +32,55 @@ from .errors import (
     SolverNotFoundError,
     SolverTimeoutError,
 )
-from .result import STATUS, ContactHistory, FELoopResult
-from .run import SOLVERS, SolverEntry, run_loop
+
+#: Public name -> the module that defines it, imported on first use.
+_LAZY = {
+    "LOAD_CASES": "..loading",
+    "ELEMENT_TYPES": ".calculix.case",
+    "FECase": ".calculix.case",
+    "CalculixDetails": ".calculix.collect",
+    "contact_status": ".calculix.collect",
+    "read_results": ".calculix.collect",
+    "build_deck": ".calculix.deck",
+    "BarMesh": ".calculix.mesh",
+    "MeshSpec": ".calculix.mesh",
+    "bar_mesh": ".calculix.mesh",
+    "mesh_spec": ".calculix.mesh",
+    "read_dat": ".calculix.readers",
+    "read_frd": ".calculix.readers",
+    "read_sta": ".calculix.readers",
+    "ccx_available": ".calculix.runner",
+    "ccx_version": ".calculix.runner",
+    "default_timeout": ".calculix.runner",
+    "find_ccx": ".calculix.runner",
+    "run_case": ".calculix.runner",
+    "run_ccx": ".calculix.runner",
+    "STATUS": ".result",
+    "ContactHistory": ".result",
+    "FELoopResult": ".result",
+    "SOLVERS": ".run",
+    "SolverEntry": ".run",
+    "run_loop": ".run",
+}
 
 __all__ = [
     "DEFAULT_NORMAL_SLOPE",
     "DEFAULT_STICK_SLOPE",
-    "ELEMENT_TYPES",
     "INSTALL_HINT",
     "LEVELS",
-    "LOAD_CASES",
     "MESH_LEVELS",
-    "SOLVERS",
-    "STATUS",
-    "BarMesh",
-    "CalculixDetails",
-    "ContactHistory",
-    "FECase",
-    "FELoopResult",
-    "MeshSpec",
     "NonConvergenceError",
     "ResultsError",
-    "SolverEntry",
     "SolverError",
     "SolverKilledError",
     "SolverNotFoundError",
     "SolverTimeoutError",
-    "bar_mesh",
-    "build_deck",
-    "ccx_available",
-    "ccx_version",
-    "contact_status",
-    "default_timeout",
-    "find_ccx",
     "level_counts",
-    "mesh_spec",
-    "read_dat",
-    "read_frd",
-    "read_results",
-    "read_sta",
-    "run_case",
-    "run_ccx",
-    "run_loop",
+    *_LAZY,
 ]
+
+__getattr__ = lazy_names(__name__, _LAZY)
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -7,7 +7,9 @@ periods, sampled once (:class:`PaperSine`) for the analytical models and both FE
 :mod:`~microslip.loading.path` the planar load paths (:class:`LoadPath`: named force
 components, a start-up, one closed cycle) of the analytical planar model and the built-in
 solver, and next of the structure-dynamics code.
-This package imports only numpy and :mod:`microslip.errors` / :mod:`microslip.params`.
+This package imports numpy and the basics only: :mod:`microslip.closedform` (the slip
+lengths a load case is reported by), :mod:`microslip.errors`, :mod:`microslip.named`,
+:mod:`microslip.params` (the bottom floor of the import-linter contracts, pyproject.toml).
 """
 
 from __future__ import annotations

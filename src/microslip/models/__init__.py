@@ -28,14 +28,13 @@ and adding one :class:`ModelSpec` entry, which must provide:
 
 The step functions return flat tuples (state first, then what is observed): numba's parallel
 analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
-on-disk cache keys a compiled function on its own file only: after editing a step in
-``tip.py`` or ``centre.py`` (or :func:`~microslip.energy.masing_energies`), touch
-``layered.py`` and ``batch_kernels.py`` (both inline those steps) or remove
-``__pycache__/*.nbi`` so that they are rebuilt (``tests/test_batch.py`` compares them
-bit for bit with :func:`first_loading` and fails on a stale cache).
+on-disk cache is stamped with the whole folder (:mod:`microslip._kernelcache`), so that a
+kernel inlining an edited step (``layered.py`` and ``batch_kernels.py`` inline those of
+``tip.py``, ``centre.py``, ``layer.py`` and ``masing.py``) is rebuilt, never loaded stale.
 
-This package may import ``closedform``, ``energy`` (its compiled sums), ``options``,
-``params``, ``results``, ``named`` and ``errors``; never ``batch``, ``planar``, the FE code
+This package may import ``closedform``, ``options``, ``params``, ``results``, ``named``,
+``errors`` and ``_kernelcache``; never ``energy`` (it imports the models; the compiled Masing
+sums the kernels share with it are :mod:`.masing`, here), ``batch``, ``planar``, the FE code
 or the command line.
 
 >>> from microslip import preset, first_loading, ModelOptions
@@ -55,7 +54,10 @@ from typing import Any
 
 import numpy as np
 
-from .. import closedform
+from .. import (
+    _kernelcache,  # noqa: F401  (before any kernel: the folder-stamped cache)
+    closedform,
+)
 from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude

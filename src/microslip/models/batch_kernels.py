@@ -7,7 +7,7 @@ per case instead of the n + 1 samples of a backbone (memory O(batch)).
 The physics of one increment is not written here: each kernel inlines its model's scalar
 step (:func:`microslip.models.tip.tip_step`, :func:`microslip.models.centre.centre_step`)
 per lane, the same function :func:`microslip.first_loading` runs, and the energies come
-from :func:`microslip.energy.masing_energies`, the same function :func:`microslip.damping`
+from :func:`microslip.models.masing.masing_energies`, the same function :func:`microslip.damping`
 uses. The kernels' ``py_func`` is the plain-Python loop of ``benchmarks/bench_batch.py``.
 
 Layout: the cases are split into chunks of ``CHUNK`` (``prange`` spreads the chunks over the
@@ -44,9 +44,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ..energy import masing_energies
 from .centre import centre_constants, centre_flags, centre_step, centre_stored_energy
 from .layered import centre_layer_setup, centre_layer_step, tip_layer_setup, tip_layer_step
+from .masing import masing_energies
 from .tip import tip_constants, tip_flags, tip_step, tip_stored_energy
 
 __all__ = ["CHUNK", "centre_kernel", "centre_layer_kernel", "tip_kernel", "tip_layer_kernel"]

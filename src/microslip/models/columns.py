@@ -4,10 +4,6 @@
 :func:`~microslip.models.centre.centre_backbone` and the two layer backbones of
 :mod:`~microslip.models.layered`: the arrays of a :class:`~microslip.results.Backbone` at
 rest, filled increment by increment by the caller.
-
-numba's on-disk cache keys a compiled function on its own file only, and this function is
-inlined into ``tip.py``, ``centre.py`` and ``layered.py``: after editing this file, touch
-those three (or remove ``models/__pycache__/*.nbi``).
 """
 
 from __future__ import annotations

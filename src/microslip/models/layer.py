@@ -17,10 +17,6 @@ F(a) = f for the slip front by Newton's method inside a bracket that every evalu
 narrows (bisection when a step leaves it), warm-started from the previous increment's front:
 two or three evaluations per increment instead of the 64 of plain bisection, and the same
 root to rounding.
-
-numba's on-disk cache keys a compiled function on its own file only, and the functions here
-are inlined into :mod:`~microslip.models.layered` and the batch kernels: after editing this
-file, touch ``layered.py`` and ``batch_kernels.py`` (or remove ``__pycache__/*.nbi``).
 """
 
 from __future__ import annotations

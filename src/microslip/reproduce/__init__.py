@@ -10,8 +10,9 @@ package holds the job runner (:mod:`~microslip.reproduce.job`), the tables
 (:mod:`~microslip.reproduce.readings`), the claims (:mod:`~microslip.reproduce.claims`) and
 the report text (:mod:`~microslip.reproduce.report`); the figures live in
 :mod:`microslip.plot.paper` and are re-exported here. It may import the computing packages
-(planar, models, energy, solver, validate), :mod:`microslip.plot`, :mod:`microslip.io` and
-:mod:`microslip.progress`; nothing imports it but the CLI. Units: N, mm, N·mm.
+(planar, models, energy, fe, dynamics), :mod:`microslip.validate`, :mod:`microslip.plot`,
+:mod:`microslip.io` and :mod:`microslip.progress`; nothing imports it but the CLI (the
+import-linter contracts, pyproject.toml). Units: N, mm, N·mm.
 """
 
 from __future__ import annotations

@@ -7,8 +7,6 @@ Units: N, mm, N·mm.
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import math
 import os
 import time
@@ -110,21 +108,13 @@ class ReproduceResult:
 
 def _fe_module() -> tuple[Any, str]:
     """(run_validation, "") when the FE validation can run, else (None, reason)."""
-    if importlib.util.find_spec("microslip.validate") is None:
-        return None, "the finite-element validation (microslip.validate) is not in this version"
-    try:
-        validate = importlib.import_module("microslip.validate")
-        fe = importlib.import_module("microslip.fe")
-    except ImportError as exc:
-        return None, f"the finite-element validation cannot be imported: {exc}"
-    ccx_available = getattr(fe, "ccx_available", None)
-    if ccx_available is None or not ccx_available():
+    from ..fe import ccx_available
+    from ..validate import run_validation
+
+    if not ccx_available():
         return None, ("CalculiX (ccx) is not available; install it with scripts/setup.sh to "
                       "get Fig. 9")
-    run = getattr(validate, "run_validation", None)
-    if run is None:
-        return None, "microslip.validate has no run_validation"
-    return run, ""
+    return run_validation, ""
 
 
 

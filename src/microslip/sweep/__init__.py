@@ -7,17 +7,15 @@ can vary and its command-line syntax, :mod:`~microslip.sweep.spec` the specifica
 values of every case (row order), :mod:`~microslip.sweep.run` the computation (batch engine,
 in chunks, locally or on a Dask cluster, bit-identical either way),
 :mod:`~microslip.sweep.output` the CSV and NetCDF files, :mod:`~microslip.sweep.ratio` the R
-sweep of the planar model; the summary plots live in :mod:`microslip.plot.sweep` (re-exported
-here on first use). This package may import the computing packages (batch, models, planar,
-energy), :mod:`microslip.io`, :mod:`microslip.cluster` and :mod:`microslip.progress`; never
-the CLI, reproduce or matplotlib. Units: N, mm, MPa, N·mm; column names carry them.
+sweep of the planar model; the summary plots live in :mod:`microslip.plot.sweep` (a floor
+above: they read the specification's parameter names). This package may import the computing
+packages (batch, models, planar, fe, energy), :mod:`microslip.io`, :mod:`microslip.cluster`
+and :mod:`microslip.progress`; never plot, the CLI, case, reproduce or validate (the
+import-linter contracts in pyproject.toml). Units: N, mm, MPa, N·mm; column names carry them.
 """
 
 from __future__ import annotations
 
-from typing import Any
-
-from ..cluster import map_on_cluster
 from .output import (
     OUTPUT_FORMATS,
     check_output,
@@ -60,12 +58,9 @@ __all__ = [
     "check_output",
     "linear_values",
     "make_sweep",
-    "map_on_cluster",
     "parse_grid",
     "parse_parameter",
     "parse_sample",
-    "plot_ratio_sweep",
-    "plot_sweep",
     "ratio_sweep",
     "run_sweep",
     "sweep_attributes",
@@ -73,15 +68,3 @@ __all__ = [
     "write_ratio_sweep",
     "write_sweep",
 ]
-
-_PLOTS = ("plot_ratio_sweep", "plot_sweep")
-
-
-def __getattr__(name: str) -> Any:
-    """The summary plots, from :mod:`microslip.plot.sweep` (imported on first use: that module
-    imports this package's specification)."""
-    if name in _PLOTS:
-        from ..plot import sweep as plots
-
-        return getattr(plots, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,8 +20,10 @@ from ..errors import MicroslipError, ParameterError
 from ..io import atomic_path, atomic_write
 from ..models import get_model
 from .parameters import COLUMNS, PARAMETERS, RESULT_COLUMNS, FloatArray
-from .run import SweepResult
 from .spec import DEFAULT_CHUNK, SweepSpec
+
+if TYPE_CHECKING:  # run.py imports this module (SweepResult.to_dataset)
+    from .run import SweepResult
 
 __all__ = [
     "OUTPUT_FORMATS",

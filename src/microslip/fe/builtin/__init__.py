@@ -22,7 +22,7 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 from __future__ import annotations
 
 from .backbone import FEBackbone, fe_backbone
-from .clamping import ClampingPressure, clamp_forces, clamping_pressure, fe_pressure_law
+from .clamping import ClampingPressure, clamp_forces, clamping_pressure
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .details import (
     BuiltinDetails,
@@ -37,6 +37,7 @@ from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_fro
 from .meshmodel import MeshModel, build_mesh_model
 from .meshrun import LoadFactors, MeshLoadResult, MeshRunResult, SineCycles, solve_mesh
 from .normal import NORMAL_CONTACTS, PenaltyNormal
+from .pressure import fe_pressure_law
 from .solve import (
     CENTRE_DIRECTIONS,
     FrictionModel,

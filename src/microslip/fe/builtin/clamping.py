@@ -34,7 +34,7 @@ from .mesh import BoxMesh
 if TYPE_CHECKING:
     from .model import FrictionModel
 
-__all__ = ["ClampingPressure", "clamp_forces", "clamping_pressure", "fe_pressure_law"]
+__all__ = ["ClampingPressure", "clamp_forces", "clamping_pressure"]
 
 FloatArray = NDArray[np.float64]
 
@@ -142,19 +142,3 @@ def clamping_pressure(model: FrictionModel) -> ClampingPressure:
     edges = np.concatenate([[cols[0]], 0.5 * (cols[1:] + cols[:-1]), [cols[-1]]])
     return ClampingPressure(cols, total / np.diff(edges), model.params.width, xy[:, 0].copy(),
                             xy[:, 1].copy(), model.normal_force.copy())
-
-
-def fe_pressure_law(params: ClampParams, mesh: Any = "coarse", **model_options: Any
-                    ) -> PressureLaw:
-    """The interface pressure of the built-in solver's clamping step as a 1-D pressure law, in
-    one call: :func:`~microslip.fe.builtin.solve.build_model` (``model_options``: ``stick_slope``,
-    ``pressure_law`` of the top face, ``element``, ...) then :meth:`ClampingPressure.law`.
-
-    >>> from microslip import preset
-    >>> law = fe_pressure_law(preset("table1"), (8, 2, 1))
-    >>> round(float(law.cumulative(np.array([1.0]))[0]), 12)
-    1.0
-    """
-    from .solve import build_model
-
-    return clamping_pressure(build_model(params, mesh, **model_options)).law()

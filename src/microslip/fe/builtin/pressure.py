@@ -1,0 +1,33 @@
+"""The interface pressure of the built-in solver's clamping step as a 1-D pressure law.
+
+A convenience above both :mod:`.solve` (which builds and clamps the model, using
+:func:`.clamping.clamp_forces`) and :mod:`.clamping` (which reads the normal forces back as
+a :class:`~.clamping.ClampingPressure`); it lives apart from both so that neither imports
+the other in a circle. Units: N, mm, MPa.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...models.interface import PressureLaw
+from ...params import ClampParams
+from .clamping import clamping_pressure
+from .solve import build_model
+
+__all__ = ["fe_pressure_law"]
+
+
+def fe_pressure_law(params: ClampParams, mesh: Any = "coarse", **model_options: Any
+                    ) -> PressureLaw:
+    """The interface pressure of the built-in solver's clamping step as a 1-D pressure law, in
+    one call: :func:`~microslip.fe.builtin.solve.build_model` (``model_options``: ``stick_slope``,
+    ``pressure_law`` of the top face, ``element``, ...) then :meth:`ClampingPressure.law`.
+
+    >>> from microslip import preset
+    >>> import numpy as np
+    >>> law = fe_pressure_law(preset("table1"), (8, 2, 1))
+    >>> round(float(law.cumulative(np.array([1.0]))[0]), 12)
+    1.0
+    """
+    return clamping_pressure(build_model(params, mesh, **model_options)).law()
