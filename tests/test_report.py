@@ -17,7 +17,7 @@ from microslip.report import ReportSettings, compute_report
 
 CASE = """\
 name = "rig clamp"
-description = "Table 1 bar, a planar ratio"
+description = "Table 1 bar, a planar load of R = 1.5 on it"
 preset = "table1"
 [contact]
 friction = 0.6
@@ -25,7 +25,8 @@ friction = 0.6
 model = "tip"
 amplitude_fraction = 0.6
 [load.planar]
-ratio = 1.5
+tip_amplitude = 75.0
+centre_amplitude = 100.0
 """
 
 FAST = ["--mesh", "tiny", "--substeps", "20", "--no-progress"]
@@ -129,7 +130,7 @@ def test_every_input_is_shown_with_its_unit(page):
                              "MPa"), ("contact.friction", "0.6", "dimensionless"),
                              ("clamping.normal_force", "445", "N"),
                              ("contact.stick_slope", "10000", "N/mm^3"),
-                             ("load.planar.ratio", "1.5", "dimensionless")]:
+                             ("load.planar.tip_amplitude", "75", "N")]:
         assert re.search(rf"<td>{re.escape(key)}</td><td>{value}</td><td>{re.escape(unit)}"
                          "</td>", text), key
     assert "<td>load amplitude F0</td><td>160.2</td><td>N</td>" in text

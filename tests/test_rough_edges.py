@@ -438,7 +438,7 @@ def test_ctrl_c_stops_promptly_and_leaves_nothing(tmp_path, argv, made):
 
 def test_an_interrupt_wrapped_by_a_library_is_still_an_interrupt(capsys, monkeypatch):
     """numba and others may re-raise Ctrl-C as their own error: still one line, exit 130."""
-    import microslip.cli.loop as loop
+    import microslip.case.run as computation  # what `loop` runs
 
     def wrapped(*args, **kwargs):
         try:
@@ -446,6 +446,6 @@ def test_an_interrupt_wrapped_by_a_library_is_still_an_interrupt(capsys, monkeyp
         except KeyboardInterrupt as exc:
             raise RuntimeError("compilation failed") from exc
 
-    monkeypatch.setattr(loop, "damping", wrapped)
+    monkeypatch.setattr(computation, "damping", wrapped)
     assert main(["loop", "--model", "tip"]) == 130
     assert capsys.readouterr().err == "error: interrupted\n"

@@ -4,16 +4,17 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from typing import Any
 
+from ..case import run
+from ..case.run import planar_zones
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import check_writable, to_jsonable
 from ..models import check_increments
 from ..options import CENTRE_READINGS, POISSON_MODES, ModelOptions
-from ..params import PRESETS, ClampParams, preset
+from ..params import PRESETS, ClampParams
 
 __all__ = [
     "add_clamp_flags",
@@ -70,54 +71,14 @@ def add_clamp_flags(group: Any) -> None:
 
 def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:
     """The clamp values given by the flags of :func:`add_clamp_flags` (field -> value)."""
-    return {field: float(v) for _, field, _ in PARAM_FLAGS
-            if (v := getattr(args, field, None)) is not None}
-
-
-def planar_zones(tip: ClampParams, centre: ClampParams, overrides: dict[str, float],
-                 tip_symmetry: int = 2) -> tuple[ClampParams, ClampParams]:
-    """The tip and centre zones of the planar case with the clamp flags ``overrides`` applied.
-
-    The flags describe the whole clamp: the centre model is the whole clamp; the tip model is
-    one of ``tip_symmetry`` symmetric parts of the contact width, so it takes width
-    w / ``tip_symmetry`` (as the Table 2 presets in the reading of docs/interpretation.md §6:
-    tip w = 25 mm, centre w = 50 mm) and every other value as given.
-    """
-    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, int) or tip_symmetry < 1:
-        raise ParameterError(f"tip symmetry must be a whole number >= 1, got {tip_symmetry!r}")
-    tip_values = dict(overrides)
-    if "width" in overrides:
-        tip_values["width"] = overrides["width"] / tip_symmetry
-    return tip.replace(**tip_values), centre.replace(**overrides)
+    return run.clamp_overrides(vars(args))
 
 
 def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None = None
                      ) -> tuple[ClampParams, float]:
-    """ClampParams (preset overridden by explicit flags) and the amplitude, validated."""
-    if args.preset is not None:
-        base = preset(args.preset)
-        values = base.as_dict()
-        amplitude = PRESETS[args.preset][1]
-    else:
-        values = {}
-        amplitude = None
-    for _, field, _ in PARAM_FLAGS:
-        v = getattr(args, field, None)
-        if v is not None:
-            values[field] = v
-    missing = [f"--{flag}" for flag, field, _ in PARAM_FLAGS if field not in values]
-    if missing:
-        raise ParameterError(f"give --preset or all of {', '.join(missing)}")
-    params = ClampParams(**values)
-    if args.amplitude is not None:
-        amplitude = args.amplitude
-    if amplitude is None:
-        amplitude = fallback_amplitude
-    if amplitude is None:
-        raise ParameterError("give --amplitude N (the load amplitude, > 0)")
-    if not (math.isfinite(amplitude) and amplitude > 0):
-        raise ParameterError(f"amplitude must be finite and > 0 N, got {amplitude!r}")
-    return params, float(amplitude)
+    """ClampParams (preset overridden by explicit flags) and the amplitude, validated
+    (:func:`microslip.case.run.clamp_from_options`)."""
+    return run.clamp_from_options(vars(args), fallback_amplitude)
 
 
 def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "physical",
@@ -139,12 +100,7 @@ def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "ph
 
 
 def model_options(args: argparse.Namespace) -> ModelOptions:
-    if args.paper_literal:
-        return ModelOptions.paper()
-    if args.no_corrections:
-        return ModelOptions(poisson="off", length_update=False, centre=args.centre_reading)
-    return ModelOptions(poisson=args.poisson, length_update=not args.no_length_update,
-                        centre=args.centre_reading)
+    return run.model_options_from(vars(args))
 
 
 def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_STRAIN_ENERGY,

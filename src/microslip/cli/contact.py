@@ -10,14 +10,12 @@ checked by :func:`microslip.models.validity.validity`; its warnings go to standa
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from typing import Any
 
-from ..errors import ParameterError
-from ..models import Contact, get_model
-from ..models.interface import PRESSURE_LAWS, PressureLaw, power_law, read_pressure_table
-from ..models.validity import validity
+from ..case.run import contact_from_options, law_from_text, validity_warnings
+from ..models import Contact
+from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
 
 __all__ = ["add_contact_options", "contact_from_args", "contact_json", "law_from_text",
@@ -41,46 +39,15 @@ def add_contact_options(p: argparse.ArgumentParser) -> None:
                         "large --stick-slope gives the rigid foundation exactly)")
 
 
-def law_from_text(text: str | None, params: ClampParams) -> PressureLaw | None:
-    """The pressure law of a ``--pressure-law`` value; None for the uniform (paper's) law."""
-    if text is None or text == "uniform":
-        return None
-    if text in PRESSURE_LAWS:
-        return PRESSURE_LAWS[text]()
-    kind, _, rest = text.partition(":")
-    if kind == "table" and rest:
-        return read_pressure_table(rest, params.length)
-    if kind == "power" and rest:
-        try:
-            numbers = [float(x) for x in rest.split(":")]
-        except ValueError:
-            numbers = []
-        if len(numbers) in (1, 2):
-            return power_law(*numbers)
-    raise ParameterError(f"--pressure-law {text!r}: use one of {', '.join(PRESSURE_LAWS)}, "
-                         "power:N[:EDGE] or table:FILE.csv")
-
-
 def contact_from_args(args: argparse.Namespace, params: ClampParams) -> Contact | None:
     """The contact the options ask for; None when they leave the paper's foundation."""
-    slope = args.stick_slope
-    law = law_from_text(args.pressure_law, params)
-    if args.no_shear_lag and slope is None:
-        raise ParameterError("--no-shear-lag needs --stick-slope (the rigid foundation has no "
-                             "shear layer to leave out)")
-    if slope is None and law is None:
-        return None
-    slope = math.inf if slope is None else slope
-    contact = Contact(slope, shear_lag=not args.no_shear_lag and math.isfinite(slope), law=law)
-    return None if contact.is_rigid else contact
+    return contact_from_options(vars(args), params)
 
 
 def warnings_for(model: str, params: ClampParams, amplitude: float,
                  contact: Contact | None) -> list[str]:
     """The validity warnings of a 1-D result (sentences; empty within the model's range)."""
-    c = contact or Contact()
-    return list(validity(get_model(model).load_case, params, amplitude,
-                         stick_slope=c.stick_slope, law=c.law).warnings)
+    return validity_warnings(model, params, amplitude, contact)
 
 
 def report_warnings(warnings: list[str], *, quiet: bool = False) -> None:

@@ -2,36 +2,33 @@
 
 The solver is chosen from :data:`microslip.fe.SOLVERS` (``--solver``): the built-in
 frictional solver (default; validated against CalculiX, ``docs/solver.md``) or CalculiX.
-The run itself is :func:`microslip.fe.run_loop`; this module parses and prints.
+The run itself is :func:`microslip.case.run.compute_fe` (:func:`microslip.fe.run_loop` on the
+options, the path ``microslip report`` takes too); this module parses and prints.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 from typing import Any
 
 from ..case.options import add_case_option
-from ..errors import ParameterError
-from ..fe import SOLVERS, run_loop
+from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
+from ..fe import SOLVERS
 from ..fe.builtin.normal import NORMAL_CONTACTS
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..io import write_loop_csv
 from ..loading import LOAD_CASES
 from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, is_mesh_spec
 from ..models.interface import PRESSURE_LAWS
-from ..params import ClampParams
 from .common import (
     add_params,
     add_strain_energy,
     check_output_dir,
     number,
-    params_from_args,
     print_json,
 )
-from .contact import law_from_text
 from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
 
 __all__ = ["add_parser", "run"]
@@ -117,56 +114,19 @@ def add_parser(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
-def _check_run_options(args: argparse.Namespace) -> None:
-    if args.timeout is not None and not (math.isfinite(args.timeout) and args.timeout > 0):
-        raise ParameterError(f"--timeout must be > 0 s, got {args.timeout!r}")
-    if not 1 <= args.threads <= 256:
-        raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
-
-
-def _solver_options(args: argparse.Namespace, params: ClampParams) -> dict[str, Any]:
-    """The solver's own options given on the command line; one line for one it does not take."""
-    entry = SOLVERS[args.solver]
-    given = {"timeout": args.timeout, "threads": args.threads if args.threads != 1 else None,
-             "reuse": args.reuse or None,
-             "pressure_law": law_from_text(args.pressure_law, params),
-             "normal_contact": args.normal_contact,
-             "normal_slope": (args.normal_slope if args.normal_slope != DEFAULT_NORMAL_SLOPE
-                              else None)}
-    given = {k: v for k, v in given.items() if v is not None}
-    if (args.solver == "builtin" and "normal_slope" in given
-            and args.normal_contact != "penalty"):
-        raise ParameterError("--normal-slope with --solver builtin needs --normal-contact "
-                             "penalty (the fixed normal contact has no normal stiffness)")
-    if args.clamping_csv is not None and args.solver != "builtin":
-        given["clamping_csv"] = args.clamping_csv
-    bad = [f"--{k.replace('_', '-')}" for k in given if k not in entry.options]
-    if bad:
-        raise ParameterError(f"{', '.join(bad)} do(es) not apply to --solver {args.solver}")
-    if "threads" in entry.options:
-        given.setdefault("threads", args.threads)
-    return given
-
-
 def run(args: argparse.Namespace) -> int:
-    _check_run_options(args)
+    inputs = fe_inputs(vars(args), 1.0 if args.displacement_amplitude else None)
     check_output_dir(args.out)
-    params, amplitude = params_from_args(args, 1.0 if args.displacement_amplitude else None)
-    run_options = dict(solver=args.solver, mesh=args.mesh, element=args.element,
-                       stick_slope=args.stick_slope, substeps=args.substeps,
-                       strain_energy_kind=args.strain_energy, **_solver_options(args, params))
-    forced = fe_displacement_force(args, args.model, params,
-                                   lambda f: run_loop(args.model, params, f, **run_options)[0])
-    amplitude = amplitude if forced is None else forced
-    result, files = run_loop(args.model, params, amplitude, out=args.out,
-                             vtu=not args.no_vtu, **run_options)
+    forced = fe_displacement_force(args, inputs.model, inputs.params,
+                                   lambda f: compute_fe(inputs, f)[0])
+    result, files = compute_fe(inputs, forced, out=args.out, vtu=not args.no_vtu)
     clamping = getattr(result.details, "clamping", None)
     if args.clamping_csv is not None and clamping is not None:
         files.append(clamping.write_csv(args.clamping_csv))
     if args.out is not None and result.converged and result.loop is not None:
         files.append(write_loop_csv(Path(args.out) / "loop.csv", result.loop.force,
                                     result.loop.displacement))
-    out = result.summary()
+    out = fe_json(result)
     out["files"] = [str(f) for f in files]
     if forced is not None:
         out["displacement_amplitude_mm"] = args.displacement_amplitude
@@ -196,7 +156,8 @@ def _print_text(args: argparse.Namespace, out: dict[str, Any], files: list[Any])
     for name, a in out["slip_length_by_domain_mm"].items():
         label = f"slip length, {name}"
         print(f"  {label:<22s} {a:12.6g} mm  (contact status at t = 0.25 s)")
-    print(f"  dissipated energy W_d  {out['dissipated_energy_Nmm']:12.6g} N·mm")
+    print(f"  dissipated energy W_d  {out['dissipated_energy_Nmm']:12.6g} N·mm  "
+          f"({portion_text(out['clamp_portion'])})")
     print(f"  strain energy U        {out['strain_energy_Nmm']:12.6g} N·mm  "
           f"({out['strain_energy_definition']})")
     print(f"  loss factor eta        {out['loss_factor']:12.6g} (dimensionless)")

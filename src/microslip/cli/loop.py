@@ -6,32 +6,21 @@ import argparse
 from typing import Any
 
 from ..case.options import add_case_option
-from ..energy import damping
+from ..case.run import compute_loop, loop_inputs, loop_json, portion_text
 from ..io import check_writable, write_loop_csv
-from ..models import MODELS, Contact, get_model, macroslip_force
-from ..options import ModelOptions
-from ..params import ClampParams
-from ..results import DampingResult
+from ..models import MODELS, Contact, get_model
 from .common import (
     add_model_options,
     add_params,
     add_strain_energy,
     check_plot,
     increments_option,
-    model_options,
-    params_from_args,
     print_json,
 )
-from .contact import (
-    add_contact_options,
-    contact_from_args,
-    contact_json,
-    report_warnings,
-    warnings_for,
-)
+from .contact import add_contact_options, report_warnings
 from .displacement import add_displacement_option, displacement_force
 
-__all__ = ["add_parser", "result_json"]
+__all__ = ["add_parser", "run"]
 
 
 def add_parser(sub: Any) -> None:
@@ -54,43 +43,19 @@ def add_parser(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
-def result_json(model: str, params: ClampParams, result: DampingResult, increments: int,
-                options: ModelOptions, contact: Contact | None = None,
-                warnings: list[str] | None = None) -> dict[str, Any]:
-    """The JSON object of a loop result (made by :func:`microslip.damping`, so it carries its
-    backbone); keys carry their units."""
-    bb = result.backbone
-    if bb is None:
-        raise ValueError("a loop result from microslip.damping carries its backbone")
-    slip = {name: float(bb.slip_length[-1, i]) for i, name in enumerate(bb.domains)}
-    out = {
-        "model": model,
-        "units": {"force": "N", "length": "mm", "modulus": "MPa", "energy": "N·mm"},
-        "params": params.as_dict(),
-        "options": {"poisson": options.poisson, "length_update": options.length_update,
-                    "centre_reading": options.centre},
-        "contact": contact_json(contact),
-        "increments": increments,
-        "amplitude_N": result.amplitude,
-        "macroslip_force_N": macroslip_force(model, params, options),
-    }
-    return out | result.loop_json(slip) | {"warnings": list(warnings or [])}
-
-
 def run(args: argparse.Namespace) -> int:
-    params, amplitude = params_from_args(args, 1.0 if args.displacement_amplitude else None)
-    n = increments_option(args.increments)
+    inputs = loop_inputs(vars(args), 1.0 if args.displacement_amplitude else None)
+    n = increments_option(inputs.increments)
     check_plot(args.plot)
     if args.csv is not None:
         check_writable(args.csv, (".csv",), "loop file")
-    opt = model_options(args)
-    contact = contact_from_args(args, params)
-    forced = displacement_force(args, args.model, params, n, opt, contact)
-    amplitude = amplitude if forced is None else forced
-    result = damping(args.model, params, amplitude, n, opt, args.strain_energy, contact)
-    warnings = warnings_for(args.model, params, amplitude, contact)
-    out = result_json(args.model, params, result, n, opt, contact, warnings)
-    report_warnings(warnings)
+    forced = displacement_force(args, inputs.model, inputs.params, n, inputs.options,
+                                inputs.contact)
+    loop = compute_loop(inputs, forced)
+    result, amplitude, opt, contact = (loop.result, loop.inputs.amplitude, inputs.options,
+                                       inputs.contact)
+    out = loop_json(loop)
+    report_warnings(list(loop.warnings))
     if args.displacement_amplitude is not None:
         out["displacement_amplitude_mm"] = args.displacement_amplitude
     if args.plot:
@@ -115,7 +80,8 @@ def run(args: argparse.Namespace) -> int:
               f"{args.displacement_amplitude:g} mm)")
     for name, a in out["slip_length_by_domain_mm"].items():
         print(f"  slip length ({name})   {a:12.6g} mm")
-    print(f"  dissipated energy W_d  {result.dissipated_energy:12.6g} N·mm")
+    print(f"  dissipated energy W_d  {result.dissipated_energy:12.6g} N·mm  "
+          f"({portion_text(out['clamp_portion'])})")
     print(f"  strain energy U        {result.strain_energy:12.6g} N·mm  ({args.strain_energy})")
     print(f"  loss factor eta        {result.loss_factor:12.6g} (dimensionless)")
     if args.plot:

@@ -6,16 +6,24 @@ import argparse
 from typing import Any
 
 from ..case.options import add_case_option
+from ..case.run import (
+    compute_planar,
+    contact_from_options,
+    model_options_from,
+    planar_amplitudes,
+    planar_inputs,
+    planar_json,
+    planar_zones_from,
+    portion_text,
+    with_portion,
+)
 from ..energy import STRAIN_ENERGY
-from ..errors import MacroslipError, ParameterError
+from ..errors import ParameterError
 from ..params import PRESETS, preset
 from ..planar import (
     LEVEL_SCHEMES,
     TIP_SYMMETRY,
     WORK_STRAIN_ENERGY,
-    PlanarResult,
-    paper_levels,
-    planar_damping,
 )
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
 from .common import (
@@ -26,22 +34,17 @@ from .common import (
     check_plot,
     clamp_overrides,
     increments_option,
-    model_options,
     number,
-    planar_zones,
     print_json,
     refuse_inapplicable,
 )
 from .contact import (
     add_contact_options,
-    contact_from_args,
-    contact_json,
     report_warnings,
-    warnings_for,
 )
 from .displacement import PLANAR_HELP, add_displacement_option, planar_displacement_forces
 
-__all__ = ["SOLVERS", "add_parser", "result_json", "run"]
+__all__ = ["SOLVERS", "add_parser", "run"]
 
 #: Solvers of the planar case: the paper's decoupled analytical models, or the built-in
 #: frictional FE solver with one shared Coulomb circle per contact node (coupled 2-D friction).
@@ -132,37 +135,7 @@ def add_parser(sub: Any) -> None:
 
 def amplitudes(args: argparse.Namespace) -> tuple[float, float]:
     """(tip, centre) amplitudes in N from the amplitude flags or --ratio."""
-    given = [x is not None for x in (args.tip_amplitude, args.centre_amplitude)]
-    if args.ratio is not None:
-        if any(given):
-            raise ParameterError("give either --ratio or --tip-amplitude and "
-                                 "--centre-amplitude, not both")
-        return paper_levels(args.ratio, args.levels)
-    if not all(given):
-        raise ParameterError("give --tip-amplitude N and --centre-amplitude N, or --ratio R")
-    return float(args.tip_amplitude), float(args.centre_amplitude)
-
-
-def result_json(result: PlanarResult, args: argparse.Namespace) -> dict[str, Any]:
-    """The JSON object of a planar result; keys carry their units."""
-    opt = model_options(args)
-    out: dict[str, Any] = {
-        "solver": args.solver,
-        "units": {"force": "N", "length": "mm", "modulus": "MPa", "energy": "N·mm",
-                  "angle": "degrees"},
-        "tip_preset": args.tip_preset,
-        "centre_preset": args.centre_preset,
-        "options": {"poisson": opt.poisson, "length_update": opt.length_update,
-                    "centre_reading": opt.centre},
-        "increments": args.increments,
-        "samples_per_cycle": args.samples_per_cycle,
-    }
-    if clamp_overrides(args):
-        tip, centre = planar_zones(preset(args.tip_preset), preset(args.centre_preset),
-                                   clamp_overrides(args), args.tip_symmetry)
-        out["tip_params"], out["centre_params"] = tip.as_dict(), centre.as_dict()
-    out.update(result.summary())
-    return out
+    return planar_amplitudes(vars(args))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -195,16 +168,17 @@ def run_fe(args: argparse.Namespace) -> int:
                             increments_per_cycle=args.increments_per_cycle,
                             mesh=args.mesh or DEFAULT_MESH, cycle_tol=args.cycle_tolerance,
                             **slope)
-    out = {"preset": args.preset, "mesh": args.mesh or DEFAULT_MESH,
-           "units": {"force": "N", "energy": "N·mm", "angle": "degrees", "time": "s"},
-           **result.summary()}
+    out = with_portion({"preset": args.preset, "mesh": args.mesh or DEFAULT_MESH,
+                        "units": {"force": "N", "energy": "N·mm", "angle": "degrees",
+                                  "time": "s"}, **result.summary()}, "whole")
     if args.json:
         print_json(out)
         return 0 if result.converged else 1
     print(f"coupled planar friction, built-in FE solver: {args.preset} bar, mesh "
           f"{out['mesh']} ({out['dof']} DOF), tip {at:g} N along the bar, centre {ac:g} N across "
           f"it, phase {args.phase:g} deg")
-    print(f"  W per cycle, coupled                {out['dissipated_energy_Nmm']:12.6g} N·mm")
+    print(f"  W per cycle, coupled                {out['dissipated_energy_Nmm']:12.6g} N·mm  "
+          f"({portion_text(out['clamp_portion'])})")
     print(f"  W per cycle, tip alone              {out['tip_only_dissipated_energy_Nmm']:12.6g} "
           "N·mm")
     print(f"  W per cycle, centre alone           "
@@ -225,34 +199,21 @@ def result_message(result: Any) -> str:
 def run_analytical(args: argparse.Namespace) -> int:
     n = increments_option(args.increments, loops=2)
     check_plot(args.plot)
-    opt = model_options(args)
-    tip_params, centre_params = planar_zones(preset(args.tip_preset),
-                                             preset(args.centre_preset),
-                                             clamp_overrides(args), args.tip_symmetry)
-    contact = contact_from_args(args, tip_params)
-    at, ac = (planar_displacement_forces(args, n, opt, (tip_params, centre_params), contact)
-              or amplitudes(args))
-    try:
-        result = planar_damping(
-            tip_params, centre_params, at, ac, increments=n,
-            options=opt, strain_energy=args.strain_energy, phase_deg=args.phase,
-            work_energy=args.work_energy, tip_symmetry=args.tip_symmetry,
-            samples_per_cycle=args.samples_per_cycle, contact=contact)
-    except MacroslipError as exc:
-        if "centre model" in str(exc) and opt.centre == "physical":
-            raise MacroslipError(f"{exc}; the paper's reading of Eq. 11 "
-                                 "(--centre-reading paper) reaches 2 mu F_N") from None
-        raise
+    opts = vars(args)
+    zones = planar_zones_from(opts)
+    forced = planar_displacement_forces(args, n, model_options_from(opts), zones,
+                                        contact_from_options(opts, zones[0]))
+    run = compute_planar(planar_inputs(opts, forced))
+    result, at, ac, opt = (run.result, run.inputs.tip_amplitude, run.inputs.centre_amplitude,
+                           run.inputs.options)
     if args.plot:
         from ..plot.paper import figure_planar
 
         figure_planar(result, args.plot)
-    warnings = [f"tip model: {w}" for w in warnings_for("tip", tip_params, at, contact)]
-    warnings += [f"centre model: {w}" for w in warnings_for("centre", centre_params, ac, contact)]
-    report_warnings(warnings)
+    report_warnings(list(run.warnings))
+    out = planar_json(run)
     if args.json:
-        print_json(result_json(result, args) | {"contact": contact_json(contact),
-                                                "warnings": warnings})
+        print_json(out)
         return 0
     w = result.work
     print(f"planar case R = {result.ratio:.6g} (eccentricity {result.eccentricity:.4f}), "
@@ -263,13 +224,16 @@ def run_analytical(args: argparse.Namespace) -> int:
         given = ", ".join(f"{k} {v:g}" for k, v in clamp_overrides(args).items())
         print(f"  own clamp: {given} (N, mm, MPa; tip zone width / {result.tip_symmetry})")
     print(f"  strain energy U: {args.strain_energy} ({STRAIN_ENERGY[args.strain_energy][1]})")
-    print(f"  {'':31s}{'W_d (N·mm)':>14s}{'U (N·mm)':>14s}{'eta (-)':>12s}")
-    for name, r in (("tip model", result.tip), ("centre model", result.centre),
-                    ("paper's resultant (Eqs 19-23)", result.paper)):
+    print(f"  {'':31s}{'W_d (N·mm)':>14s}{'U (N·mm)':>14s}{'eta (-)':>12s}  W_d of")
+    rows = (("tip model", result.tip, out["tip"]["clamp_portion"]),
+            ("centre model", result.centre, out["centre"]["clamp_portion"]),
+            ("paper's resultant (Eqs 19-23)", result.paper, out["paper_clamp_portion"]))
+    for name, r, portion in rows:
         print(f"  {name:31s}{r.dissipated_energy:14.6g}{r.strain_energy:14.6g}"
-              f"{r.loss_factor:12.6g}")
+              f"{r.loss_factor:12.6g}  {portion_text(portion)}")
     print(f"  {'work of the load':31s}{w.dissipated_energy:14.6g}{w.strain_energy:14.6g}"
-          f"{w.loss_factor:12.6g}   (phase {result.phase_deg:g} deg, U {result.work_energy})")
+          f"{w.loss_factor:12.6g}  {portion_text(out['clamp_portion'])} "
+          f"(phase {result.phase_deg:g} deg, U {result.work_energy})")
     print(f"  share of W: tip {w.tip_dissipated_energy / w.dissipated_energy:.4f}, centre "
           f"{w.centre_dissipated_energy / w.dissipated_energy:.4f} (dimensionless); "
           f"paper's eta with secant U {result.paper_loss_factors['secant']:.6g}")

@@ -22,7 +22,11 @@ def add_parser(sub: Any) -> None:
         "that needs no network (docs/report.md). Units: N, mm, MPa, N·mm.")
     p.add_argument("--case", dest="report_case", required=True, metavar="FILE.toml",
                    help="the case file (microslip case new FILE.toml writes a template)")
-    p.add_argument("--out", required=True, metavar="FILE.html", help="the page to write")
+    p.add_argument("--out", metavar="FILE.html",
+                   help="the page to write (needed unless --json is given)")
+    p.add_argument("--json", action="store_true",
+                   help="print every number of the page as one JSON object (its one_d, fe and "
+                        "planar objects are those of loop, fe and planar --case --json)")
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="force increments of each 1-D first loading (default 1000)")
     g = p.add_argument_group("finite-element runs")
@@ -41,11 +45,17 @@ def run(args: argparse.Namespace) -> int:
     from ..fe import SOLVERS
     from ..io import check_writable
     from ..models import check_increments
-    from ..report import ReportSettings, write_report
+    from ..report import ReportSettings, compute_report, report_json, write_report
+    from .common import print_json
 
-    if os.path.splitext(args.out)[1].lower() not in (".html", ".htm"):
-        raise ParameterError(f"--out must end in .html, got {args.out!r}")
-    check_writable(args.out, (".html", ".htm"), "report")  # before the work
+    if args.out is None and not args.json:
+        from .main import UsageError
+
+        raise UsageError("give --out FILE.html, --json or both")
+    if args.out is not None:
+        if os.path.splitext(args.out)[1].lower() not in (".html", ".htm"):
+            raise ParameterError(f"--out must end in .html, got {args.out!r}")
+        check_writable(args.out, (".html", ".htm"), "report")  # before the work
     meshes = SOLVERS[args.fe_solver].meshes
     if args.mesh not in meshes:
         raise ParameterError(f"--mesh {args.mesh} is not a mesh of the {args.fe_solver} solver; "
@@ -56,11 +66,23 @@ def run(args: argparse.Namespace) -> int:
                               fe_solver=args.fe_solver, mesh=args.mesh, substeps=args.substeps,
                               fe_points=not args.no_fe)
     case = load_case(args.report_case)
-    data = write_report(case, args.out, settings, progress=not args.no_progress)
+    if args.out is not None:
+        data = write_report(case, args.out, settings, progress=not args.no_progress)
+    else:
+        data = compute_report(case, settings, progress=not args.no_progress)
+    if args.json:
+        print_json(report_json(data) | {"case_file": args.report_case, "page": args.out})
+        return 0
     print(f"report of case {args.report_case}: {data.model} model, F0 = {data.amplitude:.6g} N "
           f"(macroslip {data.macroslip:.6g} N), "
           f"{data.fe_curve.shape[0]} FE run(s), "
           f"{len(data.validity_rigid.warnings) + len(data.validity_layer.warnings)} validity "
-          f"warning(s), planar coupling: {'yes' if data.planar is not None else 'no'}")
+          f"warning(s), planar coupling: {_planar_state(data)}")
     print(f"  wrote                  {args.out}")
     return 0
+
+
+def _planar_state(data: Any) -> str:
+    if data.planar_error is not None:
+        return f"not computed ({data.planar_error})"
+    return "yes" if data.planar is not None else "no"

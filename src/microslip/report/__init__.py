@@ -14,10 +14,11 @@ import os
 
 from ..case.model import Case
 from ..io import atomic_write
-from .compute import ReportData, ReportSettings, compute_report
+from .compute import ReportData, ReportSettings, compute_report, report_json
 from .html import render
 
-__all__ = ["ReportData", "ReportSettings", "compute_report", "render", "write_report"]
+__all__ = ["ReportData", "ReportSettings", "compute_report", "render", "report_json",
+           "write_report"]
 
 
 def write_report(case: Case, path: str | os.PathLike[str],

@@ -14,9 +14,10 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from .. import __version__
+from ..case.run import MODEL_PORTION, portion_text, tip_portion
 from ..case.schema import KEYS
 from ..models import MODELS
-from .compute import ReportData
+from .compute import ReportData, comparison
 from .figures import damping_figure, loops_figure, planar_figure
 
 __all__ = ["render"]
@@ -79,23 +80,17 @@ def _inputs(data: ReportData) -> str:
 
 
 def _comparison(data: ReportData) -> str:
-    one = data.loops[-1]
-    rows: list[Sequence[Any]] = [
-        ("peak displacement d0 (mm)", one.peak_displacement),
-        ("dissipated energy W_d (N·mm)", one.dissipated_energy),
-        ("strain energy U (N·mm)", one.strain_energy),
-        ("loss factor η (dimensionless)", one.loss_factor),
-    ]
+    rows = comparison(data)
+    portion = portion_text(MODEL_PORTION[data.model])
+    note = (f'<p class="note">W_d and U of {_e(portion)}, as <code>microslip loop</code> and '
+            "<code>microslip fe</code> print them for this case.</p>")
     if data.fe is None:
-        return _table(("at the case amplitude", "1-D model"), rows)
-    fe = data.fe
-    values = (fe.peak_displacement, fe.damping.dissipated_energy, fe.damping.strain_energy,
-              fe.damping.loss_factor)
-    full = [(*r, v, 100.0 * (r[1] / v - 1.0)) for r, v in zip(rows, values, strict=True)]
-    note = ("" if fe.converged else
+        return _table(("at the case amplitude", "1-D model"),
+                      [(name, x) for name, x, _, _ in rows]) + note
+    warn = ("" if data.fe.converged else
             '<p class="warn">The FE run did not converge at every increment.</p>')
     return _table(("at the case amplitude", "1-D model", f"FE ({data.settings.fe_solver})",
-                   "1-D / FE - 1 (%)"), full) + note
+                   "1-D / FE - 1 (%)"), rows) + note + warn
 
 
 def _validity(data: ReportData) -> str:
@@ -114,20 +109,29 @@ def _validity(data: ReportData) -> str:
 
 
 def _planar(data: ReportData) -> str:
-    p = data.planar
+    p = data.planar_run
+    if data.planar_error is not None:
+        return (f'<p class="warn">The planar load of the case cannot be computed: '
+                f"{_e(data.planar_error)}</p>")
     if p is None:
         return ('<p class="note">The case gives no planar load (load.planar.ratio or both '
                 "planar amplitudes): no coupling to report.</p>")
-    w = p.work
-    rows = [(name, r.dissipated_energy, r.strain_energy, r.loss_factor)
-            for name, r in (("tip model", p.tip), ("centre model", p.centre),
-                            ("paper's resultant (Eqs 19-23)", p.paper))]
-    rows.append(("work of the load", w.dissipated_energy, w.strain_energy, w.loss_factor))
-    intro = (f"<p>Force ratio R = {_num(p.ratio)} (dimensionless), eccentricity "
-             f"{_num(p.eccentricity, 4)} (dimensionless), tip {_num(p.tip_amplitude)} N, centre "
-             f"{_num(p.centre_amplitude)} N, phase {_num(p.phase_deg)} degrees; the paper's Table "
-             "2 zones (as <code>microslip planar</code>).</p>")
-    return (intro + _table(("", "W_d (N·mm)", "U (N·mm)", "η (dimensionless)"), rows)
+    r, k = p.result, p.inputs.tip_symmetry
+    w = r.work
+    rows = [(name, x.dissipated_energy, x.strain_energy, x.loss_factor, portion_text(part))
+            for name, x, part in (("tip model", r.tip, tip_portion(k)),
+                                  ("centre model", r.centre, MODEL_PORTION["centre"]),
+                                  ("paper's resultant (Eqs 19-23)", r.paper, "mixed"))]
+    rows.append(("work of the load", w.dissipated_energy, w.strain_energy, w.loss_factor,
+                 portion_text("whole")))
+    intro = (f"<p>Force ratio R = {_num(r.ratio)} (dimensionless), eccentricity "
+             f"{_num(r.eccentricity, 4)} (dimensionless), tip {_num(r.tip_amplitude)} N, centre "
+             f"{_num(r.centre_amplitude)} N, phase {_num(r.phase_deg)} degrees; the case's "
+             f"clamp, its tip zone one of {k} symmetric parts of the width "
+             f"(w = {_num(p.inputs.tip_params.width)} mm), as "
+             "<code>microslip planar --case</code>.</p>")
+    return (intro + _table(("", "W_d (N·mm)", "U (N·mm)", "η (dimensionless)", "W_d of"),
+                           rows)
             + _figure(planar_figure(data), "Planar case: loops of the tip, centre and "
                       "resultant models; load path in the force plane (N)."))
 
