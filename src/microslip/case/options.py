@@ -3,7 +3,8 @@
 :func:`parse_args` parses the command line once to find the command and the options given
 explicitly, loads the case, turns its keys into the subcommand's defaults through the one
 table :data:`CASE_OPTIONS` (``set_defaults``), and parses again, so that explicit options win.
-A key the file sets whose option the command does not take is refused with the reason.
+A section (or key) the command does not read is ignored, with one note on stderr: a case
+file describes one clamp for every command; only unknown or misspelled keys are errors.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import argparse
 import contextlib
 import contextvars
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Collection, Iterator, Sequence
 from typing import Any
 
 from ..errors import ParameterError
@@ -21,7 +22,7 @@ from .model import Case, load_case
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
-           "warn"]
+           "unread", "warn"]
 
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
@@ -97,25 +98,42 @@ def _explicit(parser: argparse.ArgumentParser, sub: argparse.ArgumentParser,
 
 
 def _reads(command: str, scope: str) -> bool:
+    """True if ``command`` reads keys of ``scope`` ("all", "load" or "planar")."""
     if scope == "all":
         return True
-    return (scope == "planar") == (command in PLANAR_COMMANDS)
+    if scope == "planar":
+        return command in PLANAR_COMMANDS
+    return command not in PLANAR_COMMANDS and command not in STRUCTURE_COMMANDS
+
+
+def _section(dotted: str) -> str:
+    return dotted.rsplit(".", 1)[0] if "." in dotted else ""
+
+
+def unread(case: Case, command: str, dests: Collection[str]) -> tuple[str, ...]:
+    """What of ``case`` the command does not read: ``[section]`` when it reads none of the
+    section's keys the file sets, else the dotted keys; ``[[joint]]`` for joint tables off
+    modal and frf. A case file describes one clamp for every command, so these are ignored.
+    """
+    skipped = [k for k, (dest, scope) in CASE_OPTIONS.items()
+               if k in case.values and (not _reads(command, scope) or dest not in dests)]
+    out: list[str] = []
+    for key in skipped:
+        section = _section(key)
+        whole = all(k in skipped for k in CASE_OPTIONS
+                    if k in case.values and _section(k) == section)
+        name = f"[{section}]" if section and whole else key
+        if name not in out:
+            out.append(name)
+    if case.joints and command not in STRUCTURE_COMMANDS:
+        out.append("[[joint]]")
+    return tuple(out)
 
 
 def _structure_case(case: Case, command: str, explicit: dict[str, Any]) -> dict[str, Any]:
-    """The checks and defaults of [[joint]] tables and of a load case on modal and frf."""
-    if command in STRUCTURE_COMMANDS:
-        load = [k for k in case.values if k.startswith("load.")]
-        if load:
-            raise ParameterError(f"case {case.source}: key {load[0]} is a load case, which "
-                                 f"`microslip {command}` does not read (the structure is "
-                                 "excited by --force); remove it")
-    if not case.joints:
+    """The checks and defaults of [[joint]] tables (modal and frf)."""
+    if not case.joints or command not in STRUCTURE_COMMANDS:
         return {}
-    if command not in STRUCTURE_COMMANDS:
-        raise ParameterError(f"case {case.source}: [[joint]] tables describe the joints of a "
-                             f"structure, read by {' and '.join(STRUCTURE_COMMANDS)}, not by "
-                             f"`microslip {command}`")
     given = [d for d in JOINT_DESTS if d in explicit]
     if given:
         flags = ", ".join("--" + d.replace("_", "-") for d in given)
@@ -140,16 +158,12 @@ def _amplitude_swept(explicit: dict[str, Any]) -> bool:
 
 def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
                   explicit: dict[str, Any]) -> dict[str, Any]:
-    """The subcommand defaults a case gives; refuses keys whose option the command lacks."""
+    """The subcommand defaults a case gives; keys the command does not read are skipped
+    (:func:`unread` names them)."""
     out: dict[str, Any] = _structure_case(case, command, explicit)
     for key, (dest, scope) in CASE_OPTIONS.items():
-        if key not in case.values or not _reads(command, scope):
+        if key not in case.values or not _reads(command, scope) or dest not in dests:
             continue
-        if dest not in dests:
-            flag = "--" + dest.replace("_", "-")
-            raise ParameterError(f"case {case.source}: key {key} maps to {flag}, which "
-                                 f"`microslip {command}` does not take; remove the key or "
-                                 "use a command that takes it")
         if dest in explicit or dest == "amplitude":
             continue  # the command line wins; the amplitude is resolved after the parse
         value = case.values[key]
@@ -218,6 +232,9 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
         case = load_case(case_path)
         dests = {a.dest: a for a in sub._actions}
         defaults = case_defaults(case, first.command, dests, explicit)
+        skipped = unread(case, first.command, dests)
+        if skipped:
+            print(f"case: {', '.join(skipped)} not read by {first.command}", file=sys.stderr)
         for dest in defaults:
             dests[dest].required = False
         sub.set_defaults(**defaults)
@@ -226,7 +243,7 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
-        args.case_joints = case.joints
+        args.case_joints = case.joints if first.command in STRUCTURE_COMMANDS else ()
     warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
     for line in warnings:
         print(f"warning: {line}", file=sys.stderr)
