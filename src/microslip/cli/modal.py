@@ -26,7 +26,7 @@ from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, ModalCurve, energy_method
 from ..dynamics.operators2d import COUPLINGS, PAIRINGS
-from ..dynamics.structure import Structure, one_mode
+from ..dynamics.structure import Structure, free_frequency, one_mode
 from ..errors import ParameterError
 from .across import (
     across_from_args,
@@ -48,13 +48,18 @@ DEFAULT_HARMONICS = 7
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
-    """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
+    """One mode (``--frequency`` or ``--stuck-frequency``, ``--modal-mass``, ``--damping-ratio``,
     ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode``,
     ``--coupling`` and the joint across (``--transverse``, ``--pairing``, ``--fe-mesh``);
     and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
-    g.add_argument("--frequency", type=number, metavar="HZ",
-                   help="natural frequency with the joint removed, Hz")
+    given = g.add_mutually_exclusive_group()
+    given.add_argument("--frequency", type=number, metavar="HZ",
+                       help="natural frequency with the joint removed, Hz")
+    given.add_argument("--stuck-frequency", type=number, metavar="HZ",
+                       help="natural frequency with the joint stuck (as measured at low "
+                            "amplitude), Hz; the frequency with the joint removed follows "
+                            "from the joint's initial stiffness")
     g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
     g.add_argument("--damping-ratio", type=number, metavar="X",
                    help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
@@ -96,14 +101,17 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
                 ("coupling", "--coupling"), ("excitation", "--excitation"),
                 why="a one-mode structure (they need --structure)")
         across_from_args(args, None)
-        if args.frequency is None or args.modal_mass is None:
-            raise ParameterError("give --frequency HZ and --modal-mass KG (one mode) or "
-                                 "--structure FILE")
-        return one_mode(args.frequency, args.modal_mass,
-                        0.0 if args.damping_ratio is None else args.damping_ratio,
-                        joint_from_args(args),
-                        1.0 if args.participation is None else args.participation)
-    _refuse(args, ("frequency", "--frequency"), ("modal_mass", "--modal-mass"),
+        stuck = getattr(args, "stuck_frequency", None)
+        if (args.frequency is None and stuck is None) or args.modal_mass is None:
+            raise ParameterError("give --frequency HZ (or --stuck-frequency HZ) and "
+                                 "--modal-mass KG (one mode) or --structure FILE")
+        joint = joint_from_args(args)
+        p = 1.0 if args.participation is None else args.participation
+        f = args.frequency if stuck is None else free_frequency(stuck, args.modal_mass, joint, p)
+        return one_mode(f, args.modal_mass,
+                        0.0 if args.damping_ratio is None else args.damping_ratio, joint, p)
+    _refuse(args, ("frequency", "--frequency"), ("stuck_frequency", "--stuck-frequency"),
+            ("modal_mass", "--modal-mass"),
             ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
             why="--structure (the file's matrices give them)")
     matrices = read_structure(args.structure)
