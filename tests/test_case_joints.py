@@ -248,7 +248,8 @@ def test_command_line_joint_options_conflict_with_case_joints(capsys, chain, mon
 
 def test_joints_and_structures_go_where_they_belong(capsys, chain, monkeypatch):
     monkeypatch.chdir(chain)
-    code, _, err = run(capsys, "loop", "--case", "two.toml", "--increments", "100")
+    code, _, err = run(capsys, "loop", "--case", "two.toml", "--model", "tip", "--increments",
+                       "100")
     assert code == 0 and err == "case: [structure], [[joint]] not read by loop\n"
     (chain / "nostructure.toml").write_text(TWO_JOINTS.replace('file = "chain.npz"', ""))
     code, _, err = run(capsys, "frf", "--case", "nostructure.toml", "--force", "1")

@@ -27,6 +27,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike
 
+from .conventions import check_choice
 from .errors import ParameterError
 from .options import ModelOptions
 from .params import ClampParams
@@ -191,12 +192,7 @@ def _kind_name(kind: str) -> str:
 
 
 def _check_kind(kind: str) -> Callable[[HysteresisLoop, Backbone | None], float]:
-    try:
-        return STRAIN_ENERGY[kind][0]
-    except (KeyError, TypeError):
-        raise ParameterError(
-            f"unknown strain-energy definition {kind!r}; choose one of {', '.join(STRAIN_ENERGY)}"
-        ) from None
+    return STRAIN_ENERGY[check_choice("strain-energy definition", kind, STRAIN_ENERGY)][0]
 
 
 def strain_energy(loop: HysteresisLoop, backbone: Backbone | None = None,

@@ -25,6 +25,8 @@ from functools import lru_cache
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
+from ..conventions import CLAMP_MODELS
+from ..conventions import TRANSVERSE as TRANSVERSE_NAMES
 from ..errors import ParameterError
 from ..named import result
 from ..params import PRESETS, ClampParams
@@ -151,12 +153,12 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
     across = {k: own.pop(k) for k in ACROSS_KEYS if k in own}
     _check_across(across, model, len(dofs), coupling)
     unused = sorted(set(own) - JOINT_USES[model])
-    if model not in ("tip", "centre"):
+    if model not in CLAMP_MODELS:
         unused += sorted(f"[joint.{k.split('.')[0]}]" if "." in k else k for k in clamp)
     if unused:
         raise ParameterError(f"{', '.join(unused)} not used by model {model}")
     params, series, slope = _clamp(model, own, clamp, case_values) \
-        if model in ("tip", "centre") else (None, None, None)
+        if model in CLAMP_MODELS else (None, None, None)
     if model in ("jenkins", "iwan"):
         missing = [k for k in sorted(JOINT_USES[model] - {"elements"}) if k not in own]
         if missing:
@@ -177,7 +179,7 @@ def _check_across(across: Mapping[str, Any], model: str, directions: int,
     allowed = {k.name: k.range for k in JOINT_KEYS if k.name in ACROSS_KEYS}
     transverse = across.get("transverse")
     for key in across:
-        if model not in ("tip", "centre"):
+        if model not in CLAMP_MODELS:
             raise ParameterError(f"joint.{key} ({allowed[key]}) applies to two-directional "
                                  f"tip or centre joints only, not to model {model}")
         if directions == 1:
@@ -281,11 +283,12 @@ def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperato
     return op
 
 
-#: Transverse name -> the 1-D joint across a bar: ``tip``, ``centre`` the clamp's 1-D model
+#: Transverse name (:data:`microslip.conventions.TRANSVERSE`) -> the 1-D joint across a bar:
+#: ``tip``, ``centre`` the clamp's 1-D model
 #: behind the same series spring; ``fe`` the built-in FE's first loading of the centre force
 #: across the bar (:func:`microslip.fe.builtin.fe_backbone`, its contact compliance inside).
-TRANSVERSE: dict[str, Across] = {"tip": _clamp_model("tip"), "centre": _clamp_model("centre"),
-                                 "fe": _fe}
+TRANSVERSE: dict[str, Across] = dict(zip(
+    TRANSVERSE_NAMES, (*(_clamp_model(m) for m in CLAMP_MODELS), _fe), strict=True))
 
 
 def across_operator(transverse: str, clamp: ClampParams, series: float, *, elements: int,

@@ -13,8 +13,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..conventions import (
+    CLAMP_MODELS,
+    COUPLINGS,
+    DEFAULT_MESH,
+    DEFAULT_STICK_SLOPE,
+    JOINT_MODELS,
+    PAIRINGS,
+    TRANSVERSE,
+)
 from ..errors import ParameterError
-from ..fe.calculix.case import DEFAULT_STICK_SLOPE
 from ..meshlevels import LEVELS, is_mesh_spec
 from ..params import PRESETS
 
@@ -44,24 +52,11 @@ DEFAULT_AMPLITUDE_FRACTION = 0.5
 PRESSURE_LAWS = ("uniform", "parabolic", "power:N[:EDGE]", "table:FILE.csv")
 FUTURE_PRESSURE_LAWS: tuple[str, ...] = ()
 
-#: Uniaxial load cases of a case file.
-LOAD_MODELS = ("tip", "centre")
-
-#: Couplings of a two-directional joint: the names of
-#: :data:`microslip.dynamics.operators2d.COUPLINGS` (kept here so that reading a case file
-#: does not import the dynamics; tests/test_case_joints.py checks they are the same).
-COUPLINGS = ("circular", "decoupled")
-
-#: What a two-directional tip or centre joint may be across (its second direction): the
-#: names of :data:`microslip.case.joints.TRANSVERSE` (checked the same by the tests).
-TRANSVERSE = ("tip", "centre", "fe")
-
-#: Pairings of the elements of the joints along and across: the names of
-#: :data:`microslip.dynamics.operators2d.PAIRINGS` (checked the same by the tests).
-PAIRINGS = ("ordered", "spatial")
+#: Uniaxial load cases of a case file: the clamp's two models.
+LOAD_MODELS = CLAMP_MODELS
 
 #: Mesh of the FE's first loading across the bar (``transverse = "fe"``) unless given.
-DEFAULT_FE_MESH = "coarse"
+DEFAULT_FE_MESH = DEFAULT_MESH
 
 Check = Callable[[str, Any], Any]
 
@@ -265,8 +260,6 @@ KEYS: tuple[Key, ...] = (
         "(as --coupling; circular if neither is given)"),
 )
 
-#: Joint models of a ``[[joint]]`` table (the names of ``--joint``).
-JOINT_MODELS = ("jenkins", "iwan", "tip", "centre")
 
 #: Number of Jenkins elements of an iwan, tip or centre joint when ``elements`` is not given
 #: (as ``--elements``; :data:`microslip.dynamics.distributions.DEFAULT_ELEMENTS`).

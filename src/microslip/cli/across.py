@@ -16,6 +16,7 @@ import numpy as np
 
 from ..case.joints import TRANSVERSE, across_operator
 from ..case.schema import DEFAULT_FE_MESH
+from ..conventions import CLAMP_MODELS
 from ..dynamics.operators import IwanOperator
 from ..dynamics.operators2d import DEFAULT_PAIRING, PAIRINGS
 from ..meshlevels import LEVELS
@@ -61,7 +62,7 @@ def _check(args: argparse.Namespace, two_directions: bool) -> None:
     """The refusals: each option only where it does something."""
     transverse = getattr(args, "transverse", None)
     if transverse is not None:
-        if args.joint not in ("tip", "centre"):
+        if args.joint not in CLAMP_MODELS:
             raise _usage(f"--transverse ({' | '.join(TRANSVERSE)}) applies to --joint tip "
                          f"or centre, not --joint {args.joint}")
         if not two_directions:
@@ -127,9 +128,9 @@ def across_warnings(args: argparse.Namespace) -> list[str]:
     if specs:
         return [ACROSS_WARNING.format(who=f"joint {s.number}", model=s.model,
                                       fix='transverse = "fe"')
-                for s in specs if s.directions == 2 and s.model in ("tip", "centre")
+                for s in specs if s.directions == 2 and s.model in CLAMP_MODELS
                 and s.transverse is None]
-    if args.structure is None or args.joint not in ("tip", "centre") or \
+    if args.structure is None or args.joint not in CLAMP_MODELS or \
             getattr(args, "transverse", None) is not None:
         return []
     from ..dynamics.files import read_structure

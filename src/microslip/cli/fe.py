@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..case.options import add_case_option
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe import SOLVERS, run_loop
 from ..fe.builtin.normal import NORMAL_CONTACTS
@@ -68,7 +69,7 @@ def add_parser(sub: Any) -> None:
     add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
                             "step (docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
-    g.add_argument("--mesh", type=mesh_level, default="coarse", metavar="LEVEL",
+    g.add_argument("--mesh", type=mesh_level, default=DEFAULT_MESH, metavar="LEVEL",
                    help=MESH_HELP)
     g.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
                    help=f"stick slope lambda of the friction law, N/mm^3 "

@@ -6,6 +6,7 @@ import argparse
 from typing import Any
 
 from ..case.options import add_case_option
+from ..conventions import check_whole
 from ..energy import STRAIN_ENERGY
 from ..errors import MacroslipError, ParameterError
 from ..params import PRESETS, preset
@@ -184,8 +185,7 @@ def run_fe(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     for name, value in (("--cycles", args.cycles),
                         ("--increments-per-cycle", args.increments_per_cycle)):
-        if not 1 <= value <= 100_000:
-            raise ParameterError(f"{name} must be a whole number in [1, 100000], got {value}")
+        check_whole(name, value, 1, 100_000)
     params = preset(args.preset).replace(**clamp_overrides(args))
     if args.pressure_law is not None or args.no_shear_lag:
         raise ParameterError("--pressure-law and --no-shear-lag apply to the analytical "

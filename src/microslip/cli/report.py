@@ -6,6 +6,7 @@ import argparse
 import os
 from typing import Any
 
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 
 __all__ = ["add_parser", "run"]
@@ -28,7 +29,8 @@ def add_parser(sub: Any) -> None:
     g = p.add_argument_group("finite-element runs")
     g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
                    help="FE solver (default builtin)")
-    g.add_argument("--mesh", default="coarse", metavar="NAME", help="FE mesh (default coarse)")
+    g.add_argument("--mesh", default=DEFAULT_MESH, metavar="NAME",
+                   help=f"FE mesh (default {DEFAULT_MESH})")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="substeps of each FE run, a multiple of 5 (default 50)")
     g.add_argument("--no-fe", action="store_true", help="leave the FE runs out (faster)")

@@ -10,6 +10,7 @@ import argparse
 import sys
 from typing import Any
 
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from .common import params_from_args
 
@@ -32,7 +33,7 @@ def add_options(parser: argparse.ArgumentParser) -> None:
                         "FILE.csv as it finishes, resumed by running the same command again")
     g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
                    help="the FE solver of --solver fe (default builtin)")
-    g.add_argument("--mesh", default="coarse", metavar="NAME",
+    g.add_argument("--mesh", default=DEFAULT_MESH, metavar="NAME",
                    help="mesh of --solver fe (default coarse)")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="substeps of each FE run over t = 0..1.25 s, a multiple of 5 "

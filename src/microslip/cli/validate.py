@@ -7,6 +7,7 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from .common import add_params, check_output_dir, number, params_from_args, print_json
@@ -55,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
     params, amplitude = params_from_args(args)
     check_output_dir(args.out)
-    meshes = tuple(dict.fromkeys(args.mesh or ["coarse"]))
+    meshes = tuple(dict.fromkeys(args.mesh or [DEFAULT_MESH]))
     models = tuple(dict.fromkeys(args.model or list(LOAD_CASES)))
     report = run_validation(args.out, meshes, models, progress=not args.no_progress,
                             timeout=args.timeout, scheduler=args.scheduler,

@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..named import result
@@ -154,7 +155,7 @@ def orbit_work(structure: Structure, q: np.ndarray) -> float:
 
 
 def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
-                  phase_deg: float = 90.0, *, mesh: Any = "coarse",
+                  phase_deg: float = 90.0, *, mesh: Any = DEFAULT_MESH,
                   increments_per_cycle: int = 256, cycles: int = 6,
                   stick_slope: float = DEFAULT_STICK_SLOPE,
                   elements: int = DEFAULT_ELEMENTS) -> FEComparison:

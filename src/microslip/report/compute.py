@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..case.model import Case
+from ..conventions import DEFAULT_MESH
 from ..energy import damping
 from ..errors import ParameterError
 from ..models import macroslip_force
@@ -41,7 +42,7 @@ class ReportSettings:
 
     increments: int = 1000
     fe_solver: str = "builtin"
-    mesh: str = "coarse"
+    mesh: str = DEFAULT_MESH
     substeps: int = 50
     fe_points: bool = True
     planar_increments: int = 1000

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ...conventions import DEFAULT_MESH
 from ...errors import ParameterError
 from ...models.interface import PressureLaw, table_law
 from ...named import result
@@ -144,7 +145,7 @@ def clamping_pressure(model: FrictionModel) -> ClampingPressure:
                             xy[:, 1].copy(), model.normal_force.copy())
 
 
-def fe_pressure_law(params: ClampParams, mesh: Any = "coarse", **model_options: Any
+def fe_pressure_law(params: ClampParams, mesh: Any = DEFAULT_MESH, **model_options: Any
                     ) -> PressureLaw:
     """The interface pressure of the built-in solver's clamping step as a 1-D pressure law, in
     one call: :func:`~microslip.fe.builtin.solve.build_model` (``model_options``: ``stick_slope``,
