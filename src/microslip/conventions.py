@@ -29,6 +29,7 @@ __all__ = [
     "CLAMP_MODELS",
     "COUPLINGS",
     "DEFAULT_COUPLING",
+    "DEFAULT_ELEMENTS",
     "DEFAULT_MESH",
     "DEFAULT_STICK_SLOPE",
     "JOINT_MODELS",
@@ -64,6 +65,9 @@ PAIRINGS: tuple[str, ...] = ("ordered", "spatial")
 #: of :data:`microslip.case.joints.TRANSVERSE`: the clamp's other 1-D model, or the built-in
 #: FE's first loading of the centre force across the bar.
 TRANSVERSE: tuple[str, ...] = (*CLAMP_MODELS, "fe")
+
+#: Jenkins elements of an Iwan, tip or centre joint unless given (``--elements``).
+DEFAULT_ELEMENTS = 200
 
 #: Mesh of the finite-element models unless one is given (:mod:`microslip.meshlevels`).
 DEFAULT_MESH = "coarse"

@@ -19,6 +19,7 @@ from typing import Any
 from ..errors import ParameterError
 from ..params import preset
 from .model import Case, load_case
+from .table import CASE_DESTS
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
@@ -37,28 +38,9 @@ JOINT_DESTS = ("joint", "joint_dof", "joint_stiffness", "slip_force", "chi", "be
                "stick_slope", "elements", "preset", "length", "width", "thickness", "modulus",
                "poisson_ratio", "friction", "normal_force", "transverse", "pairing", "fe_mesh")
 
-#: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
-#: Keys not listed (name, description, preset) map to no option.
-CASE_OPTIONS: dict[str, tuple[str, str]] = {
-    "geometry.length": ("length", "all"),
-    "geometry.width": ("width", "all"),
-    "geometry.thickness": ("thickness", "all"),
-    "material.modulus": ("modulus", "all"),
-    "material.poisson_ratio": ("poisson_ratio", "all"),
-    "contact.friction": ("friction", "all"),
-    "clamping.normal_force": ("normal_force", "all"),
-    "contact.stick_slope": ("stick_slope", "all"),
-    "clamping.pressure": ("pressure_law", "all"),
-    "load.model": ("model", "load"),
-    "load.amplitude": ("amplitude", "load"),
-    "load.amplitude_fraction": ("amplitude", "load"),
-    "load.planar.tip_amplitude": ("tip_amplitude", "planar"),
-    "load.planar.centre_amplitude": ("centre_amplitude", "planar"),
-    "load.planar.ratio": ("ratio", "planar"),
-    "load.planar.phase_deg": ("phase", "planar"),
-    "structure.file": ("structure", "all"),
-    "structure.coupling": ("coupling", "all"),
-}
+#: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all"),
+#: from the option table. Keys not listed (name, description, preset) map to no option.
+CASE_OPTIONS: dict[str, tuple[str, str]] = CASE_DESTS
 
 #: Destinations checked for plausible units (case values and command-line options alike).
 UNIT_DESTS = ("length", "width", "thickness", "modulus", "friction", "normal_force")

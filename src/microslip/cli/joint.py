@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from .. import MODELS
+from ..case.table import add_option
 from ..dynamics.describing import (
     DEFAULT_SAMPLES,
     DescribingFunction,
@@ -78,22 +79,12 @@ _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", 
 def add_joint_options(parser: argparse.ArgumentParser) -> None:
     """``--joint`` and its parameters, with the clamp's options for the tip and centre joints."""
     g = parser.add_argument_group("joint (units N, mm, N/mm)")
-    g.add_argument("--joint", choices=list(JOINTS), required=True,
-                   help="jenkins: one spring-slider; iwan: Segalman's 4-parameter Iwan; "
-                        "tip, centre: the clamp's microslip model as an Iwan operator")
-    g.add_argument("--joint-stiffness", type=number, metavar="N/MM",
-                   help="jenkins: spring stiffness; iwan: initial stiffness K_T; tip, centre: "
-                        "stiffness of a spring in series with the clamp")
-    g.add_argument("--slip-force", type=number, metavar="N",
-                   help="jenkins, iwan: macroslip force F_S")
-    g.add_argument("--chi", type=number, metavar="X", help="iwan: density exponent, in (-1, 0]")
-    g.add_argument("--beta", type=number, metavar="X",
-                   help="iwan: macroslip elements' share of the stiffness, >= 0")
-    g.add_argument("--stick-slope", type=number, metavar="N/MM3",
-                   help="tip, centre: contact stick slope; series spring = slope x width x "
-                        "length (instead of --joint-stiffness)")
-    g.add_argument("--elements", type=int, metavar="N",
-                   help=f"iwan, tip, centre: Jenkins elements (default {DEFAULT_ELEMENTS})")
+    add_option(g, "joint", required=True, choices=list(JOINTS))
+    for name in ("joint_stiffness", "slip_force", "chi", "beta"):
+        add_option(g, name)
+    add_option(g, "stick_slope", note="tip, centre: series spring = slope x width x length "
+               "(instead of --joint-stiffness)")
+    add_option(g, "elements")
     before = len(parser._actions)
     add_params(parser, default_preset="table1")
     add_model_options(parser)

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
+from ..case.table import add_option
 from ..dynamics.assemble import (
     PlacedJoint,
     describe_matrices,
@@ -25,7 +26,7 @@ from ..dynamics.assemble import (
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.modal import METHODS, ModalCurve, energy_method
-from ..dynamics.operators2d import COUPLINGS, PAIRINGS
+from ..dynamics.operators2d import PAIRINGS
 from ..dynamics.structure import Structure, free_frequency, one_mode
 from ..errors import ParameterError
 from .across import (
@@ -67,19 +68,14 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--participation", type=number, metavar="X",
                    help="joint displacement per unit modal displacement, != 0 (default 1)")
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
-    f.add_argument("--structure", metavar="FILE",
-                   help="FILE.npz with arrays M, K, optional C and joints, or a directory "
-                        "with M.mtx, K.mtx, optional C.mtx (Matrix Market); see "
-                        "docs/dynamics.md")
+    add_option(f, "structure", note="see docs/dynamics.md")
     f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
                    help="a joint between DOF I (0-based) and the ground, or I J between two "
                         "DOFs; give it twice for a two-directional joint (one per "
                         "direction); replaces the file's joints")
     f.add_argument("--mode", type=int, metavar="N",
                    help="mode followed and reported, 1-based by stuck frequency (default 1)")
-    f.add_argument("--coupling", choices=list(COUPLINGS),
-                   help="two-directional joints: one circular Coulomb limit (default) or "
-                        "two independent directions (the paper's decoupled sum)")
+    add_option(f, "coupling", note="default circular")
     add_across_options(f)
     add_joint_options(parser)
     add_case_option(parser)

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import ClampParams, ModelOptions, first_loading, macroslip_force
+from ..conventions import DEFAULT_ELEMENTS
 from ..errors import ParameterError
 from ..params import check_positive
 from .operators import IwanOperator
@@ -22,8 +23,6 @@ from .operators import IwanOperator
 __all__ = ["CONCAVITY_TOLERANCE", "DEFAULT_ELEMENTS", "clamp_joint", "from_backbone", "iwan4",
            "iwan4_segalman"]
 
-#: Jenkins elements of an iwan, tip or centre joint unless the user gives another number.
-DEFAULT_ELEMENTS = 200
 
 #: Relative slope rise (of the initial slope) tolerated as round-off before a sampled
 #: backbone counts as not concave and is refused.
