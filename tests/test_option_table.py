@@ -98,3 +98,32 @@ def test_solver_says_what_it_means_on_each_command():
         assert list(a.choices) == list(meaning)
         for name, text in meaning.items():
             assert f"{name}: {text}" in a.help
+
+
+def test_the_command_line_is_parsed_once_and_explicit_options_win(tmp_path, monkeypatch):
+    from microslip.case.options import parse_args
+
+    case = tmp_path / "c.toml"
+    case.write_text('preset = "table1"\n[contact]\nfriction = 0.5\n[load]\nmodel = "centre"\n')
+    parser = build_parser()
+    calls = []
+    real = type(parser).parse_args
+
+    def counted(self, *a, **k):
+        calls.append(a)
+        return real(self, *a, **k)
+
+    monkeypatch.setattr(type(parser), "parse_args", counted)
+    args = parse_args(parser, ["loop", "--case", str(case), "--friction", "0.7"])
+    assert len(calls) == 1
+    assert args.friction == 0.7 and args.model == "centre"  # --model came from the case
+    assert args.given_options == frozenset({"case", "friction"})
+    assert args.normal_force == 445.0 and args.increments == 1000  # case, then default
+
+
+def test_a_required_option_neither_given_nor_in_the_case_is_a_usage_error(capsys, tmp_path):
+    case = tmp_path / "c.toml"
+    case.write_text('preset = "table1"\n')
+    assert main(["loop", "--case", str(case)]) == 2
+    assert capsys.readouterr().err == ("error: microslip loop: the following arguments are "
+                                       "required: --model\n")

@@ -1,8 +1,9 @@
 """``--case FILE.toml`` on every command: the case file becomes the subcommand's defaults.
 
-:func:`parse_args` parses the command line once to find the command and the options given
-explicitly, loads the case, turns its keys into the subcommand's defaults through the one
-table :data:`CASE_OPTIONS` (``set_defaults``), and parses again, so that explicit options win.
+:func:`parse_args` parses the command line once with every default held back, so that the
+namespace holds exactly the options given; it loads the case, turns its keys into values
+through the option table (:data:`CASE_OPTIONS`), and fills in what the command line left
+out: the case's values, then the defaults. Explicit options win.
 A section (or key) the command does not read is ignored, with one note on stderr: a case
 file describes one clamp for every command; only unknown or misspelled keys are errors.
 """
@@ -56,27 +57,63 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
                              "case new FILE.toml writes a template); options given here win")
 
 
-def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
+def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
-            return action.choices[command]
-    raise LookupError(command)  # pragma: no cover - build_parser always has subcommands
+            return dict(action.choices)
+    raise LookupError("subcommands")  # pragma: no cover - build_parser always has them
 
 
-def _explicit(parser: argparse.ArgumentParser, sub: argparse.ArgumentParser,
-              argv: list[str] | None) -> dict[str, Any]:
-    """The destinations given on the command line (a parse with every default suppressed)."""
-    saved = [(a, a.default) for a in sub._actions]
-    saved_defaults = dict(sub._defaults)
+@contextlib.contextmanager
+def _only_given(parser: argparse.ArgumentParser) -> Iterator[None]:
+    """While parsing: every option of every subcommand defaults to nothing (SUPPRESS) and none
+    is required, and the subcommands set no defaults, so the namespace holds exactly what the
+    command line gives; the defaults come afterwards (:func:`_complete`)."""
+    subs = list(_subparsers(parser).values())
+    saved = [(a, a.default, a.required) for p in subs for a in p._actions if a.option_strings]
+    defaults = [(p, dict(p._defaults)) for p in subs]
     try:
-        for a in sub._actions:
-            a.default = argparse.SUPPRESS
-        sub._defaults.clear()
-        return {k: v for k, v in vars(parser.parse_args(argv)).items() if k != "command"}
+        for a, _, _ in saved:
+            a.default, a.required = argparse.SUPPRESS, False
+        for p, _ in defaults:
+            p._defaults.clear()
+        yield
     finally:
-        for a, default in saved:
-            a.default = default
-        sub._defaults.update(saved_defaults)
+        for a, default, required in saved:
+            a.default, a.required = default, required
+        for p, kept in defaults:
+            p._defaults.update(kept)
+
+
+def _complete(sub: argparse.ArgumentParser, args: argparse.Namespace,
+              case_values: dict[str, Any]) -> None:
+    """Fill in what the command line left out: the case's values, else the defaults (string
+    defaults through the option's type, as argparse does); refuse a required option that
+    neither gives."""
+    missing = []
+    for a in sub._actions:
+        if not a.option_strings or a.dest == argparse.SUPPRESS or hasattr(args, a.dest):
+            continue
+        if a.dest in case_values:
+            value = case_values[a.dest]
+        elif a.required:
+            missing.append(argparse._get_action_name(a))
+            continue
+        elif a.default is argparse.SUPPRESS:
+            continue
+        else:
+            value = a.default
+        if isinstance(value, str) and a.type is not None:
+            try:
+                value = sub._get_value(a, value)
+            except argparse.ArgumentError as exc:
+                sub.error(str(exc))
+        setattr(args, a.dest, value)
+    if missing:
+        sub.error(f"the following arguments are required: {', '.join(map(str, missing))}")
+    for dest, value in sub._defaults.items():
+        if not hasattr(args, dest):
+            setattr(args, dest, value)
 
 
 def _reads(command: str, scope: str) -> bool:
@@ -181,21 +218,6 @@ def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str,
                                    "(load.amplitude_fraction)")
 
 
-@contextlib.contextmanager
-def _lenient(parser: argparse.ArgumentParser) -> Iterator[None]:
-    """No option is required while the command and the explicit options are found."""
-    subs = [a.choices.values() for a in parser._actions
-            if isinstance(a, argparse._SubParsersAction)]
-    actions = [a for group in subs for p in group for a in p._actions if a.required]
-    for a in actions:
-        a.required = False
-    try:
-        yield
-    finally:
-        for a in actions:
-            a.required = True
-
-
 def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
                ) -> argparse.Namespace:
     """Parse ``argv``; with ``--case`` the file's keys are defaults that options override.
@@ -205,27 +227,26 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     ``args.given_options`` (for options that apply to some modes only).
     """
     argv = None if argv is None else list(argv)
-    with _lenient(parser):
-        first = parser.parse_args(argv)
-        sub = _subparser(parser, first.command)
-        explicit = _explicit(parser, sub, argv)
-    case_path = getattr(first, "case", None)
+    with _only_given(parser):
+        args = parser.parse_args(argv)
+    sub = _subparsers(parser)[args.command]
+    explicit = {a.dest: getattr(args, a.dest) for a in sub._actions
+                if a.option_strings and hasattr(args, a.dest)}
+    case_path = explicit.get("case")
+    defaults: dict[str, Any] = {}
     if case_path is not None:
         case = load_case(case_path)
         dests = {a.dest: a for a in sub._actions}
-        defaults = case_defaults(case, first.command, dests, explicit)
-        skipped = unread(case, first.command, dests)
+        defaults = case_defaults(case, args.command, dests, explicit)
+        skipped = unread(case, args.command, dests)
         if skipped:
-            print(f"case: {', '.join(skipped)} not read by {first.command}", file=sys.stderr)
-        for dest in defaults:
-            dests[dest].required = False
-        sub.set_defaults(**defaults)
-    args = parser.parse_args(argv)
+            print(f"case: {', '.join(skipped)} not read by {args.command}", file=sys.stderr)
+    _complete(sub, args, defaults)
     args.given_options = frozenset(explicit)
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
-        args.case_joints = case.joints if first.command in STRUCTURE_COMMANDS else ()
+        args.case_joints = case.joints if args.command in STRUCTURE_COMMANDS else ()
     warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
     for line in warnings:
         print(f"warning: {line}", file=sys.stderr)
