@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from microslip import conventions
-from microslip.case import joints as case_joints
 from microslip.case import schema
 from microslip.conventions import check_choice, check_positive, check_whole
 from microslip.dynamics import operators2d
+from microslip.dynamics import spec as dynamics_spec
 from microslip.errors import ParameterError
 from microslip.fe import constants
 from microslip.fe.builtin import DEFAULT_MESH, backbone
@@ -25,7 +25,7 @@ def test_registries_are_keyed_by_the_one_name_list():
     assert tuple(MODELS) == conventions.CLAMP_MODELS
     assert tuple(operators2d.COUPLINGS) == conventions.COUPLINGS
     assert tuple(operators2d.PAIRINGS) == conventions.PAIRINGS
-    assert tuple(case_joints.TRANSVERSE) == conventions.TRANSVERSE
+    assert tuple(dynamics_spec.TRANSVERSE) == conventions.TRANSVERSE
     # the case schema, the load path and the FE backbone hold the same objects, not copies
     assert schema.COUPLINGS is conventions.COUPLINGS
     assert schema.PAIRINGS is conventions.PAIRINGS

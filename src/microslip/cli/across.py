@@ -14,12 +14,12 @@ from typing import Any
 
 import numpy as np
 
-from ..case.joints import TRANSVERSE, across_operator
 from ..case.schema import DEFAULT_FE_MESH
 from ..case.table import add_option
-from ..conventions import CLAMP_MODELS
+from ..conventions import CLAMP_MODELS, TRANSVERSE
 from ..dynamics.operators import IwanOperator
 from ..dynamics.operators2d import DEFAULT_PAIRING, PAIRINGS
+from ..dynamics.spec import across_operator
 from .common import model_options
 from .joint import clamp_from_args, describe_joint, elements_from_args
 

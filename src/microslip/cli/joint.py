@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Callable
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -21,23 +21,16 @@ from ..dynamics.describing import (
     amplitude_for_force,
     describing_function,
 )
-from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
-from ..dynamics.operators import IwanOperator, jenkins
+from ..dynamics.distributions import DEFAULT_ELEMENTS
+from ..dynamics.operators import IwanOperator
+from ..dynamics.spec import joint_operator
 from ..errors import ParameterError
+from ..jointspec import JointSpec, series_stiffness
 from ..params import ClampParams
 from .common import add_model_options, add_params, model_options, number, params_from_args
 
 __all__ = ["JOINTS", "add_joint_options", "add_parser", "clamp_from_args", "describe_joint",
-           "elements_from_args", "joint_from_args", "run"]
-
-def _jenkins(args: argparse.Namespace) -> IwanOperator:
-    return jenkins(_need(args, "joint_stiffness"), _need(args, "slip_force"))
-
-
-def _iwan(args: argparse.Namespace) -> IwanOperator:
-    return iwan4_segalman(_need(args, "joint_stiffness"), _need(args, "slip_force"),
-                          _need(args, "chi"), _need(args, "beta"), elements_from_args(args))
-
+           "elements_from_args", "joint_from_args", "run", "spec_from_args"]
 
 def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float | None]:
     """The clamp of a tip or centre joint, its series spring (N/mm) and the stick slope it
@@ -54,22 +47,20 @@ def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float
             "displacement (F ~ sqrt(d))")
     if args.stick_slope is not None:
         slope = _positive(args.stick_slope, "--stick-slope", "N/mm^3")
-        return params, slope * params.width * params.length, slope
+        return params, series_stiffness(params, slope), slope
     return params, args.joint_stiffness, None
 
 
-def _clamp(args: argparse.Namespace) -> IwanOperator:
-    params, series, _ = clamp_from_args(args)
-    return clamp_joint(args.joint, params, series, elements=elements_from_args(args),
-                       options=model_options(args))
-
-
-#: Joint name -> builder from the parsed options, and the joint options it uses.
-JOINTS: dict[str, tuple[Callable[[argparse.Namespace], IwanOperator], frozenset[str]]] = {
-    "jenkins": (_jenkins, frozenset({"joint_stiffness", "slip_force"})),
-    "iwan": (_iwan, frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"})),
-    **{m: (_clamp, frozenset({"joint_stiffness", "stick_slope", "elements"})) for m in MODELS},
+#: Joint name -> the joint options it uses (the others are refused).
+JOINTS: dict[str, frozenset[str]] = {
+    "jenkins": frozenset({"joint_stiffness", "slip_force"}),
+    "iwan": frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"}),
+    **{m: frozenset({"joint_stiffness", "stick_slope", "elements"}) for m in MODELS},
 }
+
+#: Joint option dest -> the key of a ``[[joint]]`` table (:class:`JointSpec` values).
+_KEYS = {"joint_stiffness": "stiffness", "slip_force": "slip_force", "chi": "chi",
+         "beta": "beta"}
 
 #: Joint option dest -> flag.
 _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", "chi": "--chi",
@@ -96,9 +87,10 @@ def add_joint_options(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(clamp_options=tuple(clamp))
 
 
-def joint_from_args(args: argparse.Namespace) -> IwanOperator:
-    """The joint operator the options describe; options of another joint are refused."""
-    build, uses = JOINTS[args.joint]
+def spec_from_args(args: argparse.Namespace) -> JointSpec:
+    """The joint specification the options describe (as a ``[[joint]]`` table gives it);
+    options of another joint are refused."""
+    uses = JOINTS[args.joint]
     extra = [flag for dest, flag in _FLAGS.items()
              if dest not in uses and getattr(args, dest, None) is not None]
     if args.joint not in MODELS and getattr(args, "case", None) is None:
@@ -106,7 +98,25 @@ def joint_from_args(args: argparse.Namespace) -> IwanOperator:
                   if getattr(args, dest, default) != default]
     if extra:
         raise ParameterError(f"{', '.join(extra)} not used by --joint {args.joint}")
-    return build(args)
+    values: dict[str, Any] = {}
+    clamp, series, slope = None, None, None
+    if args.joint in MODELS:
+        clamp, series, slope = clamp_from_args(args)
+    else:
+        values = {key: _need(args, dest) for dest, key in _KEYS.items() if dest in uses}
+    if "elements" in uses:
+        values["elements"] = elements_from_args(args)
+    return JointSpec(number=0, dofs=(), model=args.joint, coupling=getattr(args, "coupling", None),
+                     values=MappingProxyType(values), clamp=clamp, series_stiffness=series,
+                     transverse=getattr(args, "transverse", None),
+                     pairing=getattr(args, "pairing", None), fe_mesh=getattr(args, "fe_mesh", None),
+                     stick_slope=slope)
+
+
+def joint_from_args(args: argparse.Namespace) -> IwanOperator:
+    """The joint operator the options describe (:func:`spec_from_args`, built by the
+    dynamics as a case file's joint is)."""
+    return joint_operator(spec_from_args(args), model_options(args))
 
 
 def describe_joint(joint: IwanOperator) -> dict[str, Any]:

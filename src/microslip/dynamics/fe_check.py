@@ -31,6 +31,7 @@ import numpy as np
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..jointspec import series_stiffness
 from ..named import result
 from ..params import ClampParams
 from .assemble import PlacedJoint, from_joints
@@ -168,7 +169,7 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
                            increments_per_cycle=increments_per_cycle, mesh=fem)
     if not study.coupled.converged or not study.tip_only.converged:
         raise ParameterError("the FE runs did not converge; see microslip.fe.builtin")
-    series = stick_slope * params.width * params.length
+    series = series_stiffness(params, stick_slope)
     tip = clamp_joint("tip", params, series, elements=elements)
     centre = clamp_joint("centre", params, series, elements=elements)
     c = study.coupled.last_cycle()
