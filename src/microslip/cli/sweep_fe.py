@@ -11,7 +11,7 @@ import sys
 from typing import Any
 
 from ..case.table import add_option, add_solver
-from ..conventions import DEFAULT_MESH
+from ..conventions import CLAMP_MODELS, DEFAULT_MESH
 from ..errors import ParameterError
 from .common import params_from_args
 
@@ -44,7 +44,7 @@ def _check(args: argparse.Namespace) -> None:
     if given:
         raise ParameterError(f"{given[0]} does not apply to --solver fe (it sweeps "
                              "--amplitude-range A B over --cases N)")
-    if args.model not in ("tip", "centre"):
+    if args.model not in CLAMP_MODELS:
         raise ParameterError(f"--solver fe sweeps --model tip or centre, not {args.model}")
     if args.amplitude_range is None:
         raise ParameterError("--solver fe needs --amplitude-range A B (N)")
