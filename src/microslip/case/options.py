@@ -20,7 +20,8 @@ from typing import Any
 from ..errors import ParameterError
 from ..params import preset
 from .model import Case, load_case
-from .table import CASE_DESTS
+from .schema import CLAMP_KEYS
+from .table import CASE_DESTS, OPTIONS
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
@@ -35,9 +36,11 @@ STRUCTURE_COMMANDS = ("modal", "frf")
 
 #: Destinations of the joint options of the command line (``--joint``, ``--joint-dof``, the
 #: joint's parameters and its clamp): a case with [[joint]] tables gives them instead.
-JOINT_DESTS = ("joint", "joint_dof", "joint_stiffness", "slip_force", "chi", "beta",
-               "stick_slope", "elements", "preset", "length", "width", "thickness", "modulus",
-               "poisson_ratio", "friction", "normal_force", "transverse", "pairing", "fe_mesh")
+#: From the option table: the options of a ``[[joint]]`` key but the structure's coupling,
+#: the stick slope, and the clamp.
+JOINT_DESTS = ("joint_dof", *(o.name for o in OPTIONS.values()
+                              if o.joint_key is not None and o.name != "coupling"),
+               "stick_slope", "preset", *CLAMP_KEYS.values())
 
 #: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all"),
 #: from the option table. Keys not listed (name, description, preset) map to no option.
