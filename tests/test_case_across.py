@@ -21,7 +21,6 @@ from test_case_joints import run, run_json  # the case-joint tests' one CLI runn
 
 from microslip import preset
 from microslip.case import parse_case
-from microslip.case.joints import TRANSVERSE, transverse_operator
 from microslip.case.schema import PAIRINGS
 from microslip.dynamics.distributions import clamp_joint
 from microslip.dynamics.modal import epmc
@@ -34,6 +33,7 @@ from microslip.dynamics.operators2d import (
 )
 from microslip.dynamics.operators2d import PAIRINGS as OPERATOR_PAIRINGS
 from microslip.dynamics.response import frequency_response
+from microslip.dynamics.spec import TRANSVERSE, transverse_operator
 from microslip.dynamics.structure import JointLink, Structure
 from microslip.errors import ParameterError
 

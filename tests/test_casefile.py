@@ -54,13 +54,14 @@ def test_template_parses_back_to_the_documented_defaults():
     assert case.get("contact.stick_slope") == DEFAULT_STICK_SLOPE
     assert case.get("clamping.pressure") == "uniform"
     assert case.get("load.model") == "tip"
-    assert case.get("load.planar.phase_deg") == 0.0
+    assert case.get("load.planar.phase_deg") == 90.0  # the planar load that planar runs
     assert case.get("load.amplitude") is None
-    # the only key it sets is the preset (and the clamp the preset supplies)
+    # the keys it sets: the preset (and the clamp the preset supplies) and the planar load
     assert set(case.values) == {"preset", "geometry.length", "geometry.width",
                                 "geometry.thickness", "material.modulus",
                                 "material.poisson_ratio", "contact.friction",
-                                "clamping.normal_force"}
+                                "clamping.normal_force", "load.planar.tip_amplitude",
+                                "load.planar.centre_amplitude", "load.planar.phase_deg"}
 
 
 def test_template_examples_uncommented_parse_to_the_same_case():

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .conventions import check_choice
 from .errors import ParameterError
 from .models.masing import backbone_sums, masing_energies
 from .options import ModelOptions
@@ -122,12 +123,7 @@ def _kind_name(kind: str) -> str:
 
 
 def _check_kind(kind: str) -> Callable[[HysteresisLoop, Backbone | None], float]:
-    try:
-        return STRAIN_ENERGY[kind][0]
-    except (KeyError, TypeError):
-        raise ParameterError(
-            f"unknown strain-energy definition {kind!r}; choose one of {', '.join(STRAIN_ENERGY)}"
-        ) from None
+    return STRAIN_ENERGY[check_choice("strain-energy definition", kind, STRAIN_ENERGY)][0]
 
 
 def strain_energy(loop: HysteresisLoop, backbone: Backbone | None = None,

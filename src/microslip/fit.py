@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import optimize, stats
 
+from .conventions import DEFAULT_STICK_SLOPE
 from .errors import ParameterError
 from .io import LOOP_COLUMNS
 from .models.interface import PressureLaw, virgin_curve
@@ -185,7 +186,8 @@ def _predict(loading: str, p: ClampParams, slope: float, law: PressureLaw | None
 
 
 def fit_loops(loops: Sequence[MeasuredLoop], loading: str, params: ClampParams, *,
-              fit: Sequence[str] = ("friction", "stick_slope"), stick_slope: float = 1e4,
+              fit: Sequence[str] = ("friction", "stick_slope"),
+              stick_slope: float = DEFAULT_STICK_SLOPE,
               law: PressureLaw | None = None, confidence: float = 0.95) -> FitResult:
     """Fit the parameters named in ``fit`` to one or more measured loops.
 

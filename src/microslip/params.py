@@ -10,38 +10,10 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from .conventions import check_positive
 from .errors import ParameterError
 
 __all__ = ["PRESETS", "ClampParams", "check_amplitude", "check_positive", "preset"]
-
-
-def check_positive(name: str, value: Any, unit: str = "", *, upper: float = math.inf,
-                   inclusive_upper: bool = False) -> float:
-    """Return ``value`` as a float if it is finite and in ``(0, upper)``, else raise.
-
-    >>> check_positive("mu", 0.8)
-    0.8
-    >>> check_positive("mu", -0.2)
-    Traceback (most recent call last):
-    ...
-    microslip.errors.ParameterError: mu must be > 0, got -0.2
-    """
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number > 0{_u(unit)}, got {value!r}") from None
-    if not math.isfinite(x):
-        raise ParameterError(f"{name} must be finite and > 0{_u(unit)}, got {value!r}")
-    if x <= 0.0:
-        raise ParameterError(f"{name} must be > 0{_u(unit)}, got {value!r}")
-    if x > upper or (x == upper and not inclusive_upper):
-        rel = "<=" if inclusive_upper else "<"
-        raise ParameterError(f"{name} must be {rel} {upper:g}{_u(unit)}, got {value!r}")
-    return x
-
-
-def _u(unit: str) -> str:
-    return f" ({unit})" if unit else ""
 
 
 def check_amplitude(value: Any) -> float:

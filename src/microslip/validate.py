@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from . import closedform as cf
+from .conventions import DEFAULT_MESH
 from .energy import DEFAULT_STRAIN_ENERGY, damping, loop_work
 from .errors import ParameterError
 from .fe.calculix.case import FECase
@@ -397,7 +398,7 @@ def _summary(rows: Sequence[dict[str, Any]], files: Sequence[Path], bar: str = "
     return "\n".join(lines) + "\n"
 
 
-def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = ("coarse",),
+def run_validation(out_dir: str | Path, meshes: Sequence[str | MeshSpec] = (DEFAULT_MESH,),
                    models: Sequence[str] = ("tip", "centre"), *, progress: bool = True,
                    timeout: float | None = None, scheduler: str | None = None,
                    stick_slope: float = DEFAULT_STICK_SLOPE, threads: int = 1,

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..conventions import check_choice
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, STRAIN_ENERGY_CODES
 from ..errors import MacroslipError, ParameterError
 from ..models import check_increments, check_small_strain, get_model
@@ -240,11 +241,7 @@ def prepare_batch(model: str, params: ClampParams | Mapping[str, ArrayLike],
     opt = options if options is not None else ModelOptions()
     if not isinstance(opt, ModelOptions):
         raise ParameterError(f"options must be ModelOptions, got {type(opt).__name__}")
-    if strain_energy not in STRAIN_ENERGY:
-        raise ParameterError(
-            f"unknown strain-energy definition {strain_energy!r}; choose one of "
-            f"{', '.join(STRAIN_ENERGY)}"
-        )
+    check_choice("strain-energy definition", strain_energy, STRAIN_ENERGY)
     n = check_increments(increments)
     if contact is not None and not isinstance(contact, Contact):
         raise ParameterError(f"contact must be a Contact, got {type(contact).__name__}")

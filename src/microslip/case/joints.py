@@ -12,26 +12,26 @@ else the case's), as ``--joint-stiffness`` / ``--stick-slope`` on the command li
 A two-directional tip or centre joint may name what it is across, its second direction
 (``transverse``: the clamp's other 1-D model, or ``fe``, the built-in FE's first loading of
 the centre force across the bar), and how the elements of the two are paired
-(``pairing``); :data:`TRANSVERSE` builds the joint across, the coupling
-(:data:`microslip.dynamics.operators2d.COUPLINGS`) the two-directional joint.
+(``pairing``). The tables become :class:`~microslip.jointspec.JointSpec`, the same
+specification the command line's joint options give; the dynamics builds the operators from
+it (:mod:`microslip.dynamics.spec`).
 
 Units: N, mm, MPa, N/mm, N/mm^3.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from functools import lru_cache
+from collections.abc import Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
+from ..conventions import CLAMP_MODELS
 from ..errors import ParameterError
-from ..named import result
+from ..jointspec import JointSpec, series_stiffness
 from ..params import PRESETS, ClampParams
 from .schema import (
     ACROSS_KEYS,
     CLAMP_KEYS,
-    DEFAULT_FE_MESH,
     JOINT_CLAMP_SECTIONS,
     JOINT_KEYS,
     JOINT_USES,
@@ -39,68 +39,14 @@ from .schema import (
 )
 
 if TYPE_CHECKING:
-    from ..dynamics.operators import IwanOperator
-    from ..options import ModelOptions
+    pass
 
-__all__ = ["TRANSVERSE", "JointSpec", "across_operator", "joint_operator", "parse_joints",
-           "transverse_operator"]
+__all__ = ["JointSpec", "parse_joints"]
 
 _JOINT = {k.name: k for k in JOINT_KEYS}
 _CLAMP_SECTION_KEYS = {k.dotted: k for k in KEYS if k.section in JOINT_CLAMP_SECTIONS}
 #: Keys of the case's own that a tip or centre joint inherits.
 _INHERITED = (*CLAMP_KEYS, "contact.stick_slope", "clamping.pressure")
-
-
-@result
-class JointSpec:
-    """One ``[[joint]]`` table, validated.
-
-    Attributes
-    ----------
-    number : int
-        Position of the table in the file, 1-based (for messages).
-    dofs : tuple of (int, int)
-        ``(i, j)`` per direction, 0-based, ``j = -1`` for the ground.
-    model : str
-        ``jenkins``, ``iwan``, ``tip`` or ``centre``.
-    coupling : str or None
-        Two-directional joints: ``circular`` or ``decoupled`` (None: the structure's).
-    values : mapping
-        The table's own keys (``stiffness``, ``slip_force``, ``chi``, ``beta``,
-        ``elements``), N/mm, N, -, -, -.
-    clamp : ClampParams or None
-        Tip and centre joints: the clamp (case's base with the table's overrides).
-    series_stiffness : float or None
-        Tip and centre joints: the series spring, N/mm.
-    transverse : str or None
-        Two-directional tip and centre joints: the joint across (second direction), a name
-        of :data:`TRANSVERSE`; None: the joint's own model.
-    pairing : str or None
-        With ``transverse``: a name of :data:`microslip.dynamics.operators2d.PAIRINGS`
-        (None: its default).
-    fe_mesh : str or None
-        With ``transverse = "fe"``: the FE mesh (level or ``NXxNYxNZ``; None: the default).
-    stick_slope : float or None
-        Tip and centre joints whose series spring is the contact stick slope: it, N/mm^3
-        (None if ``stiffness`` is given).
-    """
-
-    number: int
-    dofs: tuple[tuple[int, int], ...]
-    model: str
-    coupling: str | None
-    values: Mapping[str, Any]
-    clamp: ClampParams | None
-    series_stiffness: float | None
-    transverse: str | None = None
-    pairing: str | None = None
-    fe_mesh: str | None = None
-    stick_slope: float | None = None
-
-    @property
-    def directions(self) -> int:
-        """1 or 2."""
-        return len(self.dofs)
 
 
 def parse_joints(tables: Any, case_values: Mapping[str, Any]) -> tuple[JointSpec, ...]:
@@ -151,12 +97,12 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
     across = {k: own.pop(k) for k in ACROSS_KEYS if k in own}
     _check_across(across, model, len(dofs), coupling)
     unused = sorted(set(own) - JOINT_USES[model])
-    if model not in ("tip", "centre"):
+    if model not in CLAMP_MODELS:
         unused += sorted(f"[joint.{k.split('.')[0]}]" if "." in k else k for k in clamp)
     if unused:
         raise ParameterError(f"{', '.join(unused)} not used by model {model}")
     params, series, slope = _clamp(model, own, clamp, case_values) \
-        if model in ("tip", "centre") else (None, None, None)
+        if model in CLAMP_MODELS else (None, None, None)
     if model in ("jenkins", "iwan"):
         missing = [k for k in sorted(JOINT_USES[model] - {"elements"}) if k not in own]
         if missing:
@@ -177,7 +123,7 @@ def _check_across(across: Mapping[str, Any], model: str, directions: int,
     allowed = {k.name: k.range for k in JOINT_KEYS if k.name in ACROSS_KEYS}
     transverse = across.get("transverse")
     for key in across:
-        if model not in ("tip", "centre"):
+        if model not in CLAMP_MODELS:
             raise ParameterError(f"joint.{key} ({allowed[key]}) applies to two-directional "
                                  f"tip or centre joints only, not to model {model}")
         if directions == 1:
@@ -226,87 +172,4 @@ def _clamp(model: str, own: Mapping[str, Any], clamp: Mapping[str, Any],
             "contact.stick_slope (N/mm^3; series spring = stick slope x width x length): a "
             "bar on a rigid Coulomb foundation has no finite stiffness at zero displacement")
     slope = float(values["contact.stick_slope"])
-    return params, slope * params.width * params.length, slope
-
-
-def joint_operator(spec: JointSpec, options: ModelOptions | None = None) -> IwanOperator:
-    """The 1-D joint operator of a joint table (a two-directional joint is built from it by
-    its coupling, :data:`microslip.dynamics.operators2d.COUPLINGS`)."""
-    from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
-    from ..dynamics.operators import jenkins
-
-    v = spec.values
-    elements = int(v.get("elements", DEFAULT_ELEMENTS))
-    if spec.model == "jenkins":
-        return jenkins(v["stiffness"], v["slip_force"])
-    if spec.model == "iwan":
-        return iwan4_segalman(v["stiffness"], v["slip_force"], v["chi"], v["beta"], elements)
-    assert spec.clamp is not None and spec.series_stiffness is not None
-    return clamp_joint(spec.model, spec.clamp, spec.series_stiffness, elements=elements,
-                       options=options)
-
-
-#: A joint across: (clamp, series spring N/mm, elements, model options, stick slope N/mm^3
-#: or None, FE mesh) -> its 1-D operator.
-Across = Callable[[ClampParams, float, int, "ModelOptions | None", "float | None", str],
-                  "IwanOperator"]
-
-
-def _clamp_model(model: str) -> Across:
-    def build(clamp: ClampParams, series: float, elements: int,
-              options: ModelOptions | None, stick_slope: float | None, fe_mesh: str
-              ) -> IwanOperator:
-        from ..dynamics.distributions import clamp_joint
-
-        return clamp_joint(model, clamp, series, elements=elements, options=options)
-    return build
-
-
-def _fe(clamp: ClampParams, series: float, elements: int, options: ModelOptions | None,
-        stick_slope: float | None, fe_mesh: str) -> IwanOperator:
-    if stick_slope is None:
-        raise ParameterError("the FE joint across needs the contact stick slope (N/mm^3), not "
-                             "a series stiffness")
-    return _fe_across(clamp, fe_mesh, stick_slope)
-
-
-@lru_cache(maxsize=8)
-def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperator:
-    """The FE's first loading of the centre force across the bar as a 1-D joint (cached:
-    an FE run, the same for the structure and its description)."""
-    from ..fe.builtin import fe_backbone
-
-    op: IwanOperator = fe_backbone(clamp, "centre", mesh=mesh,
-                                   stick_slope=stick_slope).operator()
-    return op
-
-
-#: Transverse name -> the 1-D joint across a bar: ``tip``, ``centre`` the clamp's 1-D model
-#: behind the same series spring; ``fe`` the built-in FE's first loading of the centre force
-#: across the bar (:func:`microslip.fe.builtin.fe_backbone`, its contact compliance inside).
-TRANSVERSE: dict[str, Across] = {"tip": _clamp_model("tip"), "centre": _clamp_model("centre"),
-                                 "fe": _fe}
-
-
-def across_operator(transverse: str, clamp: ClampParams, series: float, *, elements: int,
-                    options: ModelOptions | None = None, stick_slope: float | None = None,
-                    fe_mesh: str | None = None) -> IwanOperator:
-    """The 1-D joint across (:data:`TRANSVERSE`) of a clamp with the series spring
-    ``series`` (N/mm) from the contact stick slope ``stick_slope`` (N/mm^3)."""
-    return TRANSVERSE[transverse](clamp, series, elements, options, stick_slope,
-                                  DEFAULT_FE_MESH if fe_mesh is None else fe_mesh)
-
-
-def transverse_operator(spec: JointSpec, options: ModelOptions | None = None
-                        ) -> IwanOperator | None:
-    """The 1-D joint across a joint table (its second direction), None without
-    ``transverse``."""
-    if spec.transverse is None:
-        return None
-    from ..dynamics.distributions import DEFAULT_ELEMENTS
-
-    assert spec.clamp is not None and spec.series_stiffness is not None
-    return across_operator(spec.transverse, spec.clamp, spec.series_stiffness,
-                           elements=int(spec.values.get("elements", DEFAULT_ELEMENTS)),
-                           options=options, stick_slope=spec.stick_slope,
-                           fe_mesh=spec.fe_mesh)
+    return params, series_stiffness(params, slope), slope

@@ -1,9 +1,11 @@
 """``--case FILE.toml`` on every command: the case file becomes the subcommand's defaults.
 
-:func:`parse_args` parses the command line once to find the command and the options given
-explicitly, loads the case, turns its keys into the subcommand's defaults through the one
-table :data:`CASE_OPTIONS` (``set_defaults``), and parses again, so that explicit options win.
-A key the file sets whose option the command does not take is refused with the reason.
+:func:`parse_args` parses the command line once with every default held back, so that the
+namespace holds exactly the options given; it loads the case, turns its keys into values
+through the option table (:data:`CASE_OPTIONS`), and fills in what the command line left
+out: the case's values, then the defaults. Explicit options win.
+A section (or key) the command does not read is ignored, with one note on stderr: a case
+file describes one clamp for every command; only unknown or misspelled keys are errors.
 """
 
 from __future__ import annotations
@@ -12,16 +14,18 @@ import argparse
 import contextlib
 import contextvars
 import sys
-from collections.abc import Iterator, Sequence
+from collections.abc import Collection, Iterator, Sequence
 from typing import Any
 
 from ..errors import ParameterError
 from ..params import preset
 from .model import Case, load_case
+from .schema import CLAMP_KEYS
+from .table import CASE_DESTS, OPTIONS
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
-           "warn"]
+           "unread", "warn"]
 
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
@@ -32,32 +36,15 @@ STRUCTURE_COMMANDS = ("modal", "frf")
 
 #: Destinations of the joint options of the command line (``--joint``, ``--joint-dof``, the
 #: joint's parameters and its clamp): a case with [[joint]] tables gives them instead.
-JOINT_DESTS = ("joint", "joint_dof", "joint_stiffness", "slip_force", "chi", "beta",
-               "stick_slope", "elements", "preset", "length", "width", "thickness", "modulus",
-               "poisson_ratio", "friction", "normal_force", "transverse", "pairing", "fe_mesh")
+#: From the option table: the options of a ``[[joint]]`` key but the structure's coupling,
+#: the stick slope, and the clamp.
+JOINT_DESTS = ("joint_dof", *(o.name for o in OPTIONS.values()
+                              if o.joint_key is not None and o.name != "coupling"),
+               "stick_slope", "preset", *CLAMP_KEYS.values())
 
-#: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all").
-#: Keys not listed (name, description, preset) map to no option.
-CASE_OPTIONS: dict[str, tuple[str, str]] = {
-    "geometry.length": ("length", "all"),
-    "geometry.width": ("width", "all"),
-    "geometry.thickness": ("thickness", "all"),
-    "material.modulus": ("modulus", "all"),
-    "material.poisson_ratio": ("poisson_ratio", "all"),
-    "contact.friction": ("friction", "all"),
-    "clamping.normal_force": ("normal_force", "all"),
-    "contact.stick_slope": ("stick_slope", "all"),
-    "clamping.pressure": ("pressure_law", "all"),
-    "load.model": ("model", "load"),
-    "load.amplitude": ("amplitude", "load"),
-    "load.amplitude_fraction": ("amplitude", "load"),
-    "load.planar.tip_amplitude": ("tip_amplitude", "planar"),
-    "load.planar.centre_amplitude": ("centre_amplitude", "planar"),
-    "load.planar.ratio": ("ratio", "planar"),
-    "load.planar.phase_deg": ("phase", "planar"),
-    "structure.file": ("structure", "all"),
-    "structure.coupling": ("coupling", "all"),
-}
+#: Case key -> (argparse destination, which load case reads it: "load", "planar" or "all"),
+#: from the option table. Keys not listed (name, description, preset) map to no option.
+CASE_OPTIONS: dict[str, tuple[str, str]] = CASE_DESTS
 
 #: Destinations checked for plausible units (case values and command-line options alike).
 UNIT_DESTS = ("length", "width", "thickness", "modulus", "friction", "normal_force")
@@ -73,49 +60,102 @@ def add_case_option(parser: argparse.ArgumentParser) -> None:
                              "case new FILE.toml writes a template); options given here win")
 
 
-def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
+def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
-            return action.choices[command]
-    raise LookupError(command)  # pragma: no cover - build_parser always has subcommands
+            return dict(action.choices)
+    raise LookupError("subcommands")  # pragma: no cover - build_parser always has them
 
 
-def _explicit(parser: argparse.ArgumentParser, sub: argparse.ArgumentParser,
-              argv: list[str] | None) -> dict[str, Any]:
-    """The destinations given on the command line (a parse with every default suppressed)."""
-    saved = [(a, a.default) for a in sub._actions]
-    saved_defaults = dict(sub._defaults)
+@contextlib.contextmanager
+def _only_given(parser: argparse.ArgumentParser) -> Iterator[None]:
+    """While parsing: every option of every subcommand defaults to nothing (SUPPRESS) and none
+    is required, and the subcommands set no defaults, so the namespace holds exactly what the
+    command line gives; the defaults come afterwards (:func:`_complete`)."""
+    subs = list(_subparsers(parser).values())
+    saved = [(a, a.default, a.required) for p in subs for a in p._actions if a.option_strings]
+    defaults = [(p, dict(p._defaults)) for p in subs]
     try:
-        for a in sub._actions:
-            a.default = argparse.SUPPRESS
-        sub._defaults.clear()
-        return {k: v for k, v in vars(parser.parse_args(argv)).items() if k != "command"}
+        for a, _, _ in saved:
+            a.default, a.required = argparse.SUPPRESS, False
+        for p, _ in defaults:
+            p._defaults.clear()
+        yield
     finally:
-        for a, default in saved:
-            a.default = default
-        sub._defaults.update(saved_defaults)
+        for a, default, required in saved:
+            a.default, a.required = default, required
+        for p, kept in defaults:
+            p._defaults.update(kept)
+
+
+def _complete(sub: argparse.ArgumentParser, args: argparse.Namespace,
+              case_values: dict[str, Any]) -> None:
+    """Fill in what the command line left out: the case's values, else the defaults (string
+    defaults through the option's type, as argparse does); refuse a required option that
+    neither gives."""
+    missing = []
+    for a in sub._actions:
+        if not a.option_strings or a.dest == argparse.SUPPRESS or hasattr(args, a.dest):
+            continue
+        if a.dest in case_values:
+            value = case_values[a.dest]
+        elif a.required:
+            missing.append(argparse._get_action_name(a))
+            continue
+        elif a.default is argparse.SUPPRESS:
+            continue
+        else:
+            value = a.default
+        if isinstance(value, str) and a.type is not None:
+            try:
+                value = sub._get_value(a, value)
+            except argparse.ArgumentError as exc:
+                sub.error(str(exc))
+        setattr(args, a.dest, value)
+    if missing:
+        sub.error(f"the following arguments are required: {', '.join(map(str, missing))}")
+    for dest, value in sub._defaults.items():
+        if not hasattr(args, dest):
+            setattr(args, dest, value)
 
 
 def _reads(command: str, scope: str) -> bool:
+    """True if ``command`` reads keys of ``scope`` ("all", "load" or "planar")."""
     if scope == "all":
         return True
-    return (scope == "planar") == (command in PLANAR_COMMANDS)
+    if scope == "planar":
+        return command in PLANAR_COMMANDS
+    return command not in PLANAR_COMMANDS and command not in STRUCTURE_COMMANDS
+
+
+def _section(dotted: str) -> str:
+    return dotted.rsplit(".", 1)[0] if "." in dotted else ""
+
+
+def unread(case: Case, command: str, dests: Collection[str]) -> tuple[str, ...]:
+    """What of ``case`` the command does not read: ``[section]`` when it reads none of the
+    section's keys the file sets, else the dotted keys; ``[[joint]]`` for joint tables off
+    modal and frf. A case file describes one clamp for every command, so these are ignored.
+    """
+    skipped = [k for k, (dest, scope) in CASE_OPTIONS.items()
+               if k in case.values and (not _reads(command, scope) or dest not in dests)]
+    out: list[str] = []
+    for key in skipped:
+        section = _section(key)
+        whole = all(k in skipped for k in CASE_OPTIONS
+                    if k in case.values and _section(k) == section)
+        name = f"[{section}]" if section and whole else key
+        if name not in out:
+            out.append(name)
+    if case.joints and command not in STRUCTURE_COMMANDS:
+        out.append("[[joint]]")
+    return tuple(out)
 
 
 def _structure_case(case: Case, command: str, explicit: dict[str, Any]) -> dict[str, Any]:
-    """The checks and defaults of [[joint]] tables and of a load case on modal and frf."""
-    if command in STRUCTURE_COMMANDS:
-        load = [k for k in case.values if k.startswith("load.")]
-        if load:
-            raise ParameterError(f"case {case.source}: key {load[0]} is a load case, which "
-                                 f"`microslip {command}` does not read (the structure is "
-                                 "excited by --force); remove it")
-    if not case.joints:
+    """The checks and defaults of [[joint]] tables (modal and frf)."""
+    if not case.joints or command not in STRUCTURE_COMMANDS:
         return {}
-    if command not in STRUCTURE_COMMANDS:
-        raise ParameterError(f"case {case.source}: [[joint]] tables describe the joints of a "
-                             f"structure, read by {' and '.join(STRUCTURE_COMMANDS)}, not by "
-                             f"`microslip {command}`")
     given = [d for d in JOINT_DESTS if d in explicit]
     if given:
         flags = ", ".join("--" + d.replace("_", "-") for d in given)
@@ -140,16 +180,12 @@ def _amplitude_swept(explicit: dict[str, Any]) -> bool:
 
 def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
                   explicit: dict[str, Any]) -> dict[str, Any]:
-    """The subcommand defaults a case gives; refuses keys whose option the command lacks."""
+    """The subcommand defaults a case gives; keys the command does not read are skipped
+    (:func:`unread` names them)."""
     out: dict[str, Any] = _structure_case(case, command, explicit)
     for key, (dest, scope) in CASE_OPTIONS.items():
-        if key not in case.values or not _reads(command, scope):
+        if key not in case.values or not _reads(command, scope) or dest not in dests:
             continue
-        if dest not in dests:
-            flag = "--" + dest.replace("_", "-")
-            raise ParameterError(f"case {case.source}: key {key} maps to {flag}, which "
-                                 f"`microslip {command}` does not take; remove the key or "
-                                 "use a command that takes it")
         if dest in explicit or dest == "amplitude":
             continue  # the command line wins; the amplitude is resolved after the parse
         value = case.values[key]
@@ -185,21 +221,6 @@ def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str,
                                    "(load.amplitude_fraction)")
 
 
-@contextlib.contextmanager
-def _lenient(parser: argparse.ArgumentParser) -> Iterator[None]:
-    """No option is required while the command and the explicit options are found."""
-    subs = [a.choices.values() for a in parser._actions
-            if isinstance(a, argparse._SubParsersAction)]
-    actions = [a for group in subs for p in group for a in p._actions if a.required]
-    for a in actions:
-        a.required = False
-    try:
-        yield
-    finally:
-        for a in actions:
-            a.required = True
-
-
 def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
                ) -> argparse.Namespace:
     """Parse ``argv``; with ``--case`` the file's keys are defaults that options override.
@@ -209,24 +230,26 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
     ``args.given_options`` (for options that apply to some modes only).
     """
     argv = None if argv is None else list(argv)
-    with _lenient(parser):
-        first = parser.parse_args(argv)
-        sub = _subparser(parser, first.command)
-        explicit = _explicit(parser, sub, argv)
-    case_path = getattr(first, "case", None)
+    with _only_given(parser):
+        args = parser.parse_args(argv)
+    sub = _subparsers(parser)[args.command]
+    explicit = {a.dest: getattr(args, a.dest) for a in sub._actions
+                if a.option_strings and hasattr(args, a.dest)}
+    case_path = explicit.get("case")
+    defaults: dict[str, Any] = {}
     if case_path is not None:
         case = load_case(case_path)
         dests = {a.dest: a for a in sub._actions}
-        defaults = case_defaults(case, first.command, dests, explicit)
-        for dest in defaults:
-            dests[dest].required = False
-        sub.set_defaults(**defaults)
-    args = parser.parse_args(argv)
+        defaults = case_defaults(case, args.command, dests, explicit)
+        skipped = unread(case, args.command, dests)
+        if skipped:
+            print(f"case: {', '.join(skipped)} not read by {args.command}", file=sys.stderr)
+    _complete(sub, args, defaults)
     args.given_options = frozenset(explicit)
     if case_path is not None:
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
-        args.case_joints = case.joints
+        args.case_joints = case.joints if args.command in STRUCTURE_COMMANDS else ()
     warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
     for line in warnings:
         print(f"warning: {line}", file=sys.stderr)

@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from ..conventions import check_whole
 from ..energy import DEFAULT_STRAIN_ENERGY, damping
 from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
@@ -371,8 +372,7 @@ def planar_zones(tip: ClampParams, centre: ClampParams, overrides: Mapping[str, 
     w / ``tip_symmetry`` (as the Table 2 presets in the reading of docs/interpretation.md §6:
     tip w = 25 mm, centre w = 50 mm) and every other value as given.
     """
-    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, int) or tip_symmetry < 1:
-        raise ParameterError(f"tip symmetry must be a whole number >= 1, got {tip_symmetry!r}")
+    check_whole("tip_symmetry", tip_symmetry, 1)
     tip_values = dict(overrides)
     if "width" in overrides:
         tip_values["width"] = overrides["width"] / tip_symmetry

@@ -1,9 +1,10 @@
 """The commented case-file template of ``microslip case new``, written from the key table.
 
 Every key is written with its meaning, unit, range and default on the line above it. Only
-``preset`` is active; the other keys are commented out with their default (or the preset's
-value) as an example, so the template parses back to the preset and the documented defaults,
-and a command reads from it only what the user uncomments.
+``preset`` and the planar load (:data:`TEMPLATE_VALUES`, so that ``planar --case`` runs on
+it) are active; the other keys are commented out with their default (or the preset's value)
+as an example, so the template parses back to the preset and the documented defaults, and a
+command reads from it only what the user uncomments.
 """
 
 from __future__ import annotations
@@ -13,10 +14,20 @@ from typing import Any
 from ..params import PRESETS
 from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, SECTIONS, Key
 
-__all__ = ["TEMPLATE_PRESET", "template"]
+__all__ = ["TEMPLATE_PRESET", "TEMPLATE_VALUES", "template"]
 
 #: The preset the template starts from.
 TEMPLATE_PRESET = "table1"
+
+#: Keys the template sets (besides ``preset``), so that every command runs on it: the planar
+#: load is the paper's circular case, R = 1 at 90 degrees (tip/2000 N = centre/4000 N on the
+#: paper's levels, so the centre amplitude is twice the tip's), scaled into the table1
+#: clamp's slip limit mu F_N = 356 N.
+TEMPLATE_VALUES = {
+    "load.planar.tip_amplitude": 100.0,
+    "load.planar.centre_amplitude": 200.0,
+    "load.planar.phase_deg": 90.0,
+}
 
 
 def _toml(value: Any) -> str:
@@ -36,13 +47,17 @@ def _line(key: Key) -> str:
     elif key.dotted == "preset":
         value = TEMPLATE_PRESET
         note = "default: none (then give all seven clamp values)"
+    elif key.dotted in TEMPLATE_VALUES:
+        value = TEMPLATE_VALUES[key.dotted]
+        default = "none" if key.default is None else format(key.default, "g")
+        note = f"default: {default}; set to the paper's circular case, R = 1 at 90 degrees"
     elif key.default is None:
         value, note = "", "default: none"
     else:
         value = key.default
         shown = _toml(value) if isinstance(value, str) else format(value, "g")
         note = f"default: {shown}"
-    active = "" if key.dotted == "preset" else "# "
+    active = "" if key.dotted == "preset" or key.dotted in TEMPLATE_VALUES else "# "
     return (f"# {key.meaning}; {unit}{key.range}; {note}\n"
             f"{active}{key.name} = {_toml(value) if value != '' or key.default == '' else ''}")
 

@@ -14,13 +14,13 @@ from typing import Any
 
 import numpy as np
 
-from ..case.joints import TRANSVERSE, across_operator
 from ..case.schema import DEFAULT_FE_MESH
+from ..case.table import add_option
+from ..conventions import CLAMP_MODELS, TRANSVERSE
 from ..dynamics.operators import IwanOperator
 from ..dynamics.operators2d import DEFAULT_PAIRING, PAIRINGS
-from ..meshlevels import LEVELS
+from ..dynamics.spec import across_operator
 from .common import model_options
-from .fe import mesh_level
 from .joint import clamp_from_args, describe_joint, elements_from_args
 
 __all__ = ["across_from_args", "across_joint", "add_across_options", "describe_across"]
@@ -28,18 +28,9 @@ __all__ = ["across_from_args", "across_joint", "add_across_options", "describe_a
 
 def add_across_options(group: Any) -> None:
     """``--transverse``, ``--pairing`` and ``--fe-mesh`` in the argument group ``group``."""
-    group.add_argument("--transverse", choices=list(TRANSVERSE),
-                       help="a two-directional tip or centre joint: the joint across (the "
-                            "second --joint-dof): the clamp's tip or centre model (same clamp "
-                            "and series spring) or fe, the built-in FE's first loading across "
-                            "the bar (needs --stick-slope); default: --joint in both")
-    group.add_argument("--pairing", choices=list(PAIRINGS),
-                       help=f"with --transverse and circular coupling: elements matched by "
-                            f"position on the bar (spatial) or by slip order (ordered) "
-                            f"(default {DEFAULT_PAIRING})")
-    group.add_argument("--fe-mesh", type=mesh_level, metavar="LEVEL",
-                       help=f"with --transverse fe: the FE mesh, as microslip fe --mesh "
-                            f"({', '.join(LEVELS)} or NXxNYxNZ; default {DEFAULT_FE_MESH})")
+    add_option(group, "transverse", note="the second --joint-dof; default: --joint in both")
+    add_option(group, "pairing")
+    add_option(group, "fe_mesh")
 
 
 def _usage(message: str) -> Exception:
@@ -52,7 +43,7 @@ def _check(args: argparse.Namespace, two_directions: bool) -> None:
     """The refusals: each option only where it does something."""
     transverse = getattr(args, "transverse", None)
     if transverse is not None:
-        if args.joint not in ("tip", "centre"):
+        if args.joint not in CLAMP_MODELS:
             raise _usage(f"--transverse ({' | '.join(TRANSVERSE)}) applies to --joint tip "
                          f"or centre, not --joint {args.joint}")
         if not two_directions:

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from typing import Any
 
 from ..case import run
 from ..case.run import planar_zones
+from ..case.table import OPTIONS, add_option, number
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import check_writable, to_jsonable
@@ -26,6 +28,7 @@ __all__ = [
     "clamp_overrides",
     "increments_option",
     "model_options",
+    "number",
     "params_from_args",
     "planar_zones",
     "print_json",
@@ -33,24 +36,9 @@ __all__ = [
     "warn_cost",
 ]
 
-#: Command-line name, ClampParams field, unit.
-PARAM_FLAGS = (
-    ("length", "length", "mm"),
-    ("width", "width", "mm"),
-    ("thickness", "thickness", "mm"),
-    ("modulus", "modulus", "MPa"),
-    ("poisson-ratio", "poisson_ratio", ""),
-    ("friction", "friction", ""),
-    ("normal-force", "normal_force", "N"),
-)
-
-
-def number(text: str) -> float:
-    """argparse type: any float syntax (validation of the range happens in the model)."""
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+#: Command-line name, ClampParams field, unit: the clamp's seven options of the option table.
+PARAM_FLAGS = tuple((OPTIONS[f.name].flag[2:], f.name, OPTIONS[f.name].unit)
+                    for f in dataclasses.fields(ClampParams))
 
 
 def add_params(parser: argparse.ArgumentParser, default_preset: str | None = None) -> None:
@@ -58,15 +46,13 @@ def add_params(parser: argparse.ArgumentParser, default_preset: str | None = Non
     g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
                    help=f"paper parameter set (default {default_preset})")
     add_clamp_flags(g)
-    g.add_argument("--amplitude", type=number, metavar="N",
-                   help="load amplitude F0, N (default: the preset's)")
+    add_option(g, "amplitude", note="default: the preset's")
 
 
 def add_clamp_flags(group: Any) -> None:
     """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude)."""
-    for flag, field, unit in PARAM_FLAGS:
-        group.add_argument(f"--{flag}", dest=field, type=number, metavar=unit.upper() or "X",
-                           help=f"{field.replace('_', ' ')}" + (f", {unit}" if unit else ""))
+    for _, field, _ in PARAM_FLAGS:
+        add_option(group, field)
 
 
 def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:

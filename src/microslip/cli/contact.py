@@ -14,6 +14,7 @@ import sys
 from typing import Any
 
 from ..case.run import contact_from_options, law_from_text, validity_warnings
+from ..case.table import add_option
 from ..models import Contact
 from ..models.interface import PRESSURE_LAWS
 from ..params import ClampParams
@@ -28,12 +29,10 @@ _LAW_HELP = (f"clamping pressure along the length: {', '.join(PRESSURE_LAWS)}, "
 
 def add_contact_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("contact (docs/interpretation.md §6)")
-    g.add_argument("--stick-slope", type=float, metavar="N/MM3", default=None,
-                   help="tangential contact stiffness per area before slip, as the FE's stick "
-                        "slope: machined metal about 1e3-1e5 N/mm^3; puts the bar on an "
-                        "elastic shear layer (this stiffness in series with the body's shear "
-                        "lag); inf or omitted: the paper's rigid foundation")
-    g.add_argument("--pressure-law", metavar="LAW", default=None, help=_LAW_HELP)
+    add_option(g, "stick_slope", note="puts the bar on an elastic shear layer (this "
+               "stiffness in series with the body's shear lag); inf or omitted: the paper's "
+               "rigid foundation")
+    add_option(g, "pressure_law", help=_LAW_HELP)
     g.add_argument("--no-shear-lag", action="store_true",
                    help="leave out the body's through-thickness shear compliance (then a very "
                         "large --stick-slope gives the rigid foundation exactly)")

@@ -15,13 +15,13 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
+from ..case.table import add_option, add_solver
+from ..conventions import DEFAULT_MESH
 from ..fe import SOLVERS
 from ..fe.builtin.normal import NORMAL_CONTACTS
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..io import write_loop_csv
 from ..loading import LOAD_CASES
-from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, is_mesh_spec
-from ..models.interface import PRESSURE_LAWS
 from .common import (
     add_params,
     add_strain_energy,
@@ -34,22 +34,6 @@ from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displac
 __all__ = ["add_parser", "run"]
 
 
-
-#: --mesh help, shared with ``microslip validate``.
-MESH_HELP = (
-    f"mesh level, the same elements for both solvers (builtin C3D8I, calculix C3D20R): "
-    f"{', '.join(MESH_LEVELS)} are accuracy levels with counts from the geometry (on the "
-    f"Table 1 bar 24x4x1, 48x4x1, 96x8x2; a squat body, L < 20 t, gets graded layers), "
-    + ", ".join(f"{k} {'x'.join(map(str, v))}" for k, v in FIXED_COUNTS.items())
-    + ", or NXxNYxNZ counts (default coarse; docs/solver.md 8.4)")
-
-
-def mesh_level(text: str) -> str:
-    """argparse type: a mesh level of :mod:`microslip.meshlevels` or ``NXxNYxNZ``."""
-    if is_mesh_spec(text):
-        return text
-    raise argparse.ArgumentTypeError(
-        f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
 
 def add_parser(sub: Any) -> None:
     p = sub.add_parser(
@@ -65,11 +49,8 @@ def add_parser(sub: Any) -> None:
     add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
                             "step (docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
-    g.add_argument("--mesh", type=mesh_level, default="coarse", metavar="LEVEL",
-                   help=MESH_HELP)
-    g.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
-                   help=f"stick slope lambda of the friction law, N/mm^3 "
-                   f"(default {DEFAULT_STICK_SLOPE:g})")
+    add_option(g, "mesh", default=DEFAULT_MESH)
+    add_option(g, "stick_slope", default=DEFAULT_STICK_SLOPE)
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
                    f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g}); calculix, and builtin with "
@@ -77,11 +58,8 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--normal-contact", choices=list(NORMAL_CONTACTS), default=None,
                    help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items())
                    + " (default fixed; docs/solver.md)")
-    g.add_argument("--pressure-law", metavar="LAW", default=None,
-                   help="builtin: clamping pressure on the top face along the length: "
-                        f"{', '.join(PRESSURE_LAWS)}, power:N[:EDGE] or table:FILE.csv "
-                        "(columns x_mm,pressure), as the 1-D commands take it; default "
-                        "uniform (the paper's)")
+    add_option(g, "pressure_law", note="builtin: on the top face; power:N[:EDGE] or "
+               "table:FILE.csv (columns x_mm,pressure) as the 1-D commands take it")
     g.add_argument("--clamping-csv", metavar="FILE",
                    help="builtin: write the interface pressure after clamping (x_mm,pressure "
                         "in MPa, the mean over the width per section), ready for "
@@ -94,9 +72,7 @@ def add_parser(sub: Any) -> None:
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="equal substeps over t = 0..1.25 s, a multiple of 5 (default 50)")
     s = p.add_argument_group("solver")
-    s.add_argument("--solver", choices=list(SOLVERS), default="builtin",
-                   help="finite-element solver: builtin (default, docs/solver.md) or calculix "
-                        "(docs/validation.md)")
+    add_solver(s, "fe", list(SOLVERS))
     s.add_argument("--timeout", type=number, metavar="S",
                    help="stop the solver after S seconds (default 120 s + 0.15 s per DOF)")
     s.add_argument("--threads", type=int, default=1, metavar="N",

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from ..case.table import add_option
+from ..conventions import DEFAULT_STICK_SLOPE
 from ..fit import FIT_PARAMETERS, FitResult, fit_loops, read_loop_csv
 from ..models.interface import LOADINGS
 from .common import add_params, number, params_from_args, print_json
@@ -28,9 +30,8 @@ def add_parser(sub: Any) -> None:
                    default=["friction", "stick_slope"], metavar="NAME",
                    help="parameters to identify (default friction stick_slope); from "
                    f"{', '.join(FIT_PARAMETERS)}")
-    p.add_argument("--stick-slope", type=number, default=1e4, metavar="N/MM3",
-                   help="contact stiffness per unit area: known value or starting guess "
-                   "(default 1e4 N/mm^3)")
+    add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE,
+               note="the known value or the starting guess of the fit")
     p.add_argument("--confidence", type=number, default=0.95, metavar="X",
                    help="confidence level of the intervals, in [0.5, 1) (default 0.95)")
     p.add_argument("--json", action="store_true", help="print one JSON object")

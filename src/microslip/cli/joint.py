@@ -8,35 +8,29 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Callable
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
+from ..case.table import add_option
 from ..dynamics.describing import (
     DEFAULT_SAMPLES,
     DescribingFunction,
     amplitude_for_force,
     describing_function,
 )
-from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint, iwan4_segalman
-from ..dynamics.operators import IwanOperator, jenkins
+from ..dynamics.distributions import DEFAULT_ELEMENTS
+from ..dynamics.operators import IwanOperator
+from ..dynamics.spec import joint_operator
 from ..errors import ParameterError
+from ..jointspec import JointSpec, series_stiffness
 from ..models import MODELS
 from ..params import ClampParams
 from .common import add_model_options, add_params, model_options, number, params_from_args
 
 __all__ = ["JOINTS", "add_joint_options", "add_parser", "clamp_from_args", "describe_joint",
-           "elements_from_args", "joint_from_args", "run"]
-
-def _jenkins(args: argparse.Namespace) -> IwanOperator:
-    return jenkins(_need(args, "joint_stiffness"), _need(args, "slip_force"))
-
-
-def _iwan(args: argparse.Namespace) -> IwanOperator:
-    return iwan4_segalman(_need(args, "joint_stiffness"), _need(args, "slip_force"),
-                          _need(args, "chi"), _need(args, "beta"), elements_from_args(args))
-
+           "elements_from_args", "joint_from_args", "run", "spec_from_args"]
 
 def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float | None]:
     """The clamp of a tip or centre joint, its series spring (N/mm) and the stick slope it
@@ -53,22 +47,20 @@ def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float
             "displacement (F ~ sqrt(d))")
     if args.stick_slope is not None:
         slope = _positive(args.stick_slope, "--stick-slope", "N/mm^3")
-        return params, slope * params.width * params.length, slope
+        return params, series_stiffness(params, slope), slope
     return params, args.joint_stiffness, None
 
 
-def _clamp(args: argparse.Namespace) -> IwanOperator:
-    params, series, _ = clamp_from_args(args)
-    return clamp_joint(args.joint, params, series, elements=elements_from_args(args),
-                       options=model_options(args))
-
-
-#: Joint name -> builder from the parsed options, and the joint options it uses.
-JOINTS: dict[str, tuple[Callable[[argparse.Namespace], IwanOperator], frozenset[str]]] = {
-    "jenkins": (_jenkins, frozenset({"joint_stiffness", "slip_force"})),
-    "iwan": (_iwan, frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"})),
-    **{m: (_clamp, frozenset({"joint_stiffness", "stick_slope", "elements"})) for m in MODELS},
+#: Joint name -> the joint options it uses (the others are refused).
+JOINTS: dict[str, frozenset[str]] = {
+    "jenkins": frozenset({"joint_stiffness", "slip_force"}),
+    "iwan": frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"}),
+    **{m: frozenset({"joint_stiffness", "stick_slope", "elements"}) for m in MODELS},
 }
+
+#: Joint option dest -> the key of a ``[[joint]]`` table (:class:`JointSpec` values).
+_KEYS = {"joint_stiffness": "stiffness", "slip_force": "slip_force", "chi": "chi",
+         "beta": "beta"}
 
 #: Joint option dest -> flag.
 _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", "chi": "--chi",
@@ -78,22 +70,12 @@ _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", 
 def add_joint_options(parser: argparse.ArgumentParser) -> None:
     """``--joint`` and its parameters, with the clamp's options for the tip and centre joints."""
     g = parser.add_argument_group("joint (units N, mm, N/mm)")
-    g.add_argument("--joint", choices=list(JOINTS), required=True,
-                   help="jenkins: one spring-slider; iwan: Segalman's 4-parameter Iwan; "
-                        "tip, centre: the clamp's microslip model as an Iwan operator")
-    g.add_argument("--joint-stiffness", type=number, metavar="N/MM",
-                   help="jenkins: spring stiffness; iwan: initial stiffness K_T; tip, centre: "
-                        "stiffness of a spring in series with the clamp")
-    g.add_argument("--slip-force", type=number, metavar="N",
-                   help="jenkins, iwan: macroslip force F_S")
-    g.add_argument("--chi", type=number, metavar="X", help="iwan: density exponent, in (-1, 0]")
-    g.add_argument("--beta", type=number, metavar="X",
-                   help="iwan: macroslip elements' share of the stiffness, >= 0")
-    g.add_argument("--stick-slope", type=number, metavar="N/MM3",
-                   help="tip, centre: contact stick slope; series spring = slope x width x "
-                        "length (instead of --joint-stiffness)")
-    g.add_argument("--elements", type=int, metavar="N",
-                   help=f"iwan, tip, centre: Jenkins elements (default {DEFAULT_ELEMENTS})")
+    add_option(g, "joint", required=True, choices=list(JOINTS))
+    for name in ("joint_stiffness", "slip_force", "chi", "beta"):
+        add_option(g, name)
+    add_option(g, "stick_slope", note="tip, centre: series spring = slope x width x length "
+               "(instead of --joint-stiffness)")
+    add_option(g, "elements")
     before = len(parser._actions)
     add_params(parser, default_preset="table1")
     add_model_options(parser)
@@ -105,9 +87,10 @@ def add_joint_options(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(clamp_options=tuple(clamp))
 
 
-def joint_from_args(args: argparse.Namespace) -> IwanOperator:
-    """The joint operator the options describe; options of another joint are refused."""
-    build, uses = JOINTS[args.joint]
+def spec_from_args(args: argparse.Namespace) -> JointSpec:
+    """The joint specification the options describe (as a ``[[joint]]`` table gives it);
+    options of another joint are refused."""
+    uses = JOINTS[args.joint]
     extra = [flag for dest, flag in _FLAGS.items()
              if dest not in uses and getattr(args, dest, None) is not None]
     if args.joint not in MODELS and getattr(args, "case", None) is None:
@@ -115,7 +98,25 @@ def joint_from_args(args: argparse.Namespace) -> IwanOperator:
                   if getattr(args, dest, default) != default]
     if extra:
         raise ParameterError(f"{', '.join(extra)} not used by --joint {args.joint}")
-    return build(args)
+    values: dict[str, Any] = {}
+    clamp, series, slope = None, None, None
+    if args.joint in MODELS:
+        clamp, series, slope = clamp_from_args(args)
+    else:
+        values = {key: _need(args, dest) for dest, key in _KEYS.items() if dest in uses}
+    if "elements" in uses:
+        values["elements"] = elements_from_args(args)
+    return JointSpec(number=0, dofs=(), model=args.joint, coupling=getattr(args, "coupling", None),
+                     values=MappingProxyType(values), clamp=clamp, series_stiffness=series,
+                     transverse=getattr(args, "transverse", None),
+                     pairing=getattr(args, "pairing", None), fe_mesh=getattr(args, "fe_mesh", None),
+                     stick_slope=slope)
+
+
+def joint_from_args(args: argparse.Namespace) -> IwanOperator:
+    """The joint operator the options describe (:func:`spec_from_args`, built by the
+    dynamics as a case file's joint is)."""
+    return joint_operator(spec_from_args(args), model_options(args))
 
 
 def describe_joint(joint: IwanOperator) -> dict[str, Any]:

@@ -17,6 +17,8 @@ from ..case.run import (
     portion_text,
     with_portion,
 )
+from ..case.table import add_option, add_solver
+from ..conventions import DEFAULT_MESH, check_whole
 from ..energy import STRAIN_ENERGY
 from ..errors import ParameterError
 from ..params import PRESETS, preset
@@ -69,22 +71,17 @@ def add_parser(sub: Any) -> None:
         "work of the load over a cycle with any phase between the components. "
         "Units: N, mm, N·mm. See docs/planar.md.")
     g = p.add_argument_group("load case (give both amplitudes, or --ratio)")
-    g.add_argument("--tip-amplitude", type=number, metavar="N",
-                   help="amplitude of the tip model (one symmetric half), N")
-    g.add_argument("--centre-amplitude", type=number, metavar="N",
-                   help="amplitude of the centre model, N")
-    g.add_argument("--ratio", type=number, metavar="R",
-                   help="force ratio R = F_T(tip)/F_T(centre) of normalised forces; the "
-                        "amplitudes follow from the paper's levels (2000 N tip, 4000 N centre "
-                        "per level)")
+    add_option(g, "tip_amplitude")
+    add_option(g, "centre_amplitude")
+    add_option(g, "ratio", note="the amplitudes follow from the paper's levels (2000 N tip, "
+               "4000 N centre per level)")
     add_displacement_option(g, PLANAR_HELP, nargs=2, metavar=("TIP_MM", "CENTRE_MM"))
     g.add_argument("--levels", choices=list(LEVEL_SCHEMES), default="base",
                    help="level pairs for --ratio: "
                         + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
                         + " (default base)")
-    g.add_argument("--phase", type=number, default=0.0, metavar="DEG",
-                   help="phase of the centre force ahead of the tip force, degrees "
-                        "(0: the paper's loading; 90: the ellipse of Fig. 1; default 0)")
+    add_option(g, "phase", default=0.0,
+               note="0: the paper's loading; 90: the ellipse of Fig. 1")
     m = p.add_argument_group("clamped zones")
     m.add_argument("--tip-preset", choices=sorted(PRESETS), default="table2-tip",
                    help="parameters of the tip model (default table2-tip)")
@@ -110,16 +107,11 @@ def add_parser(sub: Any) -> None:
                    help="force increments of each first loading (default 1000)")
     p.add_argument("--samples-per-cycle", type=int, default=2048, metavar="N",
                    help="samples of the work-based cycle (default 2048)")
-    p.add_argument("--solver", choices=list(SOLVERS), default="analytical",
-                   help="how the two directions are solved: analytical (the paper's decoupled "
-                        "1-D models, Table 2 zones) or fe (built-in frictional FE solver, one "
-                        "body with coupled 2-D friction, against its two uni-axial runs); "
-                        "default analytical")
+    add_solver(p, "planar", SOLVERS)
     f = p.add_argument_group("--solver fe (docs/solver.md)")
     f.add_argument("--preset", choices=sorted(PRESETS), default="table1",
                    help="the clamped body (default table1: the paper's FE bar)")
-    f.add_argument("--mesh", default=None, metavar="NAME",
-                   help="solver mesh: tiny, coarse, medium, fine or paper (default coarse)")
+    add_option(f, "mesh", note=f"default {DEFAULT_MESH}")
     f.add_argument("--cycles", type=int, default=6, metavar="N",
                    help="most load cycles per run, until W per cycle settles (default 6)")
     f.add_argument("--increments-per-cycle", type=int, default=256, metavar="N",
@@ -157,8 +149,7 @@ def run_fe(args: argparse.Namespace) -> int:
     at, ac = amplitudes(args)
     for name, value in (("--cycles", args.cycles),
                         ("--increments-per-cycle", args.increments_per_cycle)):
-        if not 1 <= value <= 100_000:
-            raise ParameterError(f"{name} must be a whole number in [1, 100000], got {value}")
+        check_whole(name, value, 1, 100_000)
     params = preset(args.preset).replace(**clamp_overrides(args))
     if args.pressure_law is not None or args.no_shear_lag:
         raise ParameterError("--pressure-law and --no-shear-lag apply to the analytical "

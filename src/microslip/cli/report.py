@@ -6,6 +6,8 @@ import argparse
 import os
 from typing import Any
 
+from ..case.table import add_option
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 
 __all__ = ["add_parser", "run"]
@@ -32,7 +34,7 @@ def add_parser(sub: Any) -> None:
     g = p.add_argument_group("finite-element runs")
     g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
                    help="FE solver (default builtin)")
-    g.add_argument("--mesh", default="coarse", metavar="NAME", help="FE mesh (default coarse)")
+    add_option(g, "mesh", default=DEFAULT_MESH, help="FE mesh")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="substeps of each FE run, a multiple of 5 (default 50)")
     g.add_argument("--no-fe", action="store_true", help="leave the FE runs out (faster)")

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..conventions import DEFAULT_MESH
 from ..planar import LEVEL_SCHEMES, PAPER_STRAIN_ENERGY, WORK_STRAIN_ENERGY
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
 from .common import (
@@ -37,7 +38,7 @@ def add_parser(sub: Any) -> None:
                    help="run the finite elements: the CalculiX validation for Figs 8-9 (by "
                         "default when ccx is available) and the coupled 2-D friction study "
                         "with the built-in solver (by default always; --no-fe skips both)")
-    p.add_argument("--fe-mesh", choices=list(FE_MESHES), default="coarse",
+    p.add_argument("--fe-mesh", choices=list(FE_MESHES), default=DEFAULT_MESH,
                    help="mesh of the finite-element validation (default coarse)")
     p.add_argument("--increments", type=int, default=1000, metavar="N",
                    help="force increments of each first loading (default 1000)")

@@ -16,6 +16,8 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
+from ..case.table import add_option
+from ..conventions import CLAMP_MODELS
 from ..dynamics.assemble import (
     PlacedJoint,
     describe_matrices,
@@ -26,8 +28,8 @@ from ..dynamics.assemble import (
 )
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
-from ..dynamics.operators2d import COUPLINGS, PAIRINGS
-from ..dynamics.structure import Structure, one_mode
+from ..dynamics.operators2d import PAIRINGS
+from ..dynamics.structure import Structure, free_frequency, one_mode
 from ..errors import ParameterError
 from .across import (
     across_from_args,
@@ -57,13 +59,18 @@ DEFAULT_HARMONICS = 7
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
-    """One mode (``--frequency``, ``--modal-mass``, ``--damping-ratio``,
+    """One mode (``--frequency`` or ``--stuck-frequency``, ``--modal-mass``, ``--damping-ratio``,
     ``--participation``) or ``--structure FILE`` with ``--joint-dof``, ``--mode``,
     ``--coupling`` and the joint across (``--transverse``, ``--pairing``, ``--fe-mesh``);
     and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
-    g.add_argument("--frequency", type=number, metavar="HZ",
-                   help="natural frequency with the joint removed, Hz")
+    given = g.add_mutually_exclusive_group()
+    given.add_argument("--frequency", type=number, metavar="HZ",
+                       help="natural frequency with the joint removed, Hz")
+    given.add_argument("--stuck-frequency", type=number, metavar="HZ",
+                       help="natural frequency with the joint stuck (as measured at low "
+                            "amplitude), Hz; the frequency with the joint removed follows "
+                            "from the joint's initial stiffness")
     g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
     g.add_argument("--damping-ratio", type=number, metavar="X",
                    help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
@@ -71,19 +78,14 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     g.add_argument("--participation", type=number, metavar="X",
                    help="joint displacement per unit modal displacement, != 0 (default 1)")
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
-    f.add_argument("--structure", metavar="FILE",
-                   help="FILE.npz with arrays M, K, optional C and joints, or a directory "
-                        "with M.mtx, K.mtx, optional C.mtx (Matrix Market); see "
-                        "docs/dynamics.md")
+    add_option(f, "structure", note="see docs/dynamics.md")
     f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
                    help="a joint between DOF I (0-based) and the ground, or I J between two "
                         "DOFs; give it twice for a two-directional joint (one per "
                         "direction); replaces the file's joints")
     f.add_argument("--mode", type=int, metavar="N",
                    help="mode followed and reported, 1-based by stuck frequency (default 1)")
-    f.add_argument("--coupling", choices=list(COUPLINGS),
-                   help="two-directional joints: one circular Coulomb limit (default) or "
-                        "two independent directions (the paper's decoupled sum)")
+    add_option(f, "coupling", note="default circular")
     add_across_options(f)
     add_joint_options(parser)
     add_case_option(parser)
@@ -105,14 +107,17 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
                 ("coupling", "--coupling"), ("excitation", "--excitation"),
                 why="a one-mode structure (they need --structure)")
         across_from_args(args, None)
-        if args.frequency is None or args.modal_mass is None:
-            raise ParameterError("give --frequency HZ and --modal-mass KG (one mode) or "
-                                 "--structure FILE")
-        return one_mode(args.frequency, args.modal_mass,
-                        0.0 if args.damping_ratio is None else args.damping_ratio,
-                        joint_from_args(args),
-                        1.0 if args.participation is None else args.participation)
-    _refuse(args, ("frequency", "--frequency"), ("modal_mass", "--modal-mass"),
+        stuck = getattr(args, "stuck_frequency", None)
+        if (args.frequency is None and stuck is None) or args.modal_mass is None:
+            raise ParameterError("give --frequency HZ (or --stuck-frequency HZ) and "
+                                 "--modal-mass KG (one mode) or --structure FILE")
+        joint = joint_from_args(args)
+        p = 1.0 if args.participation is None else args.participation
+        f = args.frequency if stuck is None else free_frequency(stuck, args.modal_mass, joint, p)
+        return one_mode(f, args.modal_mass,
+                        0.0 if args.damping_ratio is None else args.damping_ratio, joint, p)
+    _refuse(args, ("frequency", "--frequency"), ("stuck_frequency", "--stuck-frequency"),
+            ("modal_mass", "--modal-mass"),
             ("damping_ratio", "--damping-ratio"), ("participation", "--participation"),
             why="--structure (the file's matrices give them)")
     matrices = read_structure(args.structure)
@@ -132,7 +137,7 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
     """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
     coupling wins over --coupling (or [structure] coupling), which wins over circular."""
-    from ..case.joints import joint_operator, transverse_operator
+    from ..dynamics.spec import joint_operator, transverse_operator
     from .common import model_options
 
     specs = args.case_joints
@@ -198,7 +203,7 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
                 across_joint(args), args.fe_mesh)}}
         if not specs:
             return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
-        from ..case.joints import joint_operator, transverse_operator
+        from ..dynamics.spec import joint_operator, transverse_operator
         from .common import model_options
 
         opts = model_options(args)
@@ -269,9 +274,9 @@ def across_warnings(args: argparse.Namespace) -> list[str]:
     if specs:
         return [ACROSS_WARNING.format(who=f"joint {s.number}", model=s.model,
                                       fix='transverse = "fe"')
-                for s in specs if s.directions == 2 and s.model in ("tip", "centre")
+                for s in specs if s.directions == 2 and s.model in CLAMP_MODELS
                 and s.transverse is None]
-    if args.structure is None or args.joint not in ("tip", "centre") or \
+    if args.structure is None or args.joint not in CLAMP_MODELS or \
             getattr(args, "transverse", None) is not None:
         return []
     joints = np.asarray(connectivity_from_args(args, read_structure(args.structure)))

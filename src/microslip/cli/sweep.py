@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
+from ..conventions import CLAMP_MODELS
 from ..errors import ParameterError
 from ..models import MODELS
 from ..params import preset
@@ -145,7 +146,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 #: Options that apply to some models only (the others are refused, not silently ignored).
 MODEL_OPTIONS: dict[str, tuple[str, ...]] = {
-    **{dest: ("tip", "centre") for dest in (
+    **{dest: CLAMP_MODELS for dest in (
         "amplitude_range", "grid", "sample", "samples", "seed", "scheduler", "amplitude",
         "chunk_size", "threads", "retries", "preset")},
     **{dest: ("planar",) for dest in ("ratio_range", "levels")},

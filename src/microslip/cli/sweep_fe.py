@@ -10,6 +10,8 @@ import argparse
 import sys
 from typing import Any
 
+from ..case.table import add_option, add_solver
+from ..conventions import CLAMP_MODELS, DEFAULT_MESH
 from ..errors import ParameterError
 from .common import params_from_args
 
@@ -26,14 +28,10 @@ def add_options(parser: argparse.ArgumentParser) -> None:
     from ..fe import SOLVERS
 
     g = parser.add_argument_group("--solver fe: finite-element amplitude sweep (docs/report.md)")
-    g.add_argument("--solver", choices=("batch", "fe"), default="batch",
-                   help="batch: the 1-D models' compiled engine (default); fe: one "
-                        "finite-element run per amplitude of --amplitude-range, saved to --out "
-                        "FILE.csv as it finishes, resumed by running the same command again")
+    add_solver(g, "sweep")
     g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
                    help="the FE solver of --solver fe (default builtin)")
-    g.add_argument("--mesh", default="coarse", metavar="NAME",
-                   help="mesh of --solver fe (default coarse)")
+    add_option(g, "mesh", default=DEFAULT_MESH, note="--solver fe")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="substeps of each FE run over t = 0..1.25 s, a multiple of 5 "
                         "(default 50)")
@@ -46,7 +44,7 @@ def _check(args: argparse.Namespace) -> None:
     if given:
         raise ParameterError(f"{given[0]} does not apply to --solver fe (it sweeps "
                              "--amplitude-range A B over --cases N)")
-    if args.model not in ("tip", "centre"):
+    if args.model not in CLAMP_MODELS:
         raise ParameterError(f"--solver fe sweeps --model tip or centre, not {args.model}")
     if args.amplitude_range is None:
         raise ParameterError("--solver fe needs --amplitude-range A B (N)")

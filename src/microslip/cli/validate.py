@@ -7,10 +7,11 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
+from ..case.table import add_option
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from .common import add_params, check_output_dir, number, params_from_args, print_json
-from .fe import MESH_HELP, mesh_level
 
 __all__ = ["add_parser", "run"]
 
@@ -25,12 +26,10 @@ def add_parser(sub: Any) -> None:
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     p.add_argument("--out", metavar="DIR", required=True, help="output directory")
     add_params(p, default_preset="table1")
-    p.add_argument("--mesh", type=mesh_level, action="append", metavar="LEVEL",
-                   help="repeat for several; " + MESH_HELP)
+    add_option(p, "mesh", action="append", note="repeat for several")
     p.add_argument("--model", choices=list(LOAD_CASES), action="append",
                    help="load case, repeat for several (default: tip and centre)")
-    p.add_argument("--stick-slope", type=number, default=DEFAULT_STICK_SLOPE, metavar="N/MM3",
-                   help=f"stick slope lambda, N/mm^3 (default {DEFAULT_STICK_SLOPE:g})")
+    add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
     p.add_argument("--timeout", type=number, metavar="S",
                    help="time-out of each solver run, s (default 120 s + 0.15 s per DOF)")
     p.add_argument("--threads", type=int, default=1, metavar="N",
@@ -55,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--threads must be in [1, 256], got {args.threads}")
     params, amplitude = params_from_args(args)
     check_output_dir(args.out)
-    meshes = tuple(dict.fromkeys(args.mesh or ["coarse"]))
+    meshes = tuple(dict.fromkeys(args.mesh or [DEFAULT_MESH]))
     models = tuple(dict.fromkeys(args.model or list(LOAD_CASES)))
     report = run_validation(args.out, meshes, models, progress=not args.no_progress,
                             timeout=args.timeout, scheduler=args.scheduler,

@@ -14,6 +14,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..conventions import DEFAULT_ELEMENTS
 from ..errors import ParameterError
 from ..models import first_loading, macroslip_force
 from ..options import ModelOptions
@@ -23,8 +24,6 @@ from .operators import IwanOperator
 __all__ = ["CONCAVITY_TOLERANCE", "DEFAULT_ELEMENTS", "clamp_joint", "from_backbone", "iwan4",
            "iwan4_segalman"]
 
-#: Jenkins elements of an iwan, tip or centre joint unless the user gives another number.
-DEFAULT_ELEMENTS = 200
 
 #: Relative slope rise (of the initial slope) tolerated as round-off before a sampled
 #: backbone counts as not concave and is refused.

@@ -28,8 +28,10 @@ from typing import Any
 
 import numpy as np
 
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
+from ..jointspec import series_stiffness
 from ..named import result
 from ..params import ClampParams
 from .assemble import PlacedJoint, from_joints
@@ -154,7 +156,7 @@ def orbit_work(structure: Structure, q: np.ndarray) -> float:
 
 
 def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: float,
-                  phase_deg: float = 90.0, *, mesh: Any = "coarse",
+                  phase_deg: float = 90.0, *, mesh: Any = DEFAULT_MESH,
                   increments_per_cycle: int = 256, cycles: int = 6,
                   stick_slope: float = DEFAULT_STICK_SLOPE,
                   elements: int = DEFAULT_ELEMENTS) -> FEComparison:
@@ -167,7 +169,7 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
                            increments_per_cycle=increments_per_cycle, mesh=fem)
     if not study.coupled.converged or not study.tip_only.converged:
         raise ParameterError("the FE runs did not converge; see microslip.fe.builtin")
-    series = stick_slope * params.width * params.length
+    series = series_stiffness(params, stick_slope)
     tip = clamp_joint("tip", params, series, elements=elements)
     centre = clamp_joint("centre", params, series, elements=elements)
     c = study.coupled.last_cycle()

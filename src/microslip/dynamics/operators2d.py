@@ -19,6 +19,8 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from ..conventions import COUPLINGS as COUPLING_NAMES
+from ..conventions import PAIRINGS as PAIRING_NAMES
 from ..errors import ParameterError
 from ..named import readonly, result
 from .kernels2d import circular_periodic_kernel
@@ -177,11 +179,12 @@ def _spatial(x_edges: Array, y_edges: Array) -> tuple[Array, Callable[[Array], A
     return np.clip(cuts, 0.0, f), lambda tau: np.abs(2.0 * tau - f)
 
 
-#: Pairing name -> how the elements of the 1-D joints along x and y are matched:
+#: Pairing name (:data:`microslip.conventions.PAIRINGS`) -> how the elements of the 1-D
+#: joints along x and y are matched:
 #: ``ordered`` the same order of slipping (tau_y = tau_x); ``spatial`` the bar's tip
 #: loading along x against its centre loading across it, slip spreading from the loaded end
 #: along x and from mid-length across (tau_y = |2 tau_x - F|).
-PAIRINGS: dict[str, Pairing] = {"ordered": _ordered, "spatial": _spatial}
+PAIRINGS: dict[str, Pairing] = dict(zip(PAIRING_NAMES, (_ordered, _spatial), strict=True))
 
 #: Pairing of :func:`anisotropic` (and of a coupling given two 1-D joints) unless named.
 DEFAULT_PAIRING = "spatial"
@@ -255,9 +258,11 @@ def _circular(x: IwanOperator, y: IwanOperator | None = None, pairing: str | Non
     return (anisotropic(x, y, DEFAULT_PAIRING if pairing is None else pairing),)
 
 
-#: Coupling name -> the operators of a two-directional joint built from the 1-D joint x
+#: Coupling name (:data:`microslip.conventions.COUPLINGS`) -> the operators of a
+#: two-directional joint built from the 1-D joint x
 #: along its first direction and y (default x) along its second: ``circular`` one
 #: :class:`CircularIwan` on both directions (:func:`circular` of x, or
 #: :func:`anisotropic` (x, y, pairing)), ``decoupled`` one :class:`IwanOperator` per
 #: direction, x and y (the paper's sum).
-COUPLINGS: dict[str, Coupling] = {"circular": _circular, "decoupled": _decoupled}
+COUPLINGS: dict[str, Coupling] = dict(zip(COUPLING_NAMES, (_circular, _decoupled),
+                                          strict=True))

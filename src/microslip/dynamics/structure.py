@@ -24,7 +24,7 @@ from ..params import check_positive
 from .operators import HystereticOperator
 from .operators2d import CircularIwan
 
-__all__ = ["SI_PER_MM", "JointLink", "Structure", "one_mode"]
+__all__ = ["SI_PER_MM", "JointLink", "Structure", "free_frequency", "one_mode"]
 
 #: Metres per millimetre: the structure's matrices (SI) times a displacement in mm give N
 #: after multiplication by this factor.
@@ -178,3 +178,32 @@ def one_mode(frequency: float, modal_mass: float, damping_ratio: float,
                      stiffness=readonly(np.array([[m * w * w]])),
                      joints=(JointLink(joint, np.array([float(participation)])),),
                      output=np.array([1.0]))
+
+
+def free_frequency(stuck_frequency: float, modal_mass: float, joint: HystereticOperator,
+                   participation: float = 1.0) -> float:
+    """Natural frequency with the joint removed, Hz, of one mode whose frequency with the
+    joint stuck (the small-amplitude limit, as measured) is ``stuck_frequency``.
+
+    The stuck mode has stiffness m (2 pi f_s)^2 = m (2 pi f)^2 + p^2 k_J, with k_J the
+    joint's initial stiffness (N/mm, times 1e3 in N/m) and p the participation, so
+    f = sqrt(f_s^2 - p^2 k_J / (m (2 pi)^2)), i.e. f_s = f sqrt(1 + p^2 k_J / (m (2 pi f)^2)).
+
+    Examples
+    --------
+    >>> from microslip.dynamics import jenkins
+    >>> f = free_frequency(300.0, 0.5, jenkins(1000.0, 5.0))
+    >>> s = one_mode(f, 0.5, 0.0, jenkins(1000.0, 5.0))
+    >>> round(float(s.linear_frequencies(stuck=True)[0]), 9)
+    300.0
+    """
+    fs = check_positive("stuck frequency", stuck_frequency, "Hz")
+    m = check_positive("modal mass", modal_mass, "kg")
+    if not (math.isfinite(participation) and participation != 0.0):
+        raise ParameterError(f"participation must be finite and != 0, got {participation!r}")
+    k_joint = participation**2 * joint.initial_stiffness / SI_PER_MM
+    joint_alone = math.sqrt(k_joint / m) / (2.0 * math.pi)
+    if not fs > joint_alone:
+        raise ParameterError(f"stuck frequency must be > {joint_alone:.6g} Hz (the joint's "
+                             f"stiffness alone on the modal mass), got {fs:g} Hz")
+    return math.sqrt(fs * fs - joint_alone * joint_alone)

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ..conventions import DEFAULT_MESH
 from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import write_json
@@ -170,7 +171,7 @@ def _entry(solver: str) -> SolverEntry:
 
 def run_loop(load: str, params: ClampParams | None = None, amplitude: float = 267.0, *,
              solver: str = "builtin", out: str | Path | None = None, vtu: bool = True,
-             mesh: Any = "coarse", element: str | None = None,
+             mesh: Any = DEFAULT_MESH, element: str | None = None,
              stick_slope: float = DEFAULT_STICK_SLOPE, substeps: int = 50,
              strain_energy_kind: str = DEFAULT_STRAIN_ENERGY,
              **options: Any) -> tuple[FELoopResult, list[Path]]:

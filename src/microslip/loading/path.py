@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..conventions import CLAMP_MODELS, check_whole
 from ..errors import ParameterError
 
 __all__ = ["CLOSE_TOL", "COMPONENTS", "LoadPath"]
@@ -32,15 +33,12 @@ FloatArray = NDArray[np.float64]
 
 #: Relative tolerance on the closure of a cycle's forces (the last sample is snapped).
 CLOSE_TOL = 1e-9
-#: Force components of a planar load path.
-COMPONENTS = ("tip", "centre")
+#: Force components of a planar load path: the clamp's two models.
+COMPONENTS = CLAMP_MODELS
 
 
 def _count(name: str, value: Any, lower: int, upper: int = 10_000_000) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) \
-            or not lower <= value <= upper:
-        raise ParameterError(f"{name} must be a whole number in [{lower}, {upper}], got {value!r}")
-    return int(value)
+    return check_whole(name, value, lower, upper)
 
 
 def _non_negative(x: Any, name: str) -> float:

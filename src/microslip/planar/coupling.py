@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..conventions import check_choice
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, damping_from_loop, strain_energy
 from ..errors import ParameterError
 from ..hysteresis import masing_loop
@@ -162,11 +163,7 @@ def paper_coupling(tip: Backbone, centre: Backbone,
     >>> round(r.loss_factor / damping_from_loop(masing_loop(t), t, "branch").loss_factor, 12)
     1.0
     """
-    if strain_energy_kind not in STRAIN_ENERGY:
-        raise ParameterError(
-            f"unknown strain-energy definition {strain_energy_kind!r}; "
-            f"choose one of {', '.join(STRAIN_ENERGY)}"
-        )
+    check_choice("strain-energy definition", strain_energy_kind, STRAIN_ENERGY)
     loop = resultant_loop(masing_loop(tip), masing_loop(centre))
     return damping_from_loop(loop, resultant_backbone(tip, centre), strain_energy_kind)
 

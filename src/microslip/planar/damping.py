@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..conventions import check_choice
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, damping_from_backbone
 from ..errors import MicroslipError, ParameterError
 from ..models import Contact, check_increments, first_loading
@@ -167,11 +168,7 @@ def _share(part: float, whole: float) -> float:
 
 
 def _check_kind(kind: str) -> str:
-    if kind not in STRAIN_ENERGY:
-        raise ParameterError(
-            f"unknown strain-energy definition {kind!r}; choose one of {', '.join(STRAIN_ENERGY)}"
-        )
-    return kind
+    return check_choice("strain-energy definition", kind, STRAIN_ENERGY)
 
 
 def planar_damping(tip_params: ClampParams, centre_params: ClampParams, tip_amplitude: float,

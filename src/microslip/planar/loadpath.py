@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..conventions import check_choice, check_whole
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY, loop_work, loss_factor, strain_energy
 from ..errors import ParameterError
 from ..hysteresis import VirginCurve, masing_loop, masing_response
@@ -119,10 +120,7 @@ def analytical_response(path: LoadPath, tip: Backbone | VirginCurve,
 
 
 def _symmetry(tip_symmetry: Any) -> int:
-    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, (int, np.integer)) \
-            or tip_symmetry < 1:
-        raise ParameterError(f"tip_symmetry must be a whole number >= 1, got {tip_symmetry!r}")
-    return int(tip_symmetry)
+    return check_whole("tip_symmetry", tip_symmetry, 1)
 
 
 def cycle_work(response: PathResponse) -> tuple[float, float]:
@@ -192,11 +190,7 @@ class ComponentEnergy:
     points: int = 33
 
     def __post_init__(self) -> None:
-        if self.kind not in STRAIN_ENERGY:
-            raise ParameterError(
-                f"unknown strain-energy definition {self.kind!r}; "
-                f"choose one of {', '.join(STRAIN_ENERGY)}"
-            )
+        check_choice("strain-energy definition", self.kind, STRAIN_ENERGY)
         _symmetry(self.copies)
         if self.backbone.increments < 1 or self.points < 2:
             raise ParameterError("a component energy needs >= 1 increment and >= 2 points")

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..conventions import check_whole
 from ..errors import ParameterError
 from ..named import result
 
@@ -168,10 +169,7 @@ def force_ratio(tip_amplitude: float, centre_amplitude: float,
 
 
 def _check_symmetry(tip_symmetry: Any) -> int:
-    if isinstance(tip_symmetry, bool) or not isinstance(tip_symmetry, (int, np.integer)) \
-            or tip_symmetry < 1:
-        raise ParameterError(f"tip_symmetry must be a whole number >= 1, got {tip_symmetry!r}")
-    return int(tip_symmetry)
+    return check_whole("tip_symmetry", tip_symmetry, 1)
 
 
 def paper_level_pair(ratio: float, scheme: str = "base") -> tuple[float, float]:

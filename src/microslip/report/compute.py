@@ -35,6 +35,7 @@ from ..case.run import (
     planar_inputs,
     planar_json,
 )
+from ..conventions import DEFAULT_MESH
 from ..errors import MacroslipError, ParameterError
 from ..models.validity import Validity, validity
 from ..named import result
@@ -63,7 +64,7 @@ class ReportSettings:
 
     increments: int = 1000
     fe_solver: str = "builtin"
-    mesh: str = "coarse"
+    mesh: str = DEFAULT_MESH
     substeps: int = 50
     fe_points: bool = True
     planar_increments: int = 1000

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..conventions import DEFAULT_MESH
 from ..energy import STRAIN_ENERGY
 from ..errors import MicroslipError, ParameterError
 from ..io import atomic_write, write_csv
@@ -152,7 +153,7 @@ class FEOutcome:
 def reproduce(out_dir: str | os.PathLike[str], *, increments: int = 1000,
               options: ModelOptions | None = None,
               strain_energy: str = PAPER_STRAIN_ENERGY, levels: str = "base",
-              work_energy: str = "sum", fe: bool | None = None, fe_mesh: str = "coarse",
+              work_energy: str = "sum", fe: bool | None = None, fe_mesh: str = DEFAULT_MESH,
               progress: bool = True, echo: Echo | None = None) -> ReproduceResult:
     """Regenerate the paper's figures and tables into ``out_dir`` and check its claims.
 

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..named import result
@@ -56,7 +57,7 @@ class FESweepSpec:
     params: ClampParams
     amplitudes: tuple[float, ...]
     solver: str = "builtin"
-    mesh: str = "coarse"
+    mesh: str = DEFAULT_MESH
     substeps: int = 50
     strain_energy: str = "secant"
     stick_slope: float = DEFAULT_STICK_SLOPE

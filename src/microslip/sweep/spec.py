@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..batch import PARAM_FIELDS, check_range, prepare_batch
+from ..conventions import check_choice
 from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
 from ..models import MODELS, Contact, check_increments, get_model
@@ -223,11 +224,7 @@ def make_sweep(model: str, base: ClampParams, *, amplitude: float | None = None,
     if not isinstance(base, ClampParams):
         raise ParameterError(f"base must be ClampParams, got {type(base).__name__}")
     opt = options if options is not None else ModelOptions()
-    if strain_energy not in STRAIN_ENERGY:
-        raise ParameterError(
-            f"unknown strain-energy definition {strain_energy!r}; choose one of "
-            f"{', '.join(STRAIN_ENERGY)}"
-        )
+    check_choice("strain-energy definition", strain_energy, STRAIN_ENERGY)
     n = check_increments(increments)
     seen: dict[str, str] = {}
     axes = _grid_axes(grid, seen)

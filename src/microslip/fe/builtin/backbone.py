@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from ...conventions import CLAMP_MODELS
 from ...errors import MacroslipError, ParameterError
 from ...named import result
 from ...params import ClampParams
@@ -29,7 +30,7 @@ __all__ = ["BACKBONE_LOADS", "DEFAULT_TOP", "HULL_TOLERANCE", "FEBackbone", "con
 
 #: The loads a backbone can be taken along: the tip force (end face, along the bar) and the
 #: centre force (mid-length section, in the ``centre_direction``).
-BACKBONE_LOADS = ("tip", "centre")
+BACKBONE_LOADS = CLAMP_MODELS
 
 #: Largest relative gap (of mu F_N) between the FE's curve and its concave majorant that is
 #: taken as the discreteness of nodal slip; a larger one is refused (not a microslip curve).

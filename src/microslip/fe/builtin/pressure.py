@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...conventions import DEFAULT_MESH
 from ...models.interface import PressureLaw
 from ...params import ClampParams
 from .clamping import clamping_pressure
@@ -18,7 +19,7 @@ from .solve import build_model
 __all__ = ["fe_pressure_law"]
 
 
-def fe_pressure_law(params: ClampParams, mesh: Any = "coarse", **model_options: Any
+def fe_pressure_law(params: ClampParams, mesh: Any = DEFAULT_MESH, **model_options: Any
                     ) -> PressureLaw:
     """The interface pressure of the built-in solver's clamping step as a 1-D pressure law, in
     one call: :func:`~microslip.fe.builtin.solve.build_model` (``model_options``: ``stick_slope``,

@@ -34,6 +34,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ...blas import single_threaded_blas
+from ...conventions import DEFAULT_MESH
 from ...errors import MacroslipError, ParameterError
 from ...models.interface import PressureLaw
 from ...params import ClampParams, check_positive
@@ -77,7 +78,7 @@ def _unit_load(mesh: BoxMesh, face: str, component: int, index: IntArray, n_free
     return out
 
 
-def build_model(params: ClampParams, mesh: Any = "coarse", *, stick_slope: float =
+def build_model(params: ClampParams, mesh: Any = DEFAULT_MESH, *, stick_slope: float =
                 DEFAULT_STICK_SLOPE, element: str = "C3D8I", linear_solver: str = "banded",
                 newton: NewtonOptions | None = None,
                 pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",

@@ -23,6 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ... import conventions
+from ...conventions import check_whole
 from ...energy import loop_work
 from ...errors import MacroslipError, ParameterError
 from ...loading import LoadPath
@@ -62,7 +64,7 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 #: Mesh used when none is given: mesh-converged for the Table 1 loops (docs/solver.md).
-DEFAULT_MESH = "coarse"
+DEFAULT_MESH = conventions.DEFAULT_MESH
 
 def model_for(params: ClampParams, mesh: Any, stick_slope: float, element: str,
               linear_solver: str, newton: NewtonOptions | None, *,
@@ -145,11 +147,9 @@ def as_load_path(path: Any, f_tip: ArrayLike | None = None,
 
 
 def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, int, float]:
-    for name, v, lo in (("cycles", cycles, 1), ("min_cycles", min_cycles, 2)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not lo <= v <= 1000:
-            raise ParameterError(f"{name} must be a whole number in [{lo}, 1000], got {v!r}")
-    tol = check_positive("cycle_tol", cycle_tol, upper=1.0)
-    return int(cycles), int(min_cycles), tol
+    n = check_whole("cycles", cycles, 1, 1000)
+    least = check_whole("min_cycles", min_cycles, 2, 1000)
+    return n, least, check_positive("cycle_tol", cycle_tol, upper=1.0)
 
 
 def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: int,

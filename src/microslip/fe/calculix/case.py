@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ...conventions import DEFAULT_MESH
 from ...errors import MacroslipError, ParameterError
 from ...loading import LOAD_CASES, PERIOD, PERIODS, PaperSine, load_case
 from ...params import ClampParams, check_amplitude, check_positive, preset
@@ -77,7 +78,7 @@ class FECase:
     model: str
     params: ClampParams = field(default_factory=lambda: preset("table1"))
     amplitude: float = 267.0
-    mesh: MeshSpec | str = "coarse"
+    mesh: MeshSpec | str = DEFAULT_MESH
     stick_slope: float = DEFAULT_STICK_SLOPE
     normal_slope: float = DEFAULT_NORMAL_SLOPE
     substeps: int = 50

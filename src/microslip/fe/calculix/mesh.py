@@ -21,6 +21,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from ...conventions import DEFAULT_MESH
 from ...errors import ParameterError
 from ...meshlevels import is_graded, level_axes, level_counts
 from ...params import ClampParams, preset
@@ -249,7 +250,7 @@ def _lattice(corners: FloatArray) -> FloatArray:
     return out
 
 
-def bar_mesh(params: ClampParams, spec: MeshSpec | str = "coarse") -> BarMesh:
+def bar_mesh(params: ClampParams, spec: MeshSpec | str = DEFAULT_MESH) -> BarMesh:
     """Mesh the bar of ``params`` (L, w, t) on its base.
 
     Examples

@@ -1,0 +1,140 @@
+"""Names, defaults and checks shared by the library, the case files and the command line.
+
+One home for each: a name list, a default or a value check used in more than one place is
+defined here once and imported everywhere else (the registries that give the names their
+meaning import the names from here, so no copy can drift). This module stands on the bottom
+floor beside :mod:`microslip.errors` and :mod:`microslip.params`: it imports only the
+standard library and :mod:`microslip.errors`.
+
+Units: N, mm, MPa, N/mm^3.
+
+>>> check_choice("pairing", "spatial", PAIRINGS)
+'spatial'
+>>> check_whole("cycles", 0, 1, 1000)
+Traceback (most recent call last):
+...
+microslip.errors.ParameterError: cycles must be a whole number in [1, 1000], got 0
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Iterable
+from typing import Any
+
+from .errors import ParameterError
+
+__all__ = [
+    "CLAMP_MODELS",
+    "COUPLINGS",
+    "DEFAULT_COUPLING",
+    "DEFAULT_ELEMENTS",
+    "DEFAULT_MESH",
+    "DEFAULT_STICK_SLOPE",
+    "JOINT_MODELS",
+    "PAIRINGS",
+    "TRANSVERSE",
+    "check_choice",
+    "check_positive",
+    "check_whole",
+]
+
+#: The clamp's two 1-D models and load cases, the paper's tip and centre models (Eqs 2-10,
+#: Eqs 11-18): the keys of :data:`microslip.models.MODELS`, the force components of a planar
+#: load path, the loads of an FE backbone, the clamp joints of a structure.
+CLAMP_MODELS: tuple[str, ...] = ("tip", "centre")
+
+#: Joint models of a structure (``--joint``, ``[[joint]] model``): one spring-slider,
+#: Segalman's Iwan, or a clamp model behind a series spring.
+JOINT_MODELS: tuple[str, ...] = ("jenkins", "iwan", *CLAMP_MODELS)
+
+#: Couplings of a two-directional joint, the keys of
+#: :data:`microslip.dynamics.operators2d.COUPLINGS`: one circular Coulomb limit, or the
+#: paper's decoupled sum of two independent directions.
+COUPLINGS: tuple[str, ...] = ("circular", "decoupled")
+
+#: Coupling of a two-directional joint unless one is given.
+DEFAULT_COUPLING = "circular"
+
+#: How the elements along and across a two-directional clamp joint are matched, the keys of
+#: :data:`microslip.dynamics.operators2d.PAIRINGS`: by slip order, or by position on the bar.
+PAIRINGS: tuple[str, ...] = ("ordered", "spatial")
+
+#: What a two-directional tip or centre joint may be across (its second direction), the keys
+#: of :data:`microslip.dynamics.spec.TRANSVERSE`: the clamp's other 1-D model, or the built-in
+#: FE's first loading of the centre force across the bar.
+TRANSVERSE: tuple[str, ...] = (*CLAMP_MODELS, "fe")
+
+#: Jenkins elements of an Iwan, tip or centre joint unless given (``--elements``).
+DEFAULT_ELEMENTS = 200
+
+#: Mesh of the finite-element models unless one is given (:mod:`microslip.meshlevels`).
+DEFAULT_MESH = "coarse"
+
+#: Stick slope lambda of the penalty friction law, N/mm^3 (the shear traction per unit of
+#: elastic slip before gross slip). 1e4 is within about 0.1 % of the rigid-stick limit on the
+#: Table 1 bar (docs/validation.md, stick-slope study; docs/solver.md).
+DEFAULT_STICK_SLOPE = 1.0e4
+
+
+def _u(unit: str) -> str:
+    return f" ({unit})" if unit else ""
+
+
+def check_choice(what: str, value: Any, names: Iterable[str]) -> str:
+    """``value`` if it is one of ``names`` (a registry's keys), else an error listing them.
+
+    >>> check_choice("strain-energy definition", "chord", ("secant", "branch"))
+    Traceback (most recent call last):
+    ...
+    microslip.errors.ParameterError: unknown strain-energy definition 'chord'; choose one of \
+secant, branch
+    """
+    valid = tuple(names)
+    if not isinstance(value, str) or value not in valid:
+        raise ParameterError(f"unknown {what} {value!r}; choose one of {', '.join(valid)}")
+    return value
+
+
+def check_positive(name: str, value: Any, unit: str = "", *, upper: float = math.inf,
+                   inclusive_upper: bool = False) -> float:
+    """Return ``value`` as a float if it is finite and in ``(0, upper)``, else raise.
+
+    >>> check_positive("mu", 0.8)
+    0.8
+    >>> check_positive("mu", -0.2)
+    Traceback (most recent call last):
+    ...
+    microslip.errors.ParameterError: mu must be > 0, got -0.2
+    """
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number > 0{_u(unit)}, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ParameterError(f"{name} must be finite and > 0{_u(unit)}, got {value!r}")
+    if x <= 0.0:
+        raise ParameterError(f"{name} must be > 0{_u(unit)}, got {value!r}")
+    if x > upper or (x == upper and not inclusive_upper):
+        rel = "<=" if inclusive_upper else "<"
+        raise ParameterError(f"{name} must be {rel} {upper:g}{_u(unit)}, got {value!r}")
+    return x
+
+
+def check_whole(name: str, value: Any, low: int, high: float = math.inf) -> int:
+    """Return ``value`` as an int if it is a whole number (not a bool, not a float) in
+    ``[low, high]``, else raise; ``high = inf`` states the bound as ``>= low``.
+
+    >>> check_whole("tip_symmetry", 2, 1)
+    2
+    >>> check_whole("tip_symmetry", 0, 1)
+    Traceback (most recent call last):
+    ...
+    microslip.errors.ParameterError: tip_symmetry must be a whole number >= 1, got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+            or not low <= int(value) <= high:
+        rng = f">= {low}" if high == math.inf else f"in [{low}, {int(high)}]"
+        raise ParameterError(f"{name} must be a whole number {rng}, got {value!r}")
+    return int(value)
