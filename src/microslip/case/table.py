@@ -19,6 +19,7 @@ import argparse
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from ..conventions import (
@@ -78,6 +79,25 @@ def mesh_level(text: str) -> str:
         return text
     raise argparse.ArgumentTypeError(
         f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
+
+
+def mesh_or_file(text: str) -> str:
+    """argparse type of ``fe --mesh``: a mesh level, ``NXxNYxNZ``, or a mesh file that exists
+    (``.inp`` or a format meshio reads: :mod:`microslip.fe.meshfile`)."""
+    if is_mesh_spec(text):
+        return text
+    if Path(text).is_file():
+        return text
+    raise argparse.ArgumentTypeError(
+        f"unknown mesh {text!r}: neither a level ({', '.join(LEVELS)}), NXxNYxNZ, nor an "
+        "existing mesh file (.inp, .msh, .vtu, ...)")
+
+
+def set_name(text: str) -> str:
+    """argparse type: a non-empty set name of a mesh file."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("a set name must not be empty")
+    return text
 
 
 # --- case-value checks ---------------------------------------------------------------------
@@ -286,6 +306,13 @@ _OPTIONS: tuple[Option, ...] = (
     # the finite-element model
     Option("mesh", MESH_HELP, "", f"{' | '.join(LEVELS)} | NXxNYxNZ", type=mesh_level,
            metavar="LEVEL"),
+    # the user's own mesh (fe --mesh FILE)
+    Option("contact_set", "set of the mesh on the rigid base (node set or element-face "
+           "surface)", "", "a set name of the mesh file", type=set_name, metavar="NAME",
+           key="mesh.contact_set", check=text),
+    Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area", "",
+           "a set name of the mesh file", type=set_name, metavar="NAME", key="mesh.clamp_set",
+           check=text),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

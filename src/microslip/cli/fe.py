@@ -15,8 +15,9 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
-from ..case.table import add_option, add_solver
+from ..case.table import add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
+from ..errors import ParameterError
 from ..fe import SOLVERS
 from ..fe.builtin.normal import NORMAL_CONTACTS
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
@@ -30,6 +31,7 @@ from .common import (
     print_json,
 )
 from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
+from .ownmesh import add_own_mesh_options, is_mesh_file, refuse_mesh_options, run_own_mesh
 
 __all__ = ["add_parser", "run"]
 
@@ -43,13 +45,16 @@ def add_parser(sub: Any) -> None:
         "substeps), run it, and report the loop, W_d, U and eta. The built-in solver "
         "(default) needs nothing else; --solver calculix needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
-    p.add_argument("--model", choices=list(LOAD_CASES), required=True,
-                   help="; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
+    p.add_argument("--model", choices=list(LOAD_CASES),
+                   help="the box's load case (required unless --mesh is a file): "
+                   + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
     add_params(p, default_preset="table1")
     add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
                             "step (docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
-    add_option(g, "mesh", default=DEFAULT_MESH)
+    add_option(g, "mesh", default=DEFAULT_MESH, type=mesh_or_file, metavar="LEVEL|FILE",
+               note="or a mesh file of your own clamp (.inp, .msh, .vtu, ...; hexahedra with "
+               "named sets): then give --contact-set, --clamp-set and --load (docs/ownmesh.md)")
     add_option(g, "stick_slope", default=DEFAULT_STICK_SLOPE)
     g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
                    metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
@@ -71,6 +76,7 @@ def add_parser(sub: Any) -> None:
                         "(C3D8I, default) or plain (C3D8)")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="equal substeps over t = 0..1.25 s, a multiple of 5 (default 50)")
+    add_own_mesh_options(p)
     s = p.add_argument_group("solver")
     add_solver(s, "fe", list(SOLVERS))
     s.add_argument("--timeout", type=number, metavar="S",
@@ -91,6 +97,12 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if is_mesh_file(args.mesh):
+        return run_own_mesh(args)
+    refuse_mesh_options(args)
+    if args.model is None:
+        raise ParameterError("give --model tip|centre (the box's load case), or --mesh FILE "
+                             "with its sets and loads")
     inputs = fe_inputs(vars(args), 1.0 if args.displacement_amplitude else None)
     check_output_dir(args.out)
     forced = fe_displacement_force(args, inputs.model, inputs.params,

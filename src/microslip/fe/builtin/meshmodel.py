@@ -441,21 +441,27 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
     kc = lam * area
     springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
-    with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
-        backend = _backend(linear_solver, k_ff, cdofs, kc,
-                           None if springs is None else springs.stiffness)
+    try:
+        with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
+            backend = _backend(linear_solver, k_ff, cdofs, kc,
+                               None if springs is None else springs.stiffness)
 
-    # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
-    k_mesh, k_share, _ = face_load(mesh, clamp_faces)
-    push = -(rotation @ clamp_out)
-    full = np.zeros(n_all)
-    base = 3 * inv[k_mesh]
-    for c in range(3):
-        full[base + c] = f_n * k_share * push[c]
-    clamp = full[free]
-    clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
-    normal, limit, u, resp, iters = clamping_step(
-        k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+        # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
+        k_mesh, k_share, _ = face_load(mesh, clamp_faces)
+        push = -(rotation @ clamp_out)
+        full = np.zeros(n_all)
+        base = 3 * inv[k_mesh]
+        for c in range(3):
+            full[base + c] = f_n * k_share * push[c]
+        clamp = full[free]
+        clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+        normal, limit, u, resp, iters = clamping_step(
+            k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+    except (np.linalg.LinAlgError, RuntimeError) as err:
+        raise ParameterError(
+            f"{mesh.source}: the body is not held after clamping (its stiffness is "
+            f"singular: {err}); the contact set {contact_set!r} must be the face on the "
+            f"base and the clamp set {clamp_set!r} must press the body onto it") from None
     n_keep = contact.size * (3 if penalty else 2)
     if condensed is None:
         condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size

@@ -1,0 +1,178 @@
+"""``microslip fe --mesh FILE``: the built-in frictional FE (or CalculiX) on the user's own mesh.
+
+Parses and prints; the run is :func:`microslip.fe.ownmesh.run_own_mesh`. The box's options
+(``--model``, the clamped zone's geometry, ``--pressure-law``, ...) are refused with a mesh
+file, and the mesh file's options (``--contact-set``, ``--load``, ...) without one.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+from ..case.table import add_option, number
+from ..errors import ParameterError
+from .common import check_output_dir, check_plot, print_json
+
+__all__ = ["add_own_mesh_options", "is_mesh_file", "refuse_mesh_options", "run_own_mesh"]
+
+#: Options of a mesh file only (destinations).
+MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_cycles",
+             "cycles", "plot")
+#: Options of the built-in box only: refused with a mesh file.
+BOX_ONLY = ("model", "preset", "length", "width", "thickness", "amplitude",
+            "displacement_amplitude", "pressure_law", "clamping_csv", "element", "reuse",
+            "strain_energy")
+#: Clamp values a mesh run needs (the mesh gives the geometry): destination -> flag.
+REQUIRED = {"normal_force": "--normal-force N", "friction": "--friction X",
+            "modulus": "--modulus MPA", "poisson_ratio": "--poisson-ratio X"}
+
+
+def is_mesh_file(mesh: str) -> bool:
+    """Whether ``--mesh`` names a file (not a level or NXxNYxNZ)."""
+    from ..meshlevels import is_mesh_spec
+
+    return not is_mesh_spec(mesh)
+
+
+def add_own_mesh_options(p: argparse.ArgumentParser) -> None:
+    from ..fe.ownmesh import HISTORIES
+
+    g = p.add_argument_group("your own mesh (--mesh FILE; docs/ownmesh.md)")
+    add_option(g, "contact_set")
+    add_option(g, "clamp_set")
+    g.add_argument("--load", action="append", metavar="SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]",
+                   help="a load F(t) = A sin(2 pi t + phase) on a set, as a uniform traction "
+                        "of total force A (N) along (DX, DY, DZ); repeat for several loads "
+                        "(planar: two loads at 90 degrees)")
+    g.add_argument("--history", choices=list(HISTORIES), default=None,
+                   help="; ".join(f"{k}: {v}" for k, v in HISTORIES.items())
+                   + " (default settle)")
+    g.add_argument("--settle-tol", type=number, default=None, metavar="X",
+                   help="builtin: relative change of W per cycle that counts as settled "
+                        "(default 1e-3)")
+    g.add_argument("--max-cycles", type=int, default=None, metavar="N",
+                   help="builtin: at most N cycles before W settles (default 10)")
+    g.add_argument("--cycles", type=int, default=None, metavar="N",
+                   help="calculix: cycles to run (default 3; compare cycle_work_Nmm)")
+    g.add_argument("--plot", metavar="FILE.png",
+                   help="draw each load's loop over the settled cycle")
+
+
+def _verb(flags: list[str]) -> str:
+    return "apply" if len(flags) > 1 else "applies"
+
+
+def _given(args: argparse.Namespace, dest: str) -> bool:
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
+    return dest in given
+
+
+def refuse_mesh_options(args: argparse.Namespace) -> None:
+    """The box's run: a mesh file's option given on the command line is refused."""
+    bad = [f"--{d.replace('_', '-')}" for d in MESH_ONLY if _given(args, d)]
+    if bad:
+        raise ParameterError(f"{', '.join(bad)} {_verb(bad)} to --mesh FILE only (a mesh of your "
+                             f"own), not to the box --mesh {args.mesh}; remove them")
+
+
+def _case(args: argparse.Namespace) -> Any:
+    from ..fe.meshload import MeshLoad
+    from ..fe.ownmesh import OwnMeshCase
+
+    bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if _given(args, d)]
+    if bad:
+        raise ParameterError(f"{', '.join(bad)} {_verb(bad)} to the box (--mesh LEVEL) only; with "
+                             f"--mesh {args.mesh} the mesh gives the geometry and --load the "
+                             "loads")
+    missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
+    for dest in ("contact_set", "clamp_set"):
+        if getattr(args, dest, None) is None:
+            missing.insert(0, f"--{dest.replace('_', '-')} NAME")
+    if not args.load:
+        missing.append("--load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
+    if missing:
+        raise ParameterError(f"--mesh {args.mesh} needs {', '.join(missing)}")
+    if args.solver == "builtin" and args.cycles is not None:
+        raise ParameterError("--cycles applies to --solver calculix (the built-in solver runs "
+                             "until W settles: --settle-tol, --max-cycles)")
+    if args.solver == "calculix":
+        for dest in ("settle_tol", "max_cycles"):
+            if getattr(args, dest) is not None:
+                raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver builtin "
+                                     "(CalculiX runs --cycles cycles)")
+    normal = args.normal_contact or ("penalty" if args.solver == "calculix" else "fixed")
+    if normal == "fixed" and _given(args, "normal_slope"):
+        raise ParameterError("--normal-slope needs --normal-contact penalty (the fixed normal "
+                             "contact has no normal stiffness)")
+    extra: dict[str, Any] = {}
+    if args.solver == "calculix":
+        extra = {"options": {k: v for k, v in (("timeout", args.timeout),
+                                               ("threads", args.threads)) if v is not None}}
+    elif _given(args, "timeout") or _given(args, "threads"):
+        raise ParameterError("--timeout and --threads apply to --solver calculix")
+    return OwnMeshCase(
+        args.mesh, args.contact_set, args.clamp_set, float(args.normal_force),
+        tuple(MeshLoad.parse(s) for s in args.load), float(args.friction),
+        float(args.modulus), float(args.poisson_ratio), stick_slope=float(args.stick_slope),
+        normal_contact=normal, normal_slope=float(args.normal_slope),
+        substeps=args.substeps, history=args.history or "settle",
+        tol=1e-3 if args.settle_tol is None else args.settle_tol,
+        max_cycles=10 if args.max_cycles is None else args.max_cycles,
+        cycles=3 if args.cycles is None else args.cycles, **extra)
+
+
+def run_own_mesh(args: argparse.Namespace) -> int:
+    from ..fe.ownmesh import loops_of
+    from ..fe.ownmesh import run_own_mesh as run
+
+    case = _case(args)
+    check_output_dir(args.out)
+    check_plot(args.plot)
+    done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)
+    out = {**done.summary, "clamp_portion": "whole",
+           "options": {"normal_contact": case.normal_contact,
+                       "stick_slope_N_per_mm3": case.stick_slope,
+                       "normal_slope_N_per_mm3": case.normal_slope
+                       if case.normal_contact == "penalty" else None,
+                       "friction": case.friction, "normal_force_N": case.normal_force,
+                       "modulus_MPa": case.modulus, "poisson_ratio": case.poisson_ratio,
+                       "substeps": case.substeps, "increments_per_cycle": case.increments,
+                       "history": case.history}}
+    if args.plot:
+        from ..plot.ownmesh import plot_mesh_loops
+
+        works = [ld["work_Nmm"] for ld in out["loads"]]
+        plot_mesh_loops(loops_of(done), works, args.plot, title=f"{args.mesh}, {args.solver}")
+        out.setdefault("files", []).append(args.plot)
+    for warning in out.get("warnings", []):
+        print(f"warning: {warning}", file=sys.stderr)
+    status = 0 if out.get("converged", True) else 1
+    if args.json:
+        print_json(out)
+        return status
+    _print_text(args, out)
+    return status
+
+
+def _print_text(args: argparse.Namespace, out: dict[str, Any]) -> None:
+    o = out["options"]
+    print(f"mesh {out['mesh']} ({out['nodes']} nodes, {out['elements']} elements, "
+          f"{out['dof']} DOF), {args.solver} solver ({out['element']}), {o['normal_contact']} "
+          f"normal contact, stick slope {o['stick_slope_N_per_mm3']:g} N/mm^3")
+    for k, ld in enumerate(out["loads"], 1):
+        d = ", ".join(f"{x:g}" for x in ld["direction"])
+        print(f"  load {k} on {ld['set']:<10s} A {ld['amplitude_N']:g} N along ({d}), phase "
+              f"{ld['phase_deg']:g} deg: work {ld['work_Nmm']:.6g} N·mm, peak displacement "
+              f"{ld['peak_displacement_mm']:.6g} mm")
+    print(f"  dissipated energy W    {out['dissipated_energy_Nmm']:12.6g} N·mm  (work of all "
+          "loads over the settled cycle; the whole clamp)")
+    print(f"  peak displacement      {out['peak_displacement_mm']:12.6g} mm  (load 1, half "
+          "peak-to-peak)")
+    print(f"  cycles                 {out['cycles']:12d}")
+    print(f"  wall time              {out['wall_s']:12.3g} s")
+    print(f"  {out['message']}")
+    for f in out.get("files", []):
+        if str(f).endswith((".pvd", ".json", ".png", ".pdf", ".svg")):
+            print(f"  file                   {f}")
