@@ -9,7 +9,7 @@ import pytest
 
 from microslip.case.options import CASE_OPTIONS
 from microslip.case.schema import JOINT_KEYS, KEYS
-from microslip.case.table import OPTIONS, SOLVERS, mesh_level, number
+from microslip.case.table import OPTIONS, SOLVERS, mesh_level, mesh_or_file, number
 from microslip.cli.main import build_parser, main
 
 
@@ -35,8 +35,11 @@ def test_every_case_key_of_an_option_is_built_from_it():
         if opt.key is not None:
             key = by_dotted[opt.key]
             assert key.check is opt.check and key.unit == opt.unit and key.range == opt.range
-            assert key.meaning.startswith(opt.help) and f"(as {opt.flag})" in key.meaning
-            assert CASE_OPTIONS[opt.key] == (opt.name, opt.scope)
+            # the mesh file of a case is fe's --mesh FILE (--mesh also takes a box level)
+            flag, dest = (("fe --mesh FILE", "mesh") if opt.key == "mesh.file"
+                          else (opt.flag, opt.name))
+            assert key.meaning.startswith(opt.help) and f"(as {flag})" in key.meaning
+            assert CASE_OPTIONS[opt.key] == (dest, opt.scope)
         if opt.joint_key is not None:
             (key,) = [k for k in JOINT_KEYS if k.name == opt.joint_key]
             assert key.check is opt.check and key.range == opt.range
@@ -71,6 +74,8 @@ def test_stick_slope_is_one_option_on_five_commands():
 def test_mesh_is_checked_the_same_on_every_command_that_takes_it():
     found = actions("--mesh")
     assert {"fe", "planar", "sweep", "report", "validate"} <= set(found)
+    # fe's --mesh takes a mesh file of the user's own too; every other command a level
+    assert found.pop("fe").type is mesh_or_file
     assert {a.type for a in found.values()} == {mesh_level}
     assert actions("--fe-mesh")["modal"].type is mesh_level
 

@@ -17,6 +17,7 @@ from types import MappingProxyType
 from typing import Any
 
 from ..errors import ParameterError
+from ..fe.meshload import MeshLoad
 from ..named import result
 from ..params import PRESETS, ClampParams
 from .joints import JointSpec, parse_joints
@@ -40,7 +41,8 @@ class Case:
     ``values`` holds every key the file sets, by dotted name, validated; the seven clamp
     values are filled in from ``preset`` where the file does not set them. ``params`` is the
     clamp when it is complete (a preset, or all seven values), else None. ``joints`` are the
-    ``[[joint]]`` tables of a structure (:mod:`.joints`; empty if the file has none).
+    ``[[joint]]`` tables of a structure (:mod:`.joints`; empty if the file has none);
+    ``mesh_loads`` the ``[[load]]`` tables of a mesh of the user's own ([mesh] file).
     """
 
     source: str | None
@@ -48,6 +50,7 @@ class Case:
     params: ClampParams | None
     warnings: tuple[str, ...]
     joints: tuple[JointSpec, ...] = ()
+    mesh_loads: tuple[MeshLoad, ...] = ()
 
     @property
     def name(self) -> str:
@@ -116,6 +119,8 @@ def _clamp(values: dict[str, Any]) -> ClampParams | None:
     if not given:
         return None
     missing = [k for k in CLAMP_KEYS if k not in values]
+    if missing and "mesh.file" in values:
+        return None  # a mesh of the user's own: the mesh gives the geometry
     if missing:
         raise ParameterError(f"case gives {', '.join(given)} but not {', '.join(missing)}: "
                              "give preset = \"...\" as the base or all seven values")
@@ -128,9 +133,13 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
     try:
         table = dict(table)
         joint_tables = table.pop("joint", None)
+        load_tables = table.pop("load") if isinstance(table.get("load"), list) else None
         values = _flatten(table)
         if "structure.file" in values:
             values["structure.file"] = _beside(source, values["structure.file"])
+        if "mesh.file" in values:
+            values["mesh.file"] = _beside(source, values["mesh.file"])
+        mesh_loads = () if load_tables is None else _mesh_loads(load_tables)
         _exclusive(values, "load.amplitude", "load.amplitude_fraction")
         _exclusive(values, "load.planar.ratio", "load.planar.tip_amplitude")
         _exclusive(values, "load.planar.ratio", "load.planar.centre_amplitude")
@@ -144,7 +153,42 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
                                                   f"{where}joint {j.number}: ")
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
-    return Case(source, MappingProxyType(values), params, tuple(warnings), joints)
+    return Case(source, MappingProxyType(values), params, tuple(warnings), joints, mesh_loads)
+
+
+#: Keys of a ``[[load]]`` table (a load on a set of the user's mesh) and their defaults.
+LOAD_TABLE_KEYS = {"set": None, "direction": None, "amplitude": None, "phase_deg": 0.0}
+
+
+def _mesh_loads(tables: list[Any]) -> tuple[MeshLoad, ...]:
+    """The ``[[load]]`` tables: set, direction = [DX, DY, DZ], amplitude (N), phase_deg."""
+    out = []
+    for k, t in enumerate(tables, 1):
+        where = f"load {k}"
+        if not isinstance(t, dict):
+            raise ParameterError(f"{where}: a [[load]] entry must be a table")
+        unknown = [key for key in t if key not in LOAD_TABLE_KEYS]
+        if unknown:
+            hint = difflib.get_close_matches(unknown[0], list(LOAD_TABLE_KEYS), n=1)
+            raise ParameterError(f"{where}: unknown key {unknown[0]}"
+                                 + (f"; did you mean {hint[0]}?" if hint else
+                                    f"; valid keys: {', '.join(LOAD_TABLE_KEYS)}"))
+        missing = [key for key, d in LOAD_TABLE_KEYS.items() if d is None and key not in t]
+        if missing:
+            raise ParameterError(f"{where}: give {', '.join(missing)}")
+        d = t["direction"]
+        if not (isinstance(d, list) and len(d) == 3 and all(
+                isinstance(x, (int, float)) and not isinstance(x, bool) for x in d)):
+            raise ParameterError(f"{where}: direction must be [DX, DY, DZ], got {d!r}")
+        amplitude, phase = t["amplitude"], t.get("phase_deg", 0.0)
+        for name, value in (("amplitude", amplitude), ("phase_deg", phase)):
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ParameterError(f"{where}: {name} must be a number, got {value!r}")
+        if not isinstance(t["set"], str):
+            raise ParameterError(f"{where}: set must be a string, got {t['set']!r}")
+        out.append(MeshLoad(t["set"], (float(d[0]), float(d[1]), float(d[2])),
+                            float(amplitude), float(phase)))
+    return tuple(out)
 
 
 def _beside(source: str | None, path: str) -> str:

@@ -30,6 +30,9 @@ __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "p
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
 
+#: Commands that read a mesh of the user's own ([mesh] and [[load]] tables).
+MESH_COMMANDS = ("fe",)
+
 #: Commands of a structure: they read [structure] and [[joint]], and no load case (their
 #: excitation is --force).
 STRUCTURE_COMMANDS = ("modal", "frf")
@@ -120,9 +123,11 @@ def _complete(sub: argparse.ArgumentParser, args: argparse.Namespace,
 
 
 def _reads(command: str, scope: str) -> bool:
-    """True if ``command`` reads keys of ``scope`` ("all", "load" or "planar")."""
+    """True if ``command`` reads keys of ``scope`` ("all", "load", "planar" or "mesh")."""
     if scope == "all":
         return True
+    if scope == "mesh":
+        return command in MESH_COMMANDS
     if scope == "planar":
         return command in PLANAR_COMMANDS
     return command not in PLANAR_COMMANDS and command not in STRUCTURE_COMMANDS
@@ -149,6 +154,8 @@ def unread(case: Case, command: str, dests: Collection[str]) -> tuple[str, ...]:
             out.append(name)
     if case.joints and command not in STRUCTURE_COMMANDS:
         out.append("[[joint]]")
+    if case.mesh_loads and command not in MESH_COMMANDS:
+        out.append("[[load]]")
     return tuple(out)
 
 
@@ -183,6 +190,8 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
     """The subcommand defaults a case gives; keys the command does not read are skipped
     (:func:`unread` names them)."""
     out: dict[str, Any] = _structure_case(case, command, explicit)
+    if case.mesh_loads and command in MESH_COMMANDS and "load" not in explicit:
+        out["load"] = [ld.spec() for ld in case.mesh_loads]
     for key, (dest, scope) in CASE_OPTIONS.items():
         if key not in case.values or not _reads(command, scope) or dest not in dests:
             continue
@@ -200,6 +209,8 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
 
 
 def _resolve_amplitude(args: argparse.Namespace, case: Case, explicit: dict[str, Any]) -> None:
+    if args.command in MESH_COMMANDS and case.mesh_loads:
+        return  # the [[load]] tables are the loads of the mesh
     if (not hasattr(args, "amplitude") or "amplitude" in explicit
             or args.command in STRUCTURE_COMMANDS
             or "displacement_amplitude" in explicit or _amplitude_swept(explicit)):

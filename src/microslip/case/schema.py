@@ -123,11 +123,13 @@ SECTIONS = {
     "load": "uniaxial load case (read by loop, fe, sweep, validate)",
     "load.planar": "planar load case (read by planar)",
     "structure": "a structure from a file with its joints (read by modal and frf)",
+    "mesh": "a mesh of your own clamp, its sets, and [[load]] tables (read by fe)",
 }
 
 def _meaning(opt: Option) -> str:
     note = f"; {opt.case_note}" if opt.case_note else ""
-    return f"{opt.help}{note} (as {opt.flag})"
+    flag = "fe --mesh FILE" if opt.key == "mesh.file" else opt.flag
+    return f"{opt.help}{note} (as {flag})"
 
 
 def _key(section: str, name: str, opt: Option) -> Key:

@@ -222,8 +222,8 @@ class Option:
     check : callable or None
         Check of a case value (``check(dotted_key, value) -> value``).
     scope : str
-        Which commands read ``key``: ``all``, ``load`` (the uniaxial load case) or
-        ``planar`` (the planar one).
+        Which commands read ``key``: ``all``, ``load`` (the uniaxial load case), ``planar``
+        (the planar one) or ``mesh`` (a mesh of the user's own: ``fe``).
     case_default : object
         The default a case file documents for ``key`` (None: none).
     case_note : str
@@ -307,12 +307,17 @@ _OPTIONS: tuple[Option, ...] = (
     Option("mesh", MESH_HELP, "", f"{' | '.join(LEVELS)} | NXxNYxNZ", type=mesh_level,
            metavar="LEVEL"),
     # the user's own mesh (fe --mesh FILE)
+    Option("mesh_file", "a mesh of your own clamp: .inp, .msh, .vtu, ...; hexahedra with "
+           "named sets", "", "path", type=None, metavar="FILE",
+           key="mesh.file", check=text, scope="mesh", case_note="relative to the case file; "
+           "its loads are [[load]] tables: set, direction = [DX, DY, DZ], amplitude (N), "
+           "phase_deg"),
     Option("contact_set", "set of the mesh on the rigid base (node set or element-face "
            "surface)", "", "a set name of the mesh file", type=set_name, metavar="NAME",
-           key="mesh.contact_set", check=text),
+           key="mesh.contact_set", check=text, scope="mesh"),
     Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area", "",
            "a set name of the mesh file", type=set_name, metavar="NAME", key="mesh.clamp_set",
-           check=text),
+           check=text, scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",
@@ -363,6 +368,7 @@ OPTIONS: dict[str, Option] = {o.name: o for o in _OPTIONS}
 CASE_DESTS: dict[str, tuple[str, str]] = {
     **{o.key: (o.name, o.scope) for o in _OPTIONS if o.key is not None},
     "load.amplitude_fraction": ("amplitude", "load"),
+    "mesh.file": ("mesh", "mesh"),  # the mesh file is fe's --mesh FILE
 }
 
 #: What ``--solver`` means, per command: its choices and their meaning (the default first).

@@ -91,8 +91,13 @@ def spec_from_args(args: argparse.Namespace) -> JointSpec:
     """The joint specification the options describe (as a ``[[joint]]`` table gives it);
     options of another joint are refused."""
     uses = JOINTS[args.joint]
+    # with --case, a value the case file gives but this joint does not use is not an error
+    # (the case describes the clamp for every command); only options given here are
+    given = getattr(args, "given_options", None)
+    from_case = getattr(args, "case", None) is not None and given is not None
     extra = [flag for dest, flag in _FLAGS.items()
-             if dest not in uses and getattr(args, dest, None) is not None]
+             if dest not in uses and getattr(args, dest, None) is not None
+             and (not from_case or dest in given)]
     if args.joint not in MODELS and getattr(args, "case", None) is None:
         extra += [flag for dest, default, flag in getattr(args, "clamp_options", ())
                   if getattr(args, dest, default) != default]

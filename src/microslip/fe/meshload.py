@@ -72,6 +72,15 @@ class MeshLoad:
                                  f"{parts[1]!r}")
         return cls(parts[0], (direction[0], direction[1], direction[2]), amplitude, phase)
 
+    def spec(self) -> str:
+        """The load as ``--load`` takes it (:meth:`parse` gives it back).
+
+        >>> MeshLoad.parse(MeshLoad("tip", (0.0, 2.0, 0.0), 5.0, 90.0).spec())
+        MeshLoad(set='tip', direction=(0.0, 1.0, 0.0), amplitude=5.0, phase_deg=90.0)
+        """
+        d = ",".join(repr(x) for x in self.direction)
+        return f"{self.set}:{d}:{self.amplitude!r}:{self.phase_deg!r}"
+
     def force(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """The load's magnitude A sin(2 pi t + phi) at times t (cycles), N."""
         return self.amplitude * np.sin(2 * np.pi * np.asarray(t, dtype=float)
