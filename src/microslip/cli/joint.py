@@ -93,8 +93,8 @@ def spec_from_args(args: argparse.Namespace) -> JointSpec:
     uses = JOINTS[args.joint]
     # with --case, a value the case file gives but this joint does not use is not an error
     # (the case describes the clamp for every command); only options given here are
-    given = getattr(args, "given_options", None)
-    from_case = getattr(args, "case", None) is not None and given is not None
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
+    from_case = getattr(args, "case", None) is not None and hasattr(args, "given_options")
     extra = [flag for dest, flag in _FLAGS.items()
              if dest not in uses and getattr(args, dest, None) is not None
              and (not from_case or dest in given)]

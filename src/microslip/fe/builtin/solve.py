@@ -213,9 +213,15 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
         new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
         if springs is None and clamp_fixed is not None:
             new_normal = new_normal - clamp_fixed
-        if np.any(new_normal <= 0.0):
-            raise ParameterError("the clamping step gave a non-positive normal force at a "
-                                 "contact node; refine the mesh through the thickness")
+        # penalty normal contact: a node may lift off (N_i = 0); fixed: N_i must be > 0
+        bad = new_normal <= 0.0 if springs is None else np.array([np.all(new_normal <= 0.0)])
+        if np.any(bad):
+            raise ParameterError(
+                f"the clamping step gave a non-positive normal force at {int(bad.sum())} of "
+                f"{n_c} contact nodes (the clamp pulls them off the base); use the penalty "
+                "normal contact, which lets them lift off, or refine the mesh through the "
+                "thickness" if springs is None else
+                "the clamping step left no contact node pressed onto the base")
         change = float(np.max(np.abs(new_normal - normal)))
         normal = new_normal
         limit_new = friction * normal
