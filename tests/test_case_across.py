@@ -16,8 +16,8 @@ import sys
 
 import numpy as np
 import pytest
+from conftest import run, run_json
 from scipy.linalg import eigh
-from test_case_joints import run, run_json  # the case-joint tests' one CLI runner
 
 from microslip import preset
 from microslip.case import parse_case

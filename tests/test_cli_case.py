@@ -6,10 +6,10 @@ import csv
 import json
 
 import pytest
+from conftest import run
 
 from microslip import preset
 from microslip.case import template
-from microslip.cli.main import main
 
 TITANIUM_TOML = """\
 name = "titanium clamp"
@@ -28,12 +28,6 @@ normal_force = 12000
 
 TITANIUM = {"length": 30.0, "width": 12.0, "thickness": 8.0, "modulus": 114000.0,
             "poisson_ratio": 0.34, "friction": 0.5, "normal_force": 12000.0}
-
-
-def run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def one_line_error(code: int, out: str, err: str, *words: str) -> None:

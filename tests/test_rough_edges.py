@@ -10,29 +10,11 @@ import json
 import os
 
 import pytest
+from conftest import listing, one_line_error, run
 
 from microslip.cli.main import main
 from microslip.errors import ParameterError
 from microslip.io import check_writable, staged_directory
-
-
-def run(capsys, *argv: object) -> tuple[int, str, str]:
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(result: tuple[int, str, str], *words: str) -> None:
-    code, _, err = result
-    assert code == 1, err
-    assert err.startswith("error: ") and err.count("\n") == 1 and "Traceback" not in err
-    for word in words:
-        assert word in err
-
-
-def listing(path) -> list[str]:
-    return sorted(str(p.relative_to(path)) for p in path.rglob("*"))
-
 
 # --- unwritable outputs: refused before the work, nothing left behind -----------------------
 
