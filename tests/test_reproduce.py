@@ -1,16 +1,14 @@
-"""``microslip reproduce`` and ``microslip planar``: files, CSV contents, claims agree with CSVs."""
+"""``microslip reproduce``: files, CSV contents, claims agree with CSVs."""
 
 from __future__ import annotations
 
-import json
 import math
-import re
 from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
 
-from microslip import ModelOptions, planar, preset, reproduce
+from microslip import planar, reproduce
 from microslip.cli.main import main
 from microslip.errors import MicroslipError
 from microslip.planar import PAPER_RATIOS
@@ -180,53 +178,6 @@ def test_fe_missing_is_reported_not_fatal(monkeypatch):
     monkeypatch.setattr(reproduce_job.importlib.util, "find_spec", lambda name: None)
     run, why = reproduce_job._fe_module()
     assert run is None and "microslip.validate" in why
-
-
-# -- microslip planar ----------------------------------------------------------------------
-def test_planar_json(capsys, tmp_path):
-    png = tmp_path / "p.png"
-    code = main(["planar", "--ratio", "2", "--phase", "90", "--centre-reading", "paper",
-                 "--increments", "200", "--samples-per-cycle", "256", "--json",
-                 "--plot", str(png)])
-    out, err = capsys.readouterr()
-    assert code == 0 and png.stat().st_size > 0
-    d = json.loads(out)
-    # the paper's Table 2 zones are squat (L/t 2 and 1): said on stderr and in the JSON
-    assert err.splitlines() == [f"warning: {w}" for w in d["warnings"]]
-    assert any("tip model: the clamped zone is squat" in w for w in d["warnings"])
-    assert (d["tip_amplitude_N"], d["centre_amplitude_N"], d["ratio"]) == (4000.0, 4000.0, 2.0)
-    assert d["eccentricity"] == pytest.approx(math.sqrt(3) / 2)
-    for key in ("dissipated_energy_Nmm", "paper_dissipated_energy_Nmm", "paper_loss_factor",
-                "work_dissipated_energy_Nmm", "work_loss_factor", "tip_share_of_dissipation",
-                "centre_share_of_dissipation"):
-        assert isinstance(d[key], float) and d[key] > 0, key
-    ref = planar.planar_damping(preset("table2-tip"), preset("table2-centre"), 4000.0, 4000.0,
-                                increments=200, options=ModelOptions(centre="paper"),
-                                phase_deg=90.0, samples_per_cycle=256)
-    assert d["work_loss_factor"] == ref.work_loss_factor
-    assert d["paper_loss_factor"] == ref.paper.loss_factor
-
-
-@pytest.mark.parametrize("argv, message", [
-    (["--ratio", "2", "--tip-amplitude", "100"], "either --ratio"),
-    (["--tip-amplitude", "100"], "give --tip-amplitude N and --centre-amplitude N"),
-    (["--ratio", "0.25"], "macroslip limit of the centre model"),
-    (["--ratio", "-1"], "R must be finite and > 0"),
-    (["--ratio", "1.7", "--levels", "top"], "not a ratio of two whole levels"),
-])
-def test_planar_mistakes_are_one_line(capsys, argv, message):
-    code = main(["planar", "--increments", "50", *argv])
-    out, err = capsys.readouterr()
-    assert code == 1 and out == ""
-    assert message in err and len(err.strip().splitlines()) == 1
-
-
-def test_planar_text_states_units(capsys):
-    code = main(["planar", "--tip-amplitude", "3000", "--centre-amplitude", "5000",
-                 "--increments", "100", "--samples-per-cycle", "128"])
-    out, _ = capsys.readouterr()
-    assert code == 0
-    assert re.search(r"W_d \(N·mm\)", out) and "R = 1.2" in out
 
 
 def test_out_must_be_a_directory(tmp_path, capsys):
