@@ -36,6 +36,7 @@ def test_interrupted_reproduce_leaves_no_partial_directory(capsys, tmp_path, mon
 
 # --- Ctrl-C: prompt, one line, nothing left ---------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("argv, made", [
     (["sweep", "--model", "tip", "--amplitude-range", "10", "300", "--cases", "2000000",
       "--no-progress", "--out", "{d}/big.csv"], "big.csv"),

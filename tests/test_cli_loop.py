@@ -104,6 +104,7 @@ VALUES = ["tip", "centre", "table1", "table2-tip", "table2-centre", "0", "-1", "
           "table:missing.csv"]
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow,
                                                                   HealthCheck.function_scoped_fixture])
 @given(st.lists(st.sampled_from(FLAGS) | st.sampled_from(VALUES), max_size=8))

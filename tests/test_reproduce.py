@@ -28,6 +28,7 @@ def job(tmp_path_factory):
     return code, out
 
 
+@pytest.mark.slow
 def test_writes_every_file(job):
     code, out = job
     assert code == 0
@@ -37,6 +38,7 @@ def test_writes_every_file(job):
     assert not list(out.glob(".*"))  # no temporary files left behind
 
 
+@pytest.mark.slow
 def test_loss_factor_table_has_the_seven_ratios(job):
     _, out = job
     t = reproduce.read_csv(out / "loss_factor_vs_R.csv")
@@ -54,6 +56,7 @@ def test_loss_factor_table_has_the_seven_ratios(job):
         assert w90 == pytest.approx(w0, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_report_verdicts_agree_with_the_csv_files(job):
     _, out = job
     comp = reproduce.read_csv(out / "stiffness_vs_amplitude.csv")
@@ -83,6 +86,7 @@ def test_report_verdicts_agree_with_the_csv_files(job):
     assert "skipped" in text and "--no-fe" in text
 
 
+@pytest.mark.slow
 def test_loops_csv_holds_the_plotted_loops(job):
     _, out = job
     loops = reproduce.read_csv(out / "fig10_loops_R_ge_1.csv")
@@ -154,6 +158,7 @@ def _small_coupling_sweep(monkeypatch):
         params, ratios[:2], phases, mesh="tiny", cycles=2, increments_per_cycle=16))
 
 
+@pytest.mark.slow
 def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys):
     _small_coupling_sweep(monkeypatch)
     monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(), ""))
