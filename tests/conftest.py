@@ -1,10 +1,24 @@
-"""Shared test set-up: tests marked ``ccx`` are skipped, with a reason, when ccx is absent."""
+"""Shared test set-up.
+
+- Tests marked ``ccx`` are skipped, with a reason, when ccx is absent.
+- The one command-line runner of the tests: ``run(capsys, *argv)`` calls ``main`` in-process
+  and returns ``(exit code, stdout, stderr)``; ``run_json`` adds ``--json``, insists on exit 0
+  and returns the parsed JSON; ``one_line_error`` checks the "one ``error:`` line, exit 1"
+  contract of a user mistake; ``listing`` is the files under a directory (to check that a
+  refused command left nothing behind). Test modules import them with
+  ``from conftest import run`` (pytest puts ``tests/`` on the path), never from one another.
+"""
 
 from __future__ import annotations
 
+import json
 import shutil
+from pathlib import Path
+from typing import Any
 
 import pytest
+
+from microslip.cli.main import main
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
@@ -14,3 +28,31 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if "ccx" in item.keywords:
             item.add_marker(skip)
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: object) -> tuple[int, str, str]:
+    """``microslip ARGV...`` in-process (each argument through ``str``): code, stdout, stderr."""
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys: pytest.CaptureFixture[str], *argv: object) -> Any:
+    """``microslip ARGV... --json``, which must exit 0 (else stderr is shown): the JSON."""
+    code, out, err = run(capsys, *argv, "--json")
+    assert code == 0, err
+    return json.loads(out)
+
+
+def one_line_error(result: tuple[int, str, str], *words: str) -> None:
+    """A user mistake: exit 1 and one ``error:`` line on stderr holding every one of ``words``."""
+    code, _, err = result
+    assert code == 1, err
+    assert err.startswith("error: ") and err.count("\n") == 1 and "Traceback" not in err
+    for word in words:
+        assert word in err
+
+
+def listing(path: Path) -> list[str]:
+    """Every file and directory under ``path``, relative and sorted."""
+    return sorted(str(p.relative_to(path)) for p in path.rglob("*"))

@@ -135,6 +135,7 @@ def test_branch_energy_for_odd_and_even_increments() -> None:
 
 
 # -- backends and threads -------------------------------------------------------------------
+@pytest.mark.slow
 def test_backends_and_single_loop_agree_bit_for_bit() -> None:
     """The compiled kernel, its Python source and microslip.damping run one step function
     and one energy function: the same bits."""

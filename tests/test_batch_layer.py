@@ -32,7 +32,8 @@ P = preset("table1")
 EA = P.axial_stiffness
 Q = P.friction_per_length
 ASYMMETRIC = table_law([0.0, 100.0, P.length], [1.0, 2.0, 3.0], P.length)
-CONTACTS = [Contact.layer(1e5), Contact.layer(1e4, "parabolic"),
+CONTACTS = [pytest.param(Contact.layer(1e5), marks=pytest.mark.slow),  # 4-10 s a model
+            Contact.layer(1e4, "parabolic"),
             Contact.layer(2e3, power_law(0.7, 3.0)), Contact(math.inf, False, ASYMMETRIC),
             Contact.layer(1e3, ASYMMETRIC)]
 AMPS = np.array([40.0, 150.0, 213.0, 300.0])
@@ -98,6 +99,7 @@ def test_compiled_front_is_the_bisection_root(law) -> None:  # type: ignore[no-u
         np.testing.assert_allclose(d, _bisection_d(slope, law, forces), rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_front_is_the_first_crossing_where_f_of_a_is_not_monotone() -> None:
     """A sharp pressure minimum in the middle (n = 0.5) on a soft layer makes F(a) fall
     somewhere: the loaded front then jumps to the next point where F reaches the load, the

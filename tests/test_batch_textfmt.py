@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -37,6 +38,7 @@ def test_random_magnitudes_and_ties_match_python() -> None:
     assert bytes(format_table(cols)) == format_table_python(cols)
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
                 max_size=20))
@@ -58,6 +60,7 @@ def test_single_number_columns_repeat_on_every_row() -> None:
     assert bytes(format_table([[1.5, 2.5], 3.0])) == b"1.5,3\n2.5,3\n"
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(st.lists(st.floats(allow_nan=False, allow_infinity=True, width=64), min_size=1,
                 max_size=20))

@@ -16,8 +16,8 @@ import sys
 
 import numpy as np
 import pytest
+from conftest import run, run_json
 from scipy.linalg import eigh
-from test_case_joints import run, run_json  # the case-joint tests' one CLI runner
 
 from microslip import preset
 from microslip.case import parse_case
@@ -125,6 +125,7 @@ def test_names_match_their_registries_and_couplings_take_x_y_pairing():
         COUPLINGS["decoupled"](tip, centre, "spatial")
 
 
+@pytest.mark.slow
 def test_transverse_centre_is_the_anisotropic_joint_built_by_hand(capsys, planar):
     """frf and modal of a case with transverse = "centre" against the structure with
     anisotropic(tip, centre, "spatial") built in Python, to 1e-12; the joint across and the
@@ -189,6 +190,7 @@ def test_the_flags_give_the_json_of_the_case_file(capsys, planar, keys, flags):
     assert a["curves"][0]["success"]
 
 
+@pytest.mark.slow
 def test_the_fe_joint_across_is_the_fe_first_loading(capsys, planar):
     """transverse = "fe": the operator across is fe_backbone(clamp, "centre", mesh,
     stick_slope).operator(), and the structure runs end to end."""

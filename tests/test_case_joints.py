@@ -3,18 +3,17 @@
 
 from __future__ import annotations
 
-import json
 import sys
 
 import numpy as np
 import pytest
+from conftest import run, run_json
 from scipy.linalg import eigh
 
 from microslip import preset
 from microslip.case import parse_case, template
 from microslip.case.schema import COUPLINGS, JOINT_KEYS
 from microslip.case.template import JOINT_EXAMPLE
-from microslip.cli.main import main
 from microslip.dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint
 from microslip.dynamics.modal import epmc
 from microslip.dynamics.operators import jenkins
@@ -48,18 +47,6 @@ elements = 40
 [joint.clamping]
 normal_force = 200
 """
-
-
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def run_json(capsys, *argv):
-    code, out, err = run(capsys, *argv, "--json")
-    assert code == 0, err
-    return json.loads(out)
 
 
 @pytest.fixture

@@ -6,10 +6,10 @@ import csv
 import json
 
 import pytest
+from conftest import run
 
 from microslip import preset
 from microslip.case import template
-from microslip.cli.main import main
 
 TITANIUM_TOML = """\
 name = "titanium clamp"
@@ -28,12 +28,6 @@ normal_force = 12000
 
 TITANIUM = {"length": 30.0, "width": 12.0, "thickness": 8.0, "modulus": 114000.0,
             "poisson_ratio": 0.34, "friction": 0.5, "normal_force": 12000.0}
-
-
-def run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def one_line_error(code: int, out: str, err: str, *words: str) -> None:
@@ -270,3 +264,18 @@ def test_case_pressure_law_equals_the_option(capsys, tmp_path):
                               "--pressure-law", "parabolic")[1])
     assert by_case["contact"]["pressure_law"].startswith("power(n=2")
     assert by_case["dissipated_energy_Nmm"] == by_flags["dissipated_energy_Nmm"]
+
+
+def test_the_case_default_amplitude_is_stated_as_a_fraction_of_the_slip_limit(capsys,
+                                                                              tmp_path):
+    path = tmp_path / "c.toml"
+    path.write_text('preset = "table1"\n[contact]\nfriction = 0.5\n[clamping]\n'
+                    "normal_force = 12000\n[load]\namplitude_fraction = 0.25\n")
+    code, out, err = run(capsys, "loop", "--case", path, "--model", "tip", "--increments",
+                         "20")
+    assert code == 0, err
+    lines = out.splitlines()
+    assert lines[0] == f"case file {path}"
+    assert lines[1] == ("  amplitude F0 = 0.25 x the slip limit mu F_N = 0.25 x 0.5 x 12000 N "
+                        "= 1500 N (load.amplitude_fraction)")
+    assert "amplitude F0                   1500 N" in out

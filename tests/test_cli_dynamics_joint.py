@@ -2,24 +2,18 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
+from conftest import run_json
 
 from microslip.cli.main import main
 
 JENKINS = ["joint", "--joint", "jenkins", "--joint-stiffness", "100", "--slip-force", "5"]
 
 
-def run_json(capsys, argv):
-    assert main([*argv, "--json"]) == 0
-    return json.loads(capsys.readouterr().out)
-
-
 def test_jenkins_json_against_the_closed_form(capsys):
-    out = run_json(capsys, [*JENKINS, "--amplitude-range", "0.1", "1", "--amplitudes", "4",
-                            "--samples", "4096"])
+    out = run_json(capsys, *JENKINS, "--amplitude-range", "0.1", "1", "--amplitudes", "4",
+                           "--samples", "4096")
     a = np.array(out["amplitude_mm"])
     np.testing.assert_allclose(a, np.geomspace(0.1, 1.0, 4), rtol=1e-15)
     beta = np.arccos(1.0 - 2.0 * 0.05 / a)
@@ -33,8 +27,8 @@ def test_jenkins_json_against_the_closed_form(capsys):
 
 
 def test_force_range_gives_the_amplitudes_of_those_forces(capsys):
-    out = run_json(capsys, ["joint", "--joint", "tip", "--stick-slope", "1e4",
-                            "--force-range", "10", "300", "--amplitudes", "3"])
+    out = run_json(capsys, "joint", "--joint", "tip", "--stick-slope", "1e4",
+                           "--force-range", "10", "300", "--amplitudes", "3")
     np.testing.assert_allclose(out["force_N"], np.geomspace(10.0, 300.0, 3), rtol=1e-12)
     assert out["joint"]["elements"] == 201
     assert out["joint"]["macroslip_force_N"] == pytest.approx(356.0, rel=1e-12)

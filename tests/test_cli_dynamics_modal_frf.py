@@ -4,10 +4,9 @@ limit), errors as one line."""
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
+from conftest import run_json
 
 from microslip.cli.main import main
 
@@ -16,11 +15,6 @@ MODE = ["--frequency", str(F0), "--modal-mass", str(M)]
 JOINT = ["--joint", "jenkins", "--joint-stiffness", str(KJ), "--slip-force", str(FS)]
 K = M * (2 * np.pi * F0) ** 2 * 1e-3  # structure's stiffness, N/mm
 MASS = M * 1e-3  # N s^2/mm
-
-
-def run_json(capsys, argv):
-    assert main([*argv, "--json"]) == 0
-    return json.loads(capsys.readouterr().out)
 
 
 def jenkins_df(a):
@@ -37,9 +31,9 @@ def test_modal_single_harmonic_is_the_closed_form_backbone(capsys):
     describing function errs by at most 4 k_J / N^2 on K_eq and D_eq. The energy method
     reported beside it uses 512 samples."""
     n = 512
-    out = run_json(capsys, ["modal", *MODE, "--damping-ratio", "0.01", *JOINT,
-                            "--harmonics", "1", "--samples", str(n),
-                            "--amplitude-range", "1e-3", "1", "--amplitudes", "13"])
+    out = run_json(capsys, "modal", *MODE, "--damping-ratio", "0.01", *JOINT,
+                           "--harmonics", "1", "--samples", str(n),
+                           "--amplitude-range", "1e-3", "1", "--amplitudes", "13")
     a = np.array(out["amplitude_mm"])
     np.testing.assert_allclose(a, np.geomspace(1e-3, 1.0, 13), rtol=1e-15)
     k_eq, d_eq = jenkins_df(a)
@@ -58,8 +52,8 @@ def test_modal_single_harmonic_is_the_closed_form_backbone(capsys):
 def test_modal_stuck_limit_includes_the_linear_damping(capsys):
     """Below the slip amplitude the joint is a spring: f = stuck frequency and
     zeta = zeta_lin f_free / f_stuck (c fixed by --frequency), with 7 harmonics."""
-    out = run_json(capsys, ["modal", *MODE, "--damping-ratio", "0.02", *JOINT,
-                            "--amplitude-range", "1e-4", "1e-2", "--amplitudes", "3"])
+    out = run_json(capsys, "modal", *MODE, "--damping-ratio", "0.02", *JOINT,
+                           "--amplitude-range", "1e-4", "1e-2", "--amplitudes", "3")
     stuck = F0 * np.sqrt((K + KJ) / K)
     assert out["structure"]["stuck_frequency_Hz"] == pytest.approx(stuck, rel=1e-14)
     np.testing.assert_allclose(out["frequency_Hz"], stuck, rtol=1e-12)
@@ -76,8 +70,8 @@ def test_frf_single_harmonic_peak_is_the_closed_form(capsys):
     converges like N^-1 (measured 0.13 / N for N = 256 to 2048)."""
     n = 1024
     forces = (1.0, 2.0)
-    out = run_json(capsys, ["frf", *MODE, *JOINT, "--harmonics", "1", "--samples", str(n),
-                            "--force", str(forces[0]), "--force", str(forces[1])])
+    out = run_json(capsys, "frf", *MODE, *JOINT, "--harmonics", "1", "--samples", str(n),
+                           "--force", str(forces[0]), "--force", str(forces[1]))
     assert [c["force_N"] for c in out["curves"]] == list(forces)
     tol = 0.5 * (2 * np.pi / n) ** 2
     for c, force in zip(out["curves"], forces, strict=True):
@@ -98,8 +92,8 @@ def test_frf_stuck_limit_is_the_linear_peak(capsys):
     """A force too small to slip the joint: the linear oscillator's peak,
     w^2 = K/m - c^2/(2 m^2), A = F / (c sqrt(K/m - c^2/(4 m^2))), with 7 harmonics."""
     force, zeta = 0.01, 0.01
-    out = run_json(capsys, ["frf", *MODE, "--damping-ratio", str(zeta), *JOINT,
-                            "--force", str(force), "--frequency-range", "110", "125"])
+    out = run_json(capsys, "frf", *MODE, "--damping-ratio", str(zeta), *JOINT,
+                           "--force", str(force), "--frequency-range", "110", "125")
     c = 2 * zeta * MASS * 2 * np.pi * F0
     kk = K + KJ
     curve = out["curves"][0]

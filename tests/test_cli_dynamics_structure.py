@@ -4,22 +4,16 @@ files refused with one line, joint orbits of a two-directional joint."""
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 import scipy.io
+from conftest import run_json
 
 from microslip.cli.main import main
 
 F0, M = 100.0, 2.0  # Hz, kg
 K = M * (2 * np.pi * F0) ** 2  # N/m
 JOINT = ["--joint", "jenkins", "--joint-stiffness", "300", "--slip-force", "5"]
-
-
-def run_json(capsys, argv):
-    assert main([*argv, "--json"]) == 0
-    return json.loads(capsys.readouterr().out)
 
 
 @pytest.fixture
@@ -44,15 +38,15 @@ def test_a_one_dof_file_is_the_one_mode_structure(capsys, one_dof):
     """Same modal curve and forced response as --frequency/--modal-mass, to round-off
     (the modal coordinate's weight M phi / phi^T M phi is 1 to an ulp)."""
     common = ["--amplitude-range", "1e-3", "1", "--amplitudes", "5"]
-    a = run_json(capsys, ["modal", "--structure", one_dof, *JOINT, *common])
-    b = run_json(capsys, ["modal", "--frequency", str(F0), "--modal-mass", str(M),
-                          "--damping-ratio", "0.01", *JOINT, *common])
+    a = run_json(capsys, "modal", "--structure", one_dof, *JOINT, *common)
+    b = run_json(capsys, "modal", "--frequency", str(F0), "--modal-mass", str(M),
+                         "--damping-ratio", "0.01", *JOINT, *common)
     np.testing.assert_allclose(a["frequency_Hz"], b["frequency_Hz"], rtol=1e-14)
     np.testing.assert_allclose(a["damping_ratio"], b["damping_ratio"], rtol=1e-13)
     forced = ["--force", "2", "--harmonics", "3", "--frequency-range", "90", "130"]
-    a = run_json(capsys, ["frf", "--structure", one_dof, *JOINT, *forced])
-    b = run_json(capsys, ["frf", "--frequency", str(F0), "--modal-mass", str(M),
-                          "--damping-ratio", "0.01", *JOINT, *forced])
+    a = run_json(capsys, "frf", "--structure", one_dof, *JOINT, *forced)
+    b = run_json(capsys, "frf", "--frequency", str(F0), "--modal-mass", str(M),
+                         "--damping-ratio", "0.01", *JOINT, *forced)
     assert a["curves"][0]["peak_amplitude_mm"] == pytest.approx(
         b["curves"][0]["peak_amplitude_mm"], rel=1e-13)
     np.testing.assert_allclose(a["curves"][0]["amplitude_mm"], b["curves"][0]["amplitude_mm"],
@@ -60,8 +54,8 @@ def test_a_one_dof_file_is_the_one_mode_structure(capsys, one_dof):
 
 
 def test_linear_modes_are_reported_stuck_and_joint_free(capsys, planar):
-    out = run_json(capsys, ["modal", "--structure", planar, *JOINT, "--amplitude-range",
-                            "1e-3", "1e-3", "--amplitudes", "1", "--mode", "2"])
+    out = run_json(capsys, "modal", "--structure", planar, *JOINT, "--amplitude-range",
+                           "1e-3", "1e-3", "--amplitudes", "1", "--mode", "2")
     s = out["structure"]
     free = F0 * np.sqrt([1.0, 1.03])
     np.testing.assert_allclose(s["joint_free_frequencies_Hz"], free, rtol=1e-13)
@@ -89,9 +83,9 @@ def test_matrix_market_directory_is_the_npz(capsys, tmp_path, one_dof):
     scipy.io.mmwrite(tmp_path / "K.mtx", np.array([[K]]))
     scipy.io.mmwrite(tmp_path / "C.mtx", np.array([[2 * 0.01 * M * 2 * np.pi * F0]]))
     common = [*JOINT, "--amplitude-range", "1e-3", "1", "--amplitudes", "3"]
-    a = run_json(capsys, ["modal", "--structure", str(tmp_path), "--joint-dof", "0",
-                          *common])
-    b = run_json(capsys, ["modal", "--structure", one_dof, *common])
+    a = run_json(capsys, "modal", "--structure", str(tmp_path), "--joint-dof", "0",
+                         *common)
+    b = run_json(capsys, "modal", "--structure", one_dof, *common)
     np.testing.assert_allclose(a["frequency_Hz"], b["frequency_Hz"], rtol=1e-15)
 
 
@@ -101,8 +95,8 @@ def test_two_directional_joint_orbits_and_coupling(capsys, planar):
     forced = ["--structure", planar, "--joint", "jenkins", "--joint-stiffness", "100",
               "--slip-force", "5", "--excitation", "0", "1", "--force", "3",
               "--harmonics", "3", "--samples", "256", "--frequency-range", "85", "135"]
-    coupled = run_json(capsys, ["frf", *forced, "--coupling", "circular"])["curves"][0]
-    decoupled = run_json(capsys, ["frf", *forced, "--coupling", "decoupled"])["curves"][0]
+    coupled = run_json(capsys, "frf", *forced, "--coupling", "circular")["curves"][0]
+    decoupled = run_json(capsys, "frf", *forced, "--coupling", "decoupled")["curves"][0]
     for curve in (coupled, decoupled):
         (orbit,) = curve["joint_orbits"]
         x, y = np.array(orbit["x_mm"]), np.array(orbit["y_mm"])

@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+from conftest import run
 
 from microslip import closedform as cf
 from microslip import preset
@@ -19,16 +20,17 @@ EXACT = {
 }
 
 
-def run_json(capsys, *argv: str) -> dict:
-    assert main(list(argv)) == 0
-    out, err = capsys.readouterr()
-    assert err == ""
+def quiet_json(capsys, *argv: str) -> dict:
+    """The shared runner, for a command that must exit 0 and warn of nothing (the caller
+    gives ``--json``): its JSON."""
+    code, out, err = run(capsys, *argv)
+    assert code == 0 and err == ""
     return json.loads(out)
 
 
 @pytest.mark.parametrize(("model", "tol"), [("tip", 0.01), ("centre", 0.03)])
 def test_builtin_default_matches_closed_form(capsys, model, tol):
-    data = run_json(capsys, "fe", "--model", model, "--preset", "table1", "--json")
+    data = quiet_json(capsys, "fe", "--model", model, "--preset", "table1", "--json")
     d0, wd = EXACT[model]
     assert data["solver"] == "builtin" and data["converged"] is True
     assert abs(data["peak_displacement_mm"] / d0 - 1) < tol
@@ -40,8 +42,8 @@ def test_builtin_default_matches_closed_form(capsys, model, tol):
 
 
 def test_keys_are_those_of_loop_and_of_calculix(capsys):
-    data = run_json(capsys, "fe", "--model", "centre", "--mesh", "tiny", "--json")
-    loop = run_json(capsys, "loop", "--model", "centre", "--json", "--increments", "20")
+    data = quiet_json(capsys, "fe", "--model", "centre", "--mesh", "tiny", "--json")
+    loop = quiet_json(capsys, "loop", "--model", "centre", "--json", "--increments", "20")
     # the 1-D model's contact and validity warnings are its own: the FE has its stick slope
     # in "options" and is the reference the warnings point to
     assert set(loop) - {"contact", "warnings"} <= set(data)
@@ -53,15 +55,15 @@ def test_keys_are_those_of_loop_and_of_calculix(capsys):
 
 
 def test_out_keeps_the_result(capsys, tmp_path):
-    data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out",
-                    str(tmp_path / "job"), "--json")
+    data = quiet_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out",
+                      str(tmp_path / "job"), "--json")
     saved = json.loads((tmp_path / "job" / "result.json").read_text(encoding="utf-8"))
     assert saved["dissipated_energy_Nmm"] == data["dissipated_energy_Nmm"]
 
 
 def test_needs_no_calculix(capsys, monkeypatch, tmp_path):
     monkeypatch.setenv("PATH", str(tmp_path / "empty"))
-    data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--json")
+    data = quiet_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--json")
     assert data["converged"] is True
 
 
@@ -73,8 +75,8 @@ def test_out_writes_result_json_and_a_vtu_series_read_back(capsys, tmp_path):
     from microslip.fe.builtin.mesh import box_mesh
 
     out = tmp_path / "run"
-    data = run_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out", str(out),
-                    "--json")
+    data = quiet_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out", str(out),
+                      "--json")
     assert json.loads((out / "result.json").read_text())["dissipated_energy_Nmm"] == \
         data["dissipated_energy_Nmm"]
     vtus = sorted(out.glob("fe_tip_*.vtu"))

@@ -6,18 +6,13 @@ import json
 import math
 
 import pytest
+from conftest import run
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from microslip import closedform as cf
 from microslip import preset
 from microslip.cli.main import main
-
-
-def run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_json_has_the_documented_keys(capsys):
@@ -109,6 +104,7 @@ VALUES = ["tip", "centre", "table1", "table2-tip", "table2-centre", "0", "-1", "
           "table:missing.csv"]
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow,
                                                                   HealthCheck.function_scoped_fixture])
 @given(st.lists(st.sampled_from(FLAGS) | st.sampled_from(VALUES), max_size=8))

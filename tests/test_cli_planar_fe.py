@@ -27,7 +27,7 @@ def result() -> dict:
 def test_json_reports_coupled_decoupled_and_ratio(result):
     w, wd = result["dissipated_energy_Nmm"], result["decoupled_dissipated_energy_Nmm"]
     assert w > 0 and wd > 0
-    # the CLI reports the library's coupling ratio (tests/test_solver_coupling.py: the same
+    # the CLI reports the library's coupling ratio (tests/test_fe_builtin_coupling.py: the same
     # case, recorded value; Newton's 1e-9 tolerance makes it reproducible to ~1e-8)
     assert result["coupling_ratio"] == pytest.approx(1.0332162671175356, rel=1e-7)
     assert wd == pytest.approx(result["tip_only_dissipated_energy_Nmm"]

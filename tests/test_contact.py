@@ -14,9 +14,9 @@ import math
 
 import numpy as np
 import pytest
+from conftest import run
 
 from microslip import ModelOptions, damping, preset
-from microslip.cli.main import main
 from microslip.errors import ParameterError
 from microslip.models import Contact, first_loading
 from microslip.models.interface import power_law, virgin_curve
@@ -95,12 +95,6 @@ def test_refusals():
 
 
 # -- command line ---------------------------------------------------------------------------
-def run(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
 def test_loop_stick_slope_json_and_text(capsys):
     code, out, err = run(capsys, "loop", "--model", "tip", "--amplitude", "213", "--json",
                          "--stick-slope", "1e5", "--increments", "2000")

@@ -8,11 +8,11 @@ import math
 
 import numpy as np
 import pytest
+from conftest import run
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from microslip import ModelOptions, first_loading, preset
-from microslip.cli.main import main
 from microslip.displacement import (
     displacement_range,
     force_for_displacement,
@@ -22,12 +22,6 @@ from microslip.errors import MacroslipError
 from microslip.models import macroslip_force
 
 OPTIONS = (ModelOptions(), ModelOptions.uncorrected(), ModelOptions.paper())
-
-
-def run(capsys, *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_rigid_limit_inverts_the_closed_form():

@@ -115,7 +115,17 @@ def test_the_documents_show_commands():
     assert {"loop", "planar", "fe", "sweep", "fit", "joint"} <= names
 
 
-@pytest.mark.parametrize(("doc", "line"), RUN, ids=[f"{d}:{c[:60]}" for d, c in RUN])
+def _slow(line: str) -> bool:
+    """Examples that run CalculiX, the FE solver in a sweep or on a planar path, or the whole
+    reproduction: seconds to minutes each (``pytest -m "not slow"`` leaves them out)."""
+    argv = _shrink(shlex.split(line, comments=True)[1:])
+    solver = argv[argv.index("--solver") + 1] if "--solver" in argv[:-1] else None
+    return argv[0] in ("validate", "reproduce") or "calculix" in argv or solver == "fe"
+
+
+@pytest.mark.parametrize(("doc", "line"), [
+    pytest.param(d, c, marks=pytest.mark.slow if _slow(c) else ()) for d, c in RUN
+], ids=[f"{d}:{c[:60]}" for d, c in RUN])
 def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     argv = _shrink(shlex.split(line, comments=True)[1:])

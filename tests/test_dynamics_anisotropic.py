@@ -330,6 +330,7 @@ def planar(joint: CircularIwan) -> Structure:
                      output=np.array([1.0, 0.0]))
 
 
+@pytest.mark.slow
 def test_harmonic_balance_against_time_integration():
     """Peak amplitude within 0.5 % of the time integration's steady state at the peak
     frequency (7 harmonics, 512 samples: the 2-D AFT converges like N^-1)."""

@@ -123,6 +123,7 @@ def test_condensed_amplitude_is_that_of_the_rebuilt_coefficients_and_its_gradien
                                             abs=1e-6 * np.abs(grad).max())
 
 
+@pytest.mark.slow
 def test_condensed_frequency_response_is_the_full_one(monkeypatch):
     """Same peak to the solver's tolerance; every point solves the full balance."""
     s = chain()

@@ -99,6 +99,7 @@ def peak_by_time_integration(structure, load, guess, steps):
     return r.x, -r.fun
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "structure", "load", "band", "samples"), [
     ("1-D joint between DOFs", chain((0, 1)), np.array([0.0, 4.0]), (60.0, 100.0), 128),
     ("coupled 2-D joint", planar(True), np.array([3.0, 3.0]), (85.0, 135.0), 512),

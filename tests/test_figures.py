@@ -90,3 +90,71 @@ def test_loop_figure_draws_the_reported_loop(saved, tmp_path, capsys):
     assert any(np.allclose(x / np.abs(x).max(), disp / np.abs(disp).max(), rtol=0, atol=1e-12)
                and np.allclose(y / np.abs(y).max(), force / np.abs(force).max(), rtol=0,
                                atol=1e-12) for x, y in drawn)
+
+
+# --- figures ---------------------------------------------------------------------------------
+
+def _figure_of(monkeypatch):
+    import microslip.plot.core as core
+
+    saved = []
+    monkeypatch.setattr(core, "save_figure", lambda fig, path: saved.append(fig))
+    for module in ("microslip.plot.sweep",):
+        monkeypatch.setattr(f"{module}.save_figure", lambda fig, path: saved.append(fig))
+    return saved
+
+
+def test_sweep_figure_has_eta_and_wd_panels_without_offsets(monkeypatch, tmp_path):
+    from microslip import preset
+    from microslip.plot.sweep import plot_sweep
+    from microslip.sweep import make_sweep, run_sweep
+
+    saved = _figure_of(monkeypatch)
+    spec = make_sweep("tip", preset("table2-tip"), grid=[("amplitude", [1000.0, 1000.5, 1001.0]),
+                      ("normal_force", [15000.0, 20000.0])], increments=50)
+    plot_sweep(run_sweep(spec, progress=False), tmp_path / "s.png")
+    (fig,) = saved
+    fig.canvas.draw()
+    eta_ax, wd_ax = fig.axes
+    assert "Loss factor" in eta_ax.get_ylabel() and "$W_d$ (N·mm)" in wd_ax.get_ylabel()
+    for ax in fig.axes:
+        assert ax.yaxis.get_major_formatter().get_offset() == ""
+    labels = [t.get_text() for t in eta_ax.get_legend().get_texts()]
+    assert labels == ["normal force = 15000 N", "normal force = 20000 N"]  # the unit once
+
+
+def test_sweep_figure_bands_carry_the_series_colour(monkeypatch, tmp_path):
+    from matplotlib.colors import to_hex
+
+    from microslip import preset
+    from microslip.plot.core import COLOURS
+    from microslip.plot.sweep import plot_sweep
+    from microslip.sweep import make_sweep, run_sweep
+    from microslip.sweep.parameters import Distribution
+
+    saved = _figure_of(monkeypatch)
+    spec = make_sweep("tip", preset("table2-tip"), grid=[("amplitude", [1000.0, 4000.0])],
+                      samples=[("friction", Distribution("uniform", 0.7, 0.9))], n_samples=20,
+                      seed=2, increments=50)
+    plot_sweep(run_sweep(spec, progress=False), tmp_path / "s.png")
+    legend = saved[0].axes[0].get_legend()
+    patches = [h for h in legend.legend_handles if hasattr(h, "get_facecolor")
+               and not hasattr(h, "get_xdata")]
+    assert patches and {to_hex(p.get_facecolor(), keep_alpha=False) for p in patches} == {
+        COLOURS[0].lower()}
+
+
+def test_small_loops_are_drawn_in_micrometres(monkeypatch, tmp_path):
+    import microslip.plot.core as core
+    from microslip import damping, preset
+
+    saved = []
+    monkeypatch.setattr(core, "save_figure", lambda fig, path: saved.append(fig))
+    result = damping("tip", preset("table1"), 267.0, 100)
+    core.plot_damping(result, tmp_path / "x.png")
+    ax = saved[0].axes[0]
+    assert ax.get_xlabel() == "Displacement δ (µm)"
+    x = ax.get_lines()[0].get_xdata()
+    assert max(abs(x)) == pytest.approx(1000 * max(abs(result.loop.displacement)), rel=1e-15)
+    saved[0].canvas.draw()
+    assert ax.xaxis.get_major_formatter().get_offset() == ""

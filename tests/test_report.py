@@ -89,6 +89,7 @@ def _dump_dom(page: Path, profile: Path) -> str:
     return done.stdout
 
 
+@pytest.mark.slow
 def test_figures_render_in_headless_chromium(page, tmp_path):
     _, text, _ = page
     probe = tmp_path / "probe.html"

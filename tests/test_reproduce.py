@@ -1,16 +1,14 @@
-"""``microslip reproduce`` and ``microslip planar``: files, CSV contents, claims agree with CSVs."""
+"""``microslip reproduce``: files, CSV contents, claims agree with CSVs."""
 
 from __future__ import annotations
 
-import json
 import math
-import re
 from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
 
-from microslip import ModelOptions, planar, preset, reproduce
+from microslip import planar, reproduce
 from microslip.cli.main import main
 from microslip.errors import MicroslipError
 from microslip.planar import PAPER_RATIOS
@@ -30,6 +28,7 @@ def job(tmp_path_factory):
     return code, out
 
 
+@pytest.mark.slow
 def test_writes_every_file(job):
     code, out = job
     assert code == 0
@@ -39,6 +38,7 @@ def test_writes_every_file(job):
     assert not list(out.glob(".*"))  # no temporary files left behind
 
 
+@pytest.mark.slow
 def test_loss_factor_table_has_the_seven_ratios(job):
     _, out = job
     t = reproduce.read_csv(out / "loss_factor_vs_R.csv")
@@ -56,6 +56,7 @@ def test_loss_factor_table_has_the_seven_ratios(job):
         assert w90 == pytest.approx(w0, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_report_verdicts_agree_with_the_csv_files(job):
     _, out = job
     comp = reproduce.read_csv(out / "stiffness_vs_amplitude.csv")
@@ -85,6 +86,7 @@ def test_report_verdicts_agree_with_the_csv_files(job):
     assert "skipped" in text and "--no-fe" in text
 
 
+@pytest.mark.slow
 def test_loops_csv_holds_the_plotted_loops(job):
     _, out = job
     loops = reproduce.read_csv(out / "fig10_loops_R_ge_1.csv")
@@ -156,6 +158,7 @@ def _small_coupling_sweep(monkeypatch):
         params, ratios[:2], phases, mesh="tiny", cycles=2, increments_per_cycle=16))
 
 
+@pytest.mark.slow
 def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys):
     _small_coupling_sweep(monkeypatch)
     monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(), ""))
@@ -176,51 +179,6 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "Not run (failed): ccx failed" in (tmp_path / "b" / "report.md").read_text("utf-8")
 
 
-# -- microslip planar ----------------------------------------------------------------------
-def test_planar_json(capsys, tmp_path):
-    png = tmp_path / "p.png"
-    code = main(["planar", "--ratio", "2", "--phase", "90", "--centre-reading", "paper",
-                 "--increments", "200", "--samples-per-cycle", "256", "--json",
-                 "--plot", str(png)])
-    out, err = capsys.readouterr()
-    assert code == 0 and png.stat().st_size > 0
-    d = json.loads(out)
-    # the paper's Table 2 zones are squat (L/t 2 and 1): said on stderr and in the JSON
-    assert err.splitlines() == [f"warning: {w}" for w in d["warnings"]]
-    assert any("tip model: the clamped zone is squat" in w for w in d["warnings"])
-    assert (d["tip_amplitude_N"], d["centre_amplitude_N"], d["ratio"]) == (4000.0, 4000.0, 2.0)
-    assert d["eccentricity"] == pytest.approx(math.sqrt(3) / 2)
-    for key in ("dissipated_energy_Nmm", "paper_dissipated_energy_Nmm", "paper_loss_factor",
-                "work_dissipated_energy_Nmm", "work_loss_factor", "tip_share_of_dissipation",
-                "centre_share_of_dissipation"):
-        assert isinstance(d[key], float) and d[key] > 0, key
-    ref = planar.planar_damping(preset("table2-tip"), preset("table2-centre"), 4000.0, 4000.0,
-                                increments=200, options=ModelOptions(centre="paper"),
-                                phase_deg=90.0, samples_per_cycle=256)
-    assert d["work_loss_factor"] == ref.work_loss_factor
-    assert d["paper_loss_factor"] == ref.paper.loss_factor
-
-
-@pytest.mark.parametrize("argv, message", [
-    (["--ratio", "2", "--tip-amplitude", "100"], "either --ratio"),
-    (["--tip-amplitude", "100"], "give --tip-amplitude N and --centre-amplitude N"),
-    (["--ratio", "0.25"], "macroslip limit of the centre model"),
-    (["--ratio", "-1"], "R must be finite and > 0"),
-    (["--ratio", "1.7", "--levels", "top"], "not a ratio of two whole levels"),
-])
-def test_planar_mistakes_are_one_line(capsys, argv, message):
-    code = main(["planar", "--increments", "50", *argv])
-    out, err = capsys.readouterr()
-    assert code == 1 and out == ""
-    assert message in err and len(err.strip().splitlines()) == 1
-
-
-def test_planar_text_states_units(capsys):
-    code = main(["planar", "--tip-amplitude", "3000", "--centre-amplitude", "5000",
-                 "--increments", "100", "--samples-per-cycle", "128"])
-    out, _ = capsys.readouterr()
-    assert code == 0
-    assert re.search(r"W_d \(N·mm\)", out) and "R = 1.2" in out
 
 
 def test_out_must_be_a_directory(tmp_path, capsys):

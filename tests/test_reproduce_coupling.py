@@ -10,6 +10,9 @@ from microslip.io import write_csv
 from microslip.reproduce import coupling_table, figure_coupling, read_csv
 from microslip.reproduce.report import _coupling_section
 
+#: the module's fixture runs the built-in FE coupling sweep (about 2.5 s of CPU)
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def table():

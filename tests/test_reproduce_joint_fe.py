@@ -15,6 +15,9 @@ from microslip.reproduce.joint_fe import (
     joint_fe_study,
 )
 
+#: the module's fixture runs the joint-against-FE study (about 4 s of CPU)
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def study():

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import listing, one_line_error, run
 
 from microslip import ModelOptions, ParameterError, damping, preset
 from microslip.cli.main import main
@@ -281,3 +282,85 @@ def test_make_sweep_rejects_contradictions() -> None:
     with pytest.raises(ParameterError, match=r"at most 100000000 are allowed"):
         make_sweep("tip", base, amplitude=10.0, grid=[("width", np.linspace(1, 2, 20000)),
                                                       ("length", np.linspace(1, 2, 20000))])
+
+
+def test_sweep_planar_takes_the_clamp(capsys, tmp_path):
+    out = tmp_path / "r.csv"
+    code, text, err = run(capsys, "sweep", "--model", "planar", "--ratio-range", "1", "1",
+                          "--cases", "1", "--no-progress", "--thickness", "100", "--out", out)
+    assert code == 0, err
+    assert "thickness 100" in text
+    code, text2, err = run(capsys, "planar", "--ratio", "1", "--thickness", "100",
+                           "--strain-energy", "secant", "--increments", "1000", "--json")
+    header, values = (line.split(",") for line in out.read_text().splitlines())
+    assert float(values[header.index("paper_loss_factor")]) == pytest.approx(
+        json.loads(text2)["paper_loss_factor"], rel=1e-12)
+
+
+# --- one bad Monte-Carlo draw no longer aborts a sweep ---------------------------------------
+
+def test_bad_draws_are_failed_rows_with_reasons_and_the_rest_is_computed(capsys, tmp_path):
+    import numpy as np
+
+    from microslip import preset
+    from microslip.batch import batch_damping
+    from microslip.sweep import make_sweep, run_sweep
+    from microslip.sweep.parameters import Distribution
+
+    spec = make_sweep("tip", preset("table2-tip"), amplitude=6000.0,
+                      samples=[("friction", Distribution("normal", 0.5, 0.3))], n_samples=300,
+                      seed=1, increments=50, check_draws=False)
+    mu = spec.column("friction")
+    res = run_sweep(spec, progress=False, failures="record", chunk_size=64)
+    negative = mu <= 0
+    beyond = ~negative & (6000.0 >= mu * 20000.0)
+    assert negative.any() and beyond.any() and (~negative & ~beyond).any()
+    assert sorted(res.failures) == np.flatnonzero(negative | beyond).tolist()
+    assert all("friction must be finite" in res.failures[i] for i in np.flatnonzero(negative))
+    assert all("macroslip" in res.failures[i] for i in np.flatnonzero(beyond))
+    assert np.isnan(res.loss_factor[negative | beyond]).all()
+    good = ~negative & ~beyond
+    ref = batch_damping("tip", preset("table2-tip").as_dict() | {"friction": mu[good]}, 6000.0,
+                        50)
+    assert np.array_equal(res.loss_factor[good], ref.loss_factor)  # bit for bit
+    with pytest.raises(ParameterError, match="friction must be finite"):
+        run_sweep(spec, progress=False)  # the library default still stops at the first
+
+
+def test_sweep_cli_summarises_failures_and_writes_nan_rows(capsys, tmp_path):
+    out = tmp_path / "mc.csv"
+    code, _, err = run(capsys, "sweep", "--model", "tip", "--preset", "table2-tip",
+                          "--amplitude", "6000", "--sample", "friction=normal:0.5:0.3",
+                          "--samples", "200", "--seed", "1", "--increments", "50",
+                          "--no-progress", "--out", out, "--plot", tmp_path / "mc.png")
+    assert code == 0, err
+    assert err.startswith("warning: ") and err.count("\n") == 1
+    assert "of 200 cases not computed (results nan)" in err and "e.g. case" in err
+    rows = out.read_text().splitlines()[1:]
+    failed = int(err.split("warning: ")[1].split(" of ")[0])
+    assert len(rows) == 200 and sum(r.endswith(",nan") for r in rows) == failed > 0
+    assert (tmp_path / "mc.png").stat().st_size > 0
+
+
+def test_a_sweep_where_no_draw_can_be_computed_is_an_error_and_writes_nothing(capsys,
+                                                                              tmp_path):
+    one_line_error(run(capsys, "sweep", "--model", "tip", "--sample", "mu=normal:0.1:0.2",
+                       "--samples", "50", "--seed", "1", "--no-progress", "--out",
+                       tmp_path / "s.csv"),
+                   "no case can be computed", "50 of 50", "macroslip", "use lognormal")
+    assert listing(tmp_path) == []
+
+
+def test_a_grid_value_beyond_the_limit_is_still_an_error_before_the_work(capsys, tmp_path):
+    one_line_error(run(capsys, "sweep", "--model", "tip", "--amplitude-range", "100", "400",
+                       "--cases", "4", "--no-progress", "--out", tmp_path / "s.csv"),
+                   "amplitude 400 N is at or beyond the macroslip limit", "(case 3 of 4)")
+    assert listing(tmp_path) == []
+
+
+def test_sweep_grid_values_in_the_wrong_unit_warn(capsys):
+    code, _, err = run(capsys, "sweep", "--model", "tip", "--amplitude", "100", "--grid",
+                       "E=70000,2.1e11", "--increments", "20", "--no-progress")
+    assert code == 0
+    assert err == ("warning: --grid modulus: modulus 2.1e+11 MPa is above 1e+07 MPa: pascals "
+                   "given as MPa?\n")

@@ -39,6 +39,7 @@ def _kill_once_plugin(marker: str) -> Any:
     return KillOnce(marker)
 
 
+@pytest.mark.slow
 def test_cluster_run_loses_no_result_and_matches_local(tmp_path: Path) -> None:
     args = ["sweep", "--model", "tip", "--preset", "table2-tip", "--amplitude-range", "100",
             "8000", "--cases", "400", "--sample", "friction=normal:0.8:0.04", "--samples", "25",
@@ -57,6 +58,7 @@ def test_cluster_run_loses_no_result_and_matches_local(tmp_path: Path) -> None:
     assert remote.read_bytes() == local.read_bytes()
 
 
+@pytest.mark.slow
 def test_cluster_sweep_on_a_contact_matches_local(tmp_path: Path) -> None:
     """A stick slope and a pressure law reach the workers (the layer kernel runs there)."""
     args = ["sweep", "--model", "centre", "--amplitude-range", "50", "300", "--cases", "40",

@@ -14,10 +14,9 @@ import os
 import sys
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
-from ..fe.meshload import MeshLoad
 from ..named import result
 from ..params import PRESETS, ClampParams
 from .joints import JointSpec, parse_joints
@@ -28,6 +27,9 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+
+if TYPE_CHECKING:
+    from ..fe.meshload import MeshLoad
 
 __all__ = ["Case", "load_case", "parse_case"]
 
@@ -162,6 +164,7 @@ LOAD_TABLE_KEYS = {"set": None, "direction": None, "amplitude": None, "phase_deg
 
 def _mesh_loads(tables: list[Any]) -> tuple[MeshLoad, ...]:
     """The ``[[load]]`` tables: set, direction = [DX, DY, DZ], amplitude (N), phase_deg."""
+    from ..fe.meshload import MeshLoad  # only a mesh case pays for the FE package
     out = []
     for k, t in enumerate(tables, 1):
         where = f"load {k}"

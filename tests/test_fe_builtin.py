@@ -199,6 +199,7 @@ def test_bad_inputs_give_one_line_errors(call: Callable[[], object], exc: type[E
     assert "\n" not in str(info.value)
 
 
+@pytest.mark.slow
 @pytest.mark.ccx
 def test_agrees_with_calculix_on_a_coarse_mesh(tmp_path: Path) -> None:
     """CalculiX (C3D20R, face-to-face contact, 1 076 DOF) against the built-in solver on a

@@ -118,6 +118,7 @@ def test_uniform_refinement_converges_at_the_singular_rate():
     assert 1.0 < order < 1.6
 
 
+@pytest.mark.slow
 def test_grading_restores_the_convergence_rate_and_wins_at_equal_dof():
     """Same counts (nx, 2, nz), graded versus uniform, errors against the graded 64x2x16 mesh
     of the same family (measured: graded 16x2x4 / 32x2x8 errors 1.8 % / 0.05 %, uniform
