@@ -37,11 +37,13 @@ from .meshmodel import MeshModel, set_faces
 __all__ = [
     "CONTACT_STATES",
     "LABELS",
+    "Mode",
     "Modes",
     "describe_motion",
     "linear_modes",
     "modal_mass",
     "modal_stiffness",
+    "response_nodes",
     "write_modes_vtu",
 ]
 
@@ -161,6 +163,35 @@ def describe_motion(points: FloatArray, motion: FloatArray, axis: FloatArray,
 
 
 @dataclass(frozen=True, eq=False)
+class Mode:
+    """One mode of :class:`Modes` (:meth:`Modes.select`), what the quasi-static modal analysis
+    (:mod:`.qsma`) loads the body with.
+
+    Attributes
+    ----------
+    number : int
+        1-based.
+    frequency_Hz : float
+    vector : ndarray, shape (dof,)
+        phi on the free dofs (model frame), phi^T M phi = 1.
+    inertia : ndarray, shape (dof,)
+        M phi, the inertial load pattern (model frame).
+    direction : ndarray, shape (3,)
+        Unit direction of the response set's motion (global axes).
+    label : str
+    response_set : str or None
+    """
+
+    number: int
+    frequency_Hz: float
+    vector: FloatArray = field(repr=False)
+    inertia: FloatArray = field(repr=False)
+    direction: FloatArray = field(repr=False)
+    label: str
+    response_set: str | None
+
+
+@dataclass(frozen=True, eq=False)
 class Modes:
     """Linear modes of a clamped mesh (:func:`linear_modes`).
 
@@ -185,6 +216,8 @@ class Modes:
         :data:`LABELS` per mode.
     shares : tuple of dict
         The label parts' shares per mode.
+    inertia : ndarray, shape (n, dof)
+        M phi of each mode (model frame).
     """
 
     contact: str
@@ -197,6 +230,7 @@ class Modes:
     directions: FloatArray = field(repr=False)
     labels: tuple[str, ...]
     shares: tuple[dict[str, float], ...] = field(repr=False)
+    inertia: FloatArray = field(repr=False, default_factory=lambda: np.zeros((0, 0)))
 
     @property
     def count(self) -> int:
@@ -221,6 +255,15 @@ class Modes:
                                  f"{number} ({self.labels[i]}); choose another mode or set")
         return np.asarray(self.directions[i])
 
+    def select(self, number: int) -> Mode:
+        """Mode ``number`` (1-based), its response set checked to move
+        (:meth:`direction`)."""
+        i = self.mode(number)
+        return Mode(number=i + 1, frequency_Hz=float(self.frequencies_Hz[i]),
+                    vector=self.vectors[i], inertia=self.inertia[i],
+                    direction=self.direction(number), label=self.labels[i],
+                    response_set=self.response_set)
+
     def summary(self) -> list[dict[str, Any]]:
         """One plain dict per mode, for JSON."""
         return [{"mode": i + 1, "frequency_Hz": float(f), "label": lab,
@@ -229,7 +272,9 @@ class Modes:
                                                      self.directions, strict=True))]
 
 
-def _response_nodes(model: MeshModel, response_set: str | None) -> IntArray:
+def response_nodes(model: MeshModel, response_set: str | None) -> IntArray:
+    """Mesh nodes of a response set (a node set, or the corners of a surface's faces); None:
+    every node of an element."""
     mesh = model.mesh
     if response_set is None:
         return np.asarray(model.order)
@@ -291,7 +336,7 @@ def linear_modes(model: MeshModel, density_kg_m3: float, n_modes: int = 10,
     w2, vec = _eigen(k, m, int(n_modes), contact)
     freq = np.sqrt(w2) / (2 * math.pi)
     shapes = model.global_vectors(vec)
-    nodes = _response_nodes(model, response_set)
+    nodes = response_nodes(model, response_set)
     motion = shapes[:, nodes].mean(axis=1)
     size = np.linalg.norm(motion, axis=1)
     peak = np.max(np.linalg.norm(shapes, axis=2), axis=1)
@@ -311,7 +356,7 @@ def linear_modes(model: MeshModel, density_kg_m3: float, n_modes: int = 10,
     return Modes(contact=contact, density_kg_m3=float(density_kg_m3), frequencies_Hz=freq,
                  vectors=vec, shapes=shapes, response_set=response_set,
                  response_motion=motion, directions=dirs, labels=tuple(labels),
-                 shares=tuple(shares))
+                 shares=tuple(shares), inertia=np.asarray((m @ vec.T).T))
 
 
 def write_modes_vtu(model: MeshModel, modes: Modes, path: str | os.PathLike[str]) -> Path:
