@@ -198,3 +198,17 @@ def test_bad_force(cantilever: tuple[MeshModel, Mode]) -> None:
         qsma_point(model, mode, -1.0)
     with pytest.raises(ParameterError, match="forces must be"):
         qsma(model, mode, [])
+
+
+@pytest.mark.slow
+def test_dask_cluster_matches_local(cantilever: tuple[MeshModel, Mode]) -> None:
+    """The amplitudes on a local Dask cluster (as ``sweep --scheduler``) give the in-process
+    figures exactly."""
+    distributed = pytest.importorskip("distributed")
+    model, mode = cantilever
+    grid = qsma_amplitudes(model, mode, 2)
+    local = qsma(model, mode, grid)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        remote = qsma(model, mode, grid, scheduler=cluster.scheduler_address)
+    assert remote.summary() == local.summary()

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 import time
+import uuid
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -323,6 +324,7 @@ class _Recipe:
     surfaces: dict[str, NDArray[np.int64]]
     source: str
     kwargs: dict[str, Any]
+    token: str
 
     @classmethod
     def of(cls, model: MeshModel) -> _Recipe:
@@ -339,7 +341,8 @@ class _Recipe:
             kwargs["normal_slope"] = model.normal.slope
         return cls(np.asarray(m.nodes), np.asarray(m.elements),
                    {k: np.asarray(v) for k, v in m.node_sets.items()},
-                   {k: np.asarray(v) for k, v in m.surfaces.items()}, m.source, kwargs)
+                   {k: np.asarray(v) for k, v in m.surfaces.items()}, m.source, kwargs,
+                   uuid.uuid4().hex)
 
     def build(self) -> MeshModel:
         mesh = HexMesh(self.nodes, self.elements, self.node_sets, self.surfaces,
@@ -347,12 +350,13 @@ class _Recipe:
         return build_mesh_model(mesh, **self.kwargs)
 
 
-_MODELS: dict[int, MeshModel] = {}
+#: The model a worker process built last, by its recipe's token (one model per worker).
+_MODELS: dict[str, MeshModel] = {}
 
 
 def _remote_point(recipe: _Recipe, mode: Mode, force: float,
                   history: SineCycles | None) -> QSMAPoint:
-    key = id(recipe)
+    key = recipe.token
     if key not in _MODELS:
         _MODELS.clear()
         _MODELS[key] = recipe.build()
