@@ -192,6 +192,14 @@ def test_curve_processes_and_progress(cantilever: tuple[MeshModel, Mode]) -> Non
     assert serial.linear_frequency_Hz == mode.frequency_Hz
 
 
+def test_gross_sliding_point_is_nan_with_reason(cantilever: tuple[MeshModel, Mode]) -> None:
+    model, mode = cantilever
+    top = qsma_amplitudes(model, mode, 2)[-1]
+    curve = qsma(model, mode, [100 * top], history=SineCycles(min_cycles=2, max_cycles=2))
+    assert math.isnan(curve.frequency_Hz[0]) and math.isnan(curve.damping_ratio[0])
+    assert len(curve.warnings) == 1 and "amplitude 1: failed:" in curve.warnings[0]
+
+
 def test_bad_force(cantilever: tuple[MeshModel, Mode]) -> None:
     model, mode = cantilever
     with pytest.raises(ParameterError, match="modal force must be > 0"):

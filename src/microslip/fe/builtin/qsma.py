@@ -43,7 +43,7 @@ from ..errors import NonConvergenceError
 from ..hexmesh import HexMesh
 from ..result import STICK
 from .meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
-from .meshrun import SineCycles, VectorLoad, _Run, solve_mesh
+from .meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
 from .modes import Mode, modal_stiffness, response_nodes
 
 __all__ = [
@@ -198,6 +198,7 @@ class QSMACurve:
 
     @property
     def warnings(self) -> tuple[str, ...]:
+        """One line per amplitude that did not settle or failed (its figures NaN)."""
         return tuple(f"amplitude {i + 1}: {p.message}" for i, p in enumerate(self.points)
                      if not p.settled)
 
@@ -246,6 +247,8 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
     slip = r.contact.slip[k0:] if r.contact.slip is not None else np.zeros((1, 1, 2))
     scale = model.friction_limit / model.contact_stiffness
     slipped = np.max(np.ptp(slip, axis=0), axis=1) > 1e-6 * scale
+    if w == 0.0:
+        slipped[:] = False
     area = model.contact_area
     zeta = w / (2 * math.pi * a**2 * k1) if k1 > 0 and a > 0 else math.nan
     return QSMAPoint(force=q, modal_amplitude=a, amplitude_mm=float(amp),
@@ -255,6 +258,24 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
                      slip_fraction=float(area[slipped].sum() / area.sum()),
                      settled=settled, cycles=r.cycles, wall_s=r.wall_s,
                      message=r.message)
+
+
+def _failed(force: float, why: str) -> QSMAPoint:
+    nan = math.nan
+    return QSMAPoint(force=force, modal_amplitude=nan, amplitude_mm=nan, frequency_Hz=nan,
+                     secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
+                     slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
+                     message=f"failed: {why}")
+
+
+def _point(model: MeshModel, mode: Mode, force: float,
+           history: SineCycles | None) -> QSMAPoint:
+    """:func:`qsma_point`, a run that fails (gross sliding) as a point of NaNs with the
+    reason, so that one amplitude does not lose the others."""
+    try:
+        return qsma_point(model, mode, force, history)
+    except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError) as exc:
+        return _failed(force, str(exc))
 
 
 def first_slip_force(model: MeshModel, mode: Mode) -> float:
@@ -290,7 +311,8 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
     The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`; the last is the
     largest level of a first loading (q raised from the first-slip force by factors ``step``
     on the full FE) at which at least :data:`GROSS_STICK` of the contact area still sticks
-    (or the last that converges)."""
+    (or the last that converges), and below 0.99 of the level whose in-plane resultant
+    reaches mu F_N (macroslip)."""
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
         raise ParameterError(f"count must be a whole number in [1, 1000], got {count!r}")
     q1 = first_slip_force(model, mode)
@@ -307,6 +329,9 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
         if stuck < GROSS_STICK:
             break
         top = q
+    resultant = float(np.linalg.norm(_plane_resultant(model, _load(mode, 1.0))))
+    if resultant > 0:  # solve_mesh refuses an in-plane resultant of mu F_N or more
+        top = min(top, 0.99 * model.force_scale / resultant)
     lo = FIRST_SLIP_MARGIN * q1
     hi = max(top, lo)
     return np.geomspace(lo, hi, count) if count > 1 else np.array([lo])
@@ -360,7 +385,7 @@ def _remote_point(recipe: _Recipe, mode: Mode, force: float,
     if key not in _MODELS:
         _MODELS.clear()
         _MODELS[key] = recipe.build()
-    return qsma_point(_MODELS[key], mode, force, history)
+    return _point(_MODELS[key], mode, force, history)
 
 
 def _local_point(recipe: _Recipe, mode: Mode, force: float,
@@ -391,6 +416,8 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
     Returns
     -------
     QSMACurve
+        An amplitude whose run fails (gross sliding: no convergence) is a point of NaNs with
+        its reason in :attr:`QSMACurve.warnings`.
     """
     t0 = time.perf_counter()
     q = (qsma_amplitudes(model, mode, count) if forces is None
@@ -422,7 +449,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
                        key_prefix="microslip-qsma")
     elif workers == 1 or total == 1:
         for i, f in enumerate(q):
-            points[i] = qsma_point(model, mode, float(f), history)
+            points[i] = _point(model, mode, float(f), history)
             tick()
     else:
         recipe = _Recipe.of(model)
