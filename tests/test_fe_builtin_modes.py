@@ -187,3 +187,26 @@ def test_against_calculix(element: str, tol: float) -> None:
                                  density_kg_m3=RHO, modes=6, element=element)
     np.testing.assert_allclose(ours, ccx[:6], rtol=tol)
     np.testing.assert_allclose(ours[:4], ccx[:4], rtol=0.01)
+
+
+def test_rigid_block_on_its_stick_springs() -> None:
+    """A nearly rigid block (30 x 10 x 5 mm, E = 1e8 MPa) on soft stick springs lambda A_i
+    (lambda 1e3 N/mm^3, fixed normal): the first two modes are the in-plane translations,
+    omega^2 = lambda A / m, the third the turn about the normal,
+    omega^2 = sum lambda A_i r_i^2 / J_z, J_z = m (Lx^2 + Ly^2) / 12; to 1e-4 (3e-5: the
+    body is not quite rigid)."""
+    from microslip.fe.examples import grid_mesh
+
+    mesh = grid_mesh([0, 10, 20, 30], [0, 10], [0, 5], node_sets={
+        "contact": lambda x, y, z: z < 1e-9, "clamp": lambda x, y, z: z > 5 - 1e-9},
+        surfaces=("contact", "clamp"))
+    model = build_mesh_model(mesh, contact_set="contact", clamp_set="clamp",
+                             normal_force=100.0, modulus=1e8, poisson_ratio=0.0, friction=0.5,
+                             stick_slope=1e3, normal_contact="fixed")
+    modes = linear_modes(model, RHO, 3)
+    mass = RHO * 1e-12 * 30 * 10 * 5
+    k = float(model.contact_stiffness.sum())
+    r = mesh.nodes[model.contact_nodes, :2] - [15.0, 5.0]
+    k_turn = float(np.sum(model.contact_stiffness * np.sum(r**2, axis=1)))
+    omega = np.sqrt([k / mass, k / mass, k_turn / (mass * (30**2 + 10**2) / 12)])
+    np.testing.assert_allclose(modes.frequencies_Hz, omega / (2 * math.pi), rtol=1e-4)
