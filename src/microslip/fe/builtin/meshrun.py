@@ -48,10 +48,61 @@ from ..result import (
 from .meshmodel import MeshModel
 from .solve import _Stepper, load_increment, runaway_reason
 
-__all__ = ["LoadFactors", "MeshLoadResult", "MeshRunResult", "SineCycles", "solve_mesh"]
+__all__ = ["LoadFactors", "MeshLoadResult", "MeshRunResult", "SineCycles", "VectorLoad",
+           "solve_mesh"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True, eq=False)
+class VectorLoad:
+    """A load given as a pattern of nodal forces on the model's free dofs (model frame):
+    F(t) p with F(t) = A sin(2 pi t + phi), e.g. the inertial pattern M phi of a mode
+    (:mod:`.qsma`). Its work-conjugate displacement is p . (u - u_clamped).
+
+    Attributes
+    ----------
+    vector : ndarray, shape (dof,)
+        p, nodal forces per unit of F.
+    amplitude : float
+        A (> 0).
+    phase_deg : float
+    set : str
+        A name for reports.
+    direction : tuple of float
+        A unit direction for reports (the pattern's own has no single one).
+    """
+
+    vector: FloatArray
+    amplitude: float
+    phase_deg: float = 0.0
+    set: str = "vector"
+    direction: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        v = np.array(self.vector, dtype=float)
+        if v.ndim != 1 or not np.all(np.isfinite(v)) or not np.any(v):
+            raise ParameterError("a vector load needs a finite, non-zero force pattern")
+        object.__setattr__(self, "vector", v)
+        check_positive("amplitude", self.amplitude)
+
+    def force(self, t: FloatArray | float) -> FloatArray:
+        """A sin(2 pi t + phi) at times t (cycles)."""
+        return self.amplitude * np.sin(2 * np.pi * np.asarray(t, dtype=float)
+                                       + np.radians(self.phase_deg))
+
+
+AnyLoad = MeshLoad | VectorLoad
+
+
+def _unit(model: MeshModel, load: AnyLoad) -> FloatArray:
+    if isinstance(load, VectorLoad):
+        if load.vector.size != model.dof:
+            raise ParameterError(f"a vector load must have {model.dof} entries (the model's "
+                                 f"free dofs), got {load.vector.size}")
+        return load.vector
+    return model.unit_load(load)
 
 
 def _whole(name: str, value: Any, lower: int, upper: int) -> int:
@@ -95,7 +146,7 @@ class SineCycles:
         if self.startup is not None:
             _whole("startup", self.startup, 1, 100_000)
 
-    def samples(self, loads: Sequence[MeshLoad], cycles: int) -> tuple[FloatArray, FloatArray,
+    def samples(self, loads: Sequence[AnyLoad], cycles: int) -> tuple[FloatArray, FloatArray,
                                                                          int]:
         """Times (cycles; the ramp before 0), forces (samples, loads; N) and the index of
         t = 0, for ``cycles`` cycles."""
@@ -154,7 +205,7 @@ class MeshLoadResult:
 
     Attributes
     ----------
-    load : MeshLoad
+    load : MeshLoad or VectorLoad
     force : ndarray, shape (n,)
         F_j at every state, N.
     displacement : ndarray, shape (n,)
@@ -167,7 +218,7 @@ class MeshLoadResult:
         Half the peak-to-peak displacement over the settled cycle, mm.
     """
 
-    load: MeshLoad
+    load: MeshLoad | VectorLoad
     force: FloatArray
     displacement: FloatArray
     loop: HysteresisLoop
@@ -288,9 +339,9 @@ class _Run:
     """The loading state of a model: displacements, slips, forces, the Newton stepper; on the
     condensed body (``model.reduced``) when there is one."""
 
-    def __init__(self, model: MeshModel, loads: Sequence[MeshLoad], record: bool) -> None:
+    def __init__(self, model: MeshModel, loads: Sequence[AnyLoad], record: bool) -> None:
         self.model, self.record = model, record
-        full = [model.unit_load(ld) for ld in loads]
+        full = [_unit(model, ld) for ld in loads]
         red = model.reduced
         m = len(full)
         #: d_j = a_j . u + sum_k B_jk F_k - base_j (B = 0 without condensation)
@@ -379,10 +430,18 @@ class _Run:
         return not any(np.any(s == SLIP) for s in self.status[first + 1:])
 
 
-def _check(model: MeshModel, loads: Sequence[MeshLoad], peak: FloatArray) -> None:
+def _plane_resultant(model: MeshModel, load: AnyLoad) -> FloatArray:
+    """The in-plane (e1, e2) resultant of a load's unit pattern."""
+    if isinstance(load, MeshLoad):
+        return np.asarray(model.rotation[:2] @ np.asarray(load.direction, dtype=float))
+    full = np.zeros(model.index.size)
+    full[model.free] = load.vector
+    return np.asarray(full.reshape(-1, 3)[:, :2].sum(axis=0))
+
+
+def _check(model: MeshModel, loads: Sequence[AnyLoad], peak: FloatArray) -> None:
     """Refuse loads whose tangential resultant reaches mu F_N at some sample (macroslip)."""
-    e12 = model.rotation[:2]
-    dirs = np.array([ld.direction for ld in loads]) @ e12.T  # (loads, 2)
+    dirs = np.array([_plane_resultant(model, ld) for ld in loads])  # (loads, 2)
     resultant = float(np.max(np.linalg.norm(peak @ dirs, axis=1)))
     if resultant >= model.force_scale:
         raise MacroslipError(
@@ -390,7 +449,7 @@ def _check(model: MeshModel, loads: Sequence[MeshLoad], peak: FloatArray) -> Non
             f"{model.force_scale:g} N (macroslip: no static equilibrium)")
 
 
-def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad],
+def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad | VectorLoad],
                history: SineCycles | LoadFactors | None = None, *,
                record: bool = False) -> MeshRunResult:
     """Load a clamped mesh and return its dissipated energy and loops.
@@ -399,8 +458,9 @@ def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad],
     ----------
     model : MeshModel
         :func:`~microslip.fe.builtin.meshmodel.build_mesh_model`.
-    loads : sequence of MeshLoad
-        At least one; each set must hold element faces.
+    loads : sequence of MeshLoad or VectorLoad
+        At least one; each set must hold element faces (a :class:`VectorLoad` is a raw
+        pattern of nodal forces).
     history : SineCycles or LoadFactors, optional
         Default :class:`SineCycles` ().
     record : bool
@@ -417,7 +477,7 @@ def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad],
     MacroslipError
         The loads' tangential resultant reaches mu F_N.
     """
-    if not loads or not all(isinstance(ld, MeshLoad) for ld in loads):
+    if not loads or not all(isinstance(ld, (MeshLoad, VectorLoad)) for ld in loads):
         raise ParameterError("give at least one MeshLoad")
     loads = tuple(loads)
     history = SineCycles() if history is None else history
@@ -464,7 +524,7 @@ def _work(forces: FloatArray, d: FloatArray, a: int, b: int) -> float:
     return float(sum(loop_work(forces[a:b, j], d[a:b, j]) for j in range(forces.shape[1])))
 
 
-def _result(model: MeshModel, loads: tuple[MeshLoad, ...], run: _Run, times: FloatArray,
+def _result(model: MeshModel, loads: tuple[AnyLoad, ...], run: _Run, times: FloatArray,
             forces: FloatArray, k0: int, works: FloatArray, settled: bool,
             history: SineCycles | LoadFactors) -> MeshRunResult:
     d = run.displacements()

@@ -77,6 +77,7 @@ __all__ = [
     "LoadHistory",
     "MeshLoadPlan",
     "base_slab",
+    "build_frequency_deck",
     "build_mesh_deck",
     "dsload_card",
     "element_surface_card",
@@ -586,6 +587,74 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         node_print_card(LOADED_NSET),
         node_file_card(),
         contact_file_card(),
+        end_step_card(),
+    ]
+    return "".join(parts)
+
+
+def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
+                         normal_force: float, friction: float, stick_slope: float,
+                         normal_slope: float = 1.0e5, modulus: float, poisson_ratio: float,
+                         density_kg_m3: float, modes: int = 10, element: str | None = None
+                         ) -> str:
+    """The deck of the linear modes about the clamped state (issue 23): the deck of
+    :func:`build_mesh_deck` without loads, the material with ``*DENSITY`` (t/mm^3), step 1
+    the clamping pressure, step 2 ``*STEP, PERTURBATION`` with ``*FREQUENCY``: only there does
+    CalculiX linearise the contact of the clamping step (normal slope and stick slope); a
+    frequency step without it ignores the contact, and every mode is a 0 Hz rigid motion.
+    The eigenvalues go to the ``.dat`` file (:func:`~microslip.fe.calculix.meshrun.
+    read_frequencies`). Penalty normal contact only. ``element``: the 8-node element type
+    (default C3D8I, the built-in solver's; C3D8 for a comparison free of the two
+    incompatible-mode formulations)."""
+    if not isinstance(mesh, HexMesh):
+        raise ParameterError("build_frequency_deck needs a HexMesh")
+    fn = _check_positive("normal_force", normal_force, "N")
+    rho = _check_positive("density", density_kg_m3, "kg/m^3") * 1e-12
+    if isinstance(modes, bool) or not isinstance(modes, int) or not 1 <= modes <= 1000:
+        raise ParameterError(f"modes must be a whole number in [1, 1000], got {modes!r}")
+    contact = mesh.faces(contact_set)
+    clamp = mesh.faces(clamp_set)
+    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
+        if faces.size == 0:
+            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
+    _, _, clamp_area = face_load(mesh, clamp)
+    base = base_slab(mesh, contact, contact_set)
+    etype = MESH_ELEMENTS[mesh.nodes_per_element]
+    if element is not None:
+        if mesh.nodes_per_element != 8 or element not in ("C3D8I", "C3D8"):
+            raise ParameterError(f"element must be C3D8I or C3D8 for 8-node hexahedra, got "
+                                 f"{element!r}")
+        etype = element
+    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
+    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
+    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
+    parts = [
+        heading_card(f"microslip own mesh {mesh.source}: linear modes about the clamped "
+                     f"state, {n_el} {etype}"),
+        nodes_card(np.vstack([mesh.nodes, base.nodes])),
+        elements_card(etype, "BODY", mesh.elements + 1, first=1),
+        elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=int(base_ids[0])),
+        nset_card("NBASE", base_nodes),
+        element_surface_card("SCONTACT", contact),
+        element_surface_card("SCLAMP", clamp),
+        element_surface_card("SBASE", np.column_stack([base_ids - 1,
+                                                       np.ones_like(base_ids)])),
+        material_card("BODY", modulus, poisson_ratio),
+        f"*DENSITY\n{rho:.10g}\n",
+        solid_section_card("BODY", "BODY"),
+        solid_section_card("BASE", "BODY"),
+        surface_interaction_card("SI", normal_slope, friction, stick_slope),
+        contact_pair_card("SI", "SCONTACT", "SBASE"),
+        boundary_card([("NBASE", 1, 3)]),
+        f"** step 1: clamping pressure F_N / A = {fn:g} N / {clamp_area:g} mm^2 on "
+        f"{clamp_set}\n",
+        step_card(100),
+        static_card(1.0, CLAMP_TIME, direct=False),
+        dsload_card("SCLAMP", fn / clamp_area),
+        end_step_card(),
+        "** step 2: linear modes with the contact linearised about the clamped state\n",
+        "*STEP, PERTURBATION\n*FREQUENCY\n",
+        f"{modes}\n",
         end_step_card(),
     ]
     return "".join(parts)

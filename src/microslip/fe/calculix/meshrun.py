@@ -57,6 +57,7 @@ from .meshdeck import (
     MESH_ELEMENTS,
     LoadHistory,
     MeshLoadPlan,
+    build_frequency_deck,
     build_mesh_deck,
     load_history,
     load_plan,
@@ -64,8 +65,8 @@ from .meshdeck import (
 from .readers import read_dat, read_frd, read_sta
 from .runner import JOBNAME, find_ccx, run_ccx
 
-__all__ = ["MeshCalculixResult", "mesh_timeout", "read_contact", "read_mesh_results",
-           "run_mesh_calculix"]
+__all__ = ["MeshCalculixResult", "mesh_timeout", "read_contact", "read_frequencies",
+           "read_mesh_results", "run_frequency_calculix", "run_mesh_calculix"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -358,3 +359,58 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
     with tempfile.TemporaryDirectory(prefix="microslip-ccx-mesh-") as tmp:
         r = run_in(Path(tmp))
     return dataclasses.replace(r, job_dir=None)
+
+
+def read_frequencies(dat: str | Path) -> FloatArray:
+    """The frequencies (Hz: cycles per time, the time in s) of the last
+    ``E I G E N V A L U E   O U T P U T`` table of a ``.dat`` file."""
+    text = Path(dat).read_text(errors="replace")
+    marker = "E I G E N V A L U E   O U T P U T"
+    if marker not in text:
+        raise ResultsError(f"{dat}: no eigenvalue output (did the frequency step run?)")
+    block = text.rsplit(marker, 1)[1]
+    out = []
+    started = False
+    for line in block.splitlines():
+        parts = line.split()
+        if len(parts) >= 3 and parts[0].isdigit():
+            try:
+                out.append(float(parts[2]))
+            except ValueError:
+                break
+            started = True
+        elif started and parts:
+            break
+    if not out:
+        raise ResultsError(f"{dat}: the eigenvalue table is empty")
+    return np.array(out)
+
+
+def run_frequency_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str,
+                           normal_force: float, friction: float, stick_slope: float,
+                           normal_slope: float = 1.0e5, modulus: float, poisson_ratio: float,
+                           density_kg_m3: float, modes: int = 10, element: str | None = None,
+                           job_dir: str | Path | None = None, timeout: float | None = None,
+                           executable: str | None = None) -> FloatArray:
+    """Write :func:`~microslip.fe.calculix.meshdeck.build_frequency_deck` (same parameters),
+    run ccx and return the linear frequencies about the clamped state, Hz (issue 23)."""
+    deck = build_frequency_deck(mesh, contact_set=contact_set, clamp_set=clamp_set,
+                                normal_force=normal_force, friction=friction,
+                                stick_slope=stick_slope, normal_slope=normal_slope,
+                                modulus=modulus, poisson_ratio=poisson_ratio,
+                                density_kg_m3=density_kg_m3, modes=modes, element=element)
+    exe = find_ccx(executable)
+
+    def run_in(d: Path) -> FloatArray:
+        d.mkdir(parents=True, exist_ok=True)
+        for suffix in _RESULT_SUFFIXES:
+            (d / f"{JOBNAME}{suffix}").unlink(missing_ok=True)
+        with atomic_write(d / f"{JOBNAME}.inp") as fh:
+            fh.write(deck)
+        run_ccx(d, JOBNAME, timeout=timeout or mesh_timeout(mesh), threads=1, executable=exe)
+        return read_frequencies(d / f"{JOBNAME}.dat")
+
+    if job_dir is not None:
+        return run_in(Path(job_dir))
+    with tempfile.TemporaryDirectory(prefix="microslip-ccx-modes-") as tmp:
+        return run_in(Path(tmp))

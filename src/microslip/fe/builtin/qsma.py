@@ -1,0 +1,465 @@
+"""Quasi-static modal analysis of the full frictional FE (Lacayo and Allen 2019; issue 23).
+
+After the clamping step, the stuck mode's inertial load pattern M phi (phi mass-normalised,
+:func:`~microslip.fe.builtin.modes.linear_modes`) scaled by the modal force q is applied
+cyclically, f(t) = q sin(2 pi t) M phi, on the full frictional FE (:func:`~microslip.fe.
+builtin.meshrun.solve_mesh` with a :class:`~microslip.fe.builtin.meshrun.VectorLoad`) until
+the work per cycle settles. The load's work-conjugate displacement is the modal coordinate
+eta = phi^T M (u - u_clamped); from the settled loop (q sin 2 pi t, eta(t)):
+
+* the modal amplitude a = |eta_1|, the first harmonic of eta (:func:`first_harmonic`);
+* ``frequency_Hz``: omega^2 = Re(q_1 conj(eta_1)) / |eta_1|^2, the first-harmonic modal force
+  in phase with the first-harmonic displacement over its amplitude (the definition of the
+  extended periodic motion concept, EPMC) (:func:`loop_stiffness`);
+* ``secant_frequency_Hz``: omega_s^2 = (force half peak-to-peak) / (eta half peak-to-peak),
+  Lacayo and Allen's;
+* the damping ratio zeta = W / (2 pi a^2 omega^2), W the work of the load over the settled
+  cycle (unit modal mass: a linear viscous mode dissipates W = 2 pi zeta omega^2 a^2);
+* ``amplitude_mm``: the first-harmonic amplitude of the response set's mean displacement
+  along the mode's direction (:attr:`~microslip.fe.builtin.modes.Mode.direction`).
+
+Units: phi in 1/sqrt(t), eta and a in sqrt(t)·mm, q in sqrt(t)·mm/s^2 (q M phi in N), omega^2
+in 1/s^2, W in N·mm, frequencies in Hz. Each amplitude is an independent run: local processes
+(:class:`concurrent.futures.ProcessPoolExecutor`) or a Dask cluster
+(:func:`microslip.cluster.map_on_cluster`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import uuid
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from ...errors import MacroslipError, ParameterError
+from ..errors import NonConvergenceError
+from ..hexmesh import HexMesh
+from ..result import STICK
+from .meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
+from .meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
+from .modes import Mode, modal_stiffness, response_nodes
+
+__all__ = [
+    "GROSS_STICK",
+    "QSMACurve",
+    "QSMAPoint",
+    "first_harmonic",
+    "first_slip_force",
+    "loop_stiffness",
+    "qsma",
+    "qsma_amplitudes",
+    "qsma_point",
+]
+
+FloatArray = NDArray[np.float64]
+#: Near gross sliding: the stuck share of the contact area on the first loading drops below
+#: this.
+GROSS_STICK = 0.1
+#: W below this times q a (the loop's energy scale) is rounding: W = 0.
+W_FLOOR = 1e-9
+#: The grid starts this factor above the first-slip force.
+FIRST_SLIP_MARGIN = 1.05
+Progress = Callable[[int, int, float], None]
+
+
+def first_harmonic(t: FloatArray, x: FloatArray) -> complex:
+    """X_1 of x(t) over one period, t in cycles sampled uniformly with the last sample one
+    period after the first (dropped): x ~ Re(X_1 exp(2 pi i t)) + ...
+
+    >>> t = np.linspace(0.0, 1.0, 41)
+    >>> round(abs(first_harmonic(t, 3 * np.sin(2 * np.pi * t))), 12)
+    3.0
+    """
+    tt, xx = np.asarray(t, dtype=float)[:-1], np.asarray(x, dtype=float)[:-1]
+    return complex(2.0 / tt.size * np.sum(xx * np.exp(-2j * np.pi * tt)))
+
+
+def loop_stiffness(t: FloatArray, force: FloatArray, disp: FloatArray) -> tuple[float, float]:
+    """The first-harmonic (in-phase) and the secant stiffness of a closed loop over one
+    period: Re(F_1 conj(D_1)) / |D_1|^2 and ptp(F) / ptp(D).
+
+    A Jenkins element (stiffness k, slip displacement x_s) driven at 4 x_s: 0.196 k and 0.25 k
+    (k/pi (beta - sin(2 beta)/2), cos beta = 1 - 2 x_s / A).
+    """
+    f1, d1 = first_harmonic(t, force), first_harmonic(t, disp)
+    k1 = (f1 * d1.conjugate()).real / abs(d1) ** 2
+    ks = float(np.ptp(force) / np.ptp(disp))
+    return float(k1), ks
+
+
+@dataclass(frozen=True)
+class QSMAPoint:
+    """One amplitude of the quasi-static modal analysis (see the module docstring).
+
+    Attributes
+    ----------
+    force : float
+        q, sqrt(t)·mm/s^2.
+    modal_amplitude : float
+        a = |eta_1|, sqrt(t)·mm.
+    amplitude_mm : float
+        First harmonic of the response set's mean displacement along the mode, mm.
+    frequency_Hz, secant_frequency_Hz : float
+    damping_ratio : float
+    dissipated_energy_Nmm : float
+    slip_fraction : float
+        Share of the contact area that slips at some state of the settled cycle.
+    settled : bool
+    cycles : int
+    wall_s : float
+    message : str
+    """
+
+    force: float
+    modal_amplitude: float
+    amplitude_mm: float
+    frequency_Hz: float
+    secant_frequency_Hz: float
+    damping_ratio: float
+    dissipated_energy_Nmm: float
+    slip_fraction: float
+    settled: bool
+    cycles: int
+    wall_s: float
+    message: str
+
+
+@dataclass(frozen=True, eq=False)
+class QSMACurve:
+    """Frequency and damping against amplitude of one mode (:func:`qsma`).
+
+    Attributes
+    ----------
+    mode : int
+        1-based.
+    label : str
+    linear_frequency_Hz : float
+        The stuck mode's, Hz.
+    force, modal_amplitude, amplitude_mm, frequency_Hz, secant_frequency_Hz, damping_ratio,
+    dissipated_energy_Nmm, slip_fraction : ndarray
+        Per amplitude, increasing force (:class:`QSMAPoint`).
+    settled : ndarray of bool
+    points : tuple of QSMAPoint
+    wall_s : float
+        Wall time of all runs, s.
+    """
+
+    mode: int
+    label: str
+    linear_frequency_Hz: float
+    points: tuple[QSMAPoint, ...] = field(repr=False)
+    wall_s: float = 0.0
+
+    def _col(self, name: str) -> FloatArray:
+        return np.array([getattr(p, name) for p in self.points], dtype=float)
+
+    @property
+    def force(self) -> FloatArray:
+        return self._col("force")
+
+    @property
+    def modal_amplitude(self) -> FloatArray:
+        return self._col("modal_amplitude")
+
+    @property
+    def amplitude_mm(self) -> FloatArray:
+        return self._col("amplitude_mm")
+
+    @property
+    def frequency_Hz(self) -> FloatArray:
+        return self._col("frequency_Hz")
+
+    @property
+    def secant_frequency_Hz(self) -> FloatArray:
+        return self._col("secant_frequency_Hz")
+
+    @property
+    def damping_ratio(self) -> FloatArray:
+        return self._col("damping_ratio")
+
+    @property
+    def dissipated_energy_Nmm(self) -> FloatArray:
+        return self._col("dissipated_energy_Nmm")
+
+    @property
+    def slip_fraction(self) -> FloatArray:
+        return self._col("slip_fraction")
+
+    @property
+    def settled(self) -> NDArray[np.bool_]:
+        return np.array([p.settled for p in self.points], dtype=bool)
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """One line per amplitude that did not settle or failed (its figures NaN)."""
+        return tuple(f"amplitude {i + 1}: {p.message}" for i, p in enumerate(self.points)
+                     if not p.settled)
+
+    def summary(self) -> dict[str, Any]:
+        """Plain figures for JSON."""
+        out: dict[str, Any] = {"mode": self.mode, "label": self.label,
+                               "linear_frequency_Hz": self.linear_frequency_Hz}
+        for name in ("force", "modal_amplitude", "amplitude_mm", "frequency_Hz",
+                     "secant_frequency_Hz", "damping_ratio", "dissipated_energy_Nmm",
+                     "slip_fraction"):
+            out[name] = self._col(name).tolist()
+        out["warnings"] = list(self.warnings)
+        return out
+
+
+def _load(mode: Mode, force: float) -> VectorLoad:
+    d = np.asarray(mode.direction, dtype=float)
+    return VectorLoad(mode.inertia, force, set=f"mode {mode.number}",
+                      direction=(float(d[0]), float(d[1]), float(d[2])))
+
+
+def qsma_point(model: MeshModel, mode: Mode, force: float,
+               history: SineCycles | None = None) -> QSMAPoint:
+    """One amplitude: the cyclic modal load q sin(2 pi t) M phi until W per cycle settles."""
+    q = float(force)
+    if not (math.isfinite(q) and q > 0):
+        raise ParameterError(f"the modal force must be > 0, got {force!r}")
+    history = SineCycles() if history is None else history
+    r = solve_mesh(model, [_load(mode, q)], history, record=True)
+    loop = r.loads[0].loop
+    k0 = r.cycle_start
+    t = r.time[k0:]
+    k1, ks = loop_stiffness(t, loop.force, loop.displacement)
+    a = abs(first_harmonic(t, loop.displacement))
+    assert r.displacement is not None
+    nodes = response_nodes(model, mode.response_set)
+    along = r.displacement[k0:, nodes].mean(axis=1) @ np.asarray(mode.direction, dtype=float)
+    amp = abs(first_harmonic(t, along))
+    w = r.dissipated_energy
+    settled = bool(r.settled)
+    if w <= W_FLOOR * q * a:  # shakedown: slip of the first cycles only, W at rounding
+        w, settled = 0.0, True
+    # a node slipped in the cycle if its slip moved by more than 1e-6 of its slip
+    # displacement mu N_i / k_i (a node left at its limit by the clamping step is flagged
+    # ``slip`` without moving)
+    slip = r.contact.slip[k0:] if r.contact.slip is not None else np.zeros((1, 1, 2))
+    scale = model.friction_limit / model.contact_stiffness
+    slipped = np.max(np.ptp(slip, axis=0), axis=1) > 1e-6 * scale
+    if w == 0.0:
+        slipped[:] = False
+    area = model.contact_area
+    zeta = w / (2 * math.pi * a**2 * k1) if k1 > 0 and a > 0 else math.nan
+    return QSMAPoint(force=q, modal_amplitude=a, amplitude_mm=float(amp),
+                     frequency_Hz=math.sqrt(max(k1, 0.0)) / (2 * math.pi),
+                     secant_frequency_Hz=math.sqrt(max(ks, 0.0)) / (2 * math.pi),
+                     damping_ratio=float(zeta), dissipated_energy_Nmm=float(w),
+                     slip_fraction=float(area[slipped].sum() / area.sum()),
+                     settled=settled, cycles=r.cycles, wall_s=r.wall_s,
+                     message=r.message)
+
+
+def _failed(force: float, why: str) -> QSMAPoint:
+    nan = math.nan
+    return QSMAPoint(force=force, modal_amplitude=nan, amplitude_mm=nan, frequency_Hz=nan,
+                     secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
+                     slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
+                     message=f"failed: {why}")
+
+
+def _point(model: MeshModel, mode: Mode, force: float,
+           history: SineCycles | None) -> QSMAPoint:
+    """:func:`qsma_point`, a run that fails (gross sliding) as a point of NaNs with the
+    reason, so that one amplitude does not lose the others."""
+    try:
+        return qsma_point(model, mode, force, history)
+    except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError) as exc:
+        return _failed(force, str(exc))
+
+
+def first_slip_force(model: MeshModel, mode: Mode) -> float:
+    """The modal force q from which some contact node slips in every cycle under the stuck
+    (linear) response u = q K^-1 M phi about the clamped state: the smallest
+    mu N0_i / (|a_i| + mu |b_i|) (a_i, b_i the tangential and normal force change per unit q;
+    b = 0 with ``fixed`` normal contact): the force range 2 q |a_i| of a cycle reaches the
+    width 2 mu N_i of the friction limit. The stick forces the clamping step leaves (some
+    nodes at their limit) only shake down below it."""
+    k = modal_stiffness(model, "stuck")
+    du = spla.spsolve(k.tocsc(), mode.inertia)
+    c = model.contact_dofs
+    kc = model.contact_stiffness[:, None]
+    a = kc * du[c]
+    n0 = model.normal_force
+    if model.normal is None:
+        b = np.zeros_like(n0)
+    else:
+        b = model.normal.tangent(model.u0) * -du[model.normal.dofs]
+    mu = model.friction
+    rate = np.linalg.norm(a, axis=1) + mu * np.abs(b)
+    ok = (rate > 1e-12 * float(rate.max(initial=0.0))) & (n0 > 0)
+    if not np.any(ok) or not float(rate.max(initial=0.0)) > 0:
+        raise ParameterError(f"mode {mode.number} does not load the contact: no node "
+                             "ever slips under its inertial load")
+    return float(np.min(mu * n0[ok] / rate[ok]))
+
+
+def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1.25,
+                    max_steps: int = 80) -> FloatArray:
+    """Modal forces q from first slip to near gross sliding, log-uniform, ``count`` of them.
+
+    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`; the last is the
+    largest level of a first loading (q raised from the first-slip force by factors ``step``
+    on the full FE) at which at least :data:`GROSS_STICK` of the contact area still sticks
+    (or the last that converges), and below 0.99 of the level whose in-plane resultant
+    reaches mu F_N (macroslip)."""
+    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
+        raise ParameterError(f"count must be a whole number in [1, 1000], got {count!r}")
+    q1 = first_slip_force(model, mode)
+    run = _Run(model, [_load(mode, 1.0)], record=False)
+    area = model.contact_area
+    q, top = q1, q1
+    for i in range(max_steps):
+        q = q1 * step ** (i + 1)
+        try:
+            run.advance(np.array([[q]]), i)
+        except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError):
+            break
+        stuck = float(area[run.status[-1] == STICK].sum() / area.sum())
+        if stuck < GROSS_STICK:
+            break
+        top = q
+    resultant = float(np.linalg.norm(_plane_resultant(model, _load(mode, 1.0))))
+    if resultant > 0:  # solve_mesh refuses an in-plane resultant of mu F_N or more
+        top = min(top, 0.99 * model.force_scale / resultant)
+    lo = FIRST_SLIP_MARGIN * q1
+    hi = max(top, lo)
+    return np.geomspace(lo, hi, count) if count > 1 else np.array([lo])
+
+
+# ---------------------------------------------------------------- independent runs
+@dataclass(frozen=True)
+class _Recipe:
+    """What a worker needs to rebuild the model (HexMesh holds mapping proxies, which do not
+    pickle): the mesh's arrays and the build's arguments."""
+
+    nodes: FloatArray
+    elements: NDArray[np.int64]
+    node_sets: dict[str, NDArray[np.int64]]
+    surfaces: dict[str, NDArray[np.int64]]
+    source: str
+    kwargs: dict[str, Any]
+    token: str
+
+    @classmethod
+    def of(cls, model: MeshModel) -> _Recipe:
+        m = model.mesh
+        linear = model.backend.name if model.backend.name in MESH_LINEAR_SOLVERS else "auto"
+        kwargs: dict[str, Any] = dict(
+            contact_set=model.contact_set, clamp_set=model.clamp_set,
+            normal_force=model.clamp_force, modulus=model.modulus,
+            poisson_ratio=model.poisson_ratio, friction=model.friction,
+            stick_slope=model.stick_slope, normal_contact=model.normal_contact,
+            element=model.element, linear_solver=linear, newton=model.newton,
+            condensed=model.reduced is not None)
+        if model.normal is not None:
+            kwargs["normal_slope"] = model.normal.slope
+        return cls(np.asarray(m.nodes), np.asarray(m.elements),
+                   {k: np.asarray(v) for k, v in m.node_sets.items()},
+                   {k: np.asarray(v) for k, v in m.surfaces.items()}, m.source, kwargs,
+                   uuid.uuid4().hex)
+
+    def build(self) -> MeshModel:
+        mesh = HexMesh(self.nodes, self.elements, self.node_sets, self.surfaces,
+                       source=self.source)
+        return build_mesh_model(mesh, **self.kwargs)
+
+
+#: The model a worker process built last, by its recipe's token (one model per worker).
+_MODELS: dict[str, MeshModel] = {}
+
+
+def _remote_point(recipe: _Recipe, mode: Mode, force: float,
+                  history: SineCycles | None) -> QSMAPoint:
+    key = recipe.token
+    if key not in _MODELS:
+        _MODELS.clear()
+        _MODELS[key] = recipe.build()
+    return _point(_MODELS[key], mode, force, history)
+
+
+def _local_point(recipe: _Recipe, mode: Mode, force: float,
+                 history: SineCycles | None) -> QSMAPoint:
+    return _remote_point(recipe, mode, force, history)
+
+
+def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
+         count: int = 10, history: SineCycles | None = None, workers: int | None = 1,
+         scheduler: str | None = None, progress: Progress | None = None) -> QSMACurve:
+    """Quasi-static modal analysis of one mode over a grid of modal forces.
+
+    Parameters
+    ----------
+    model : MeshModel
+    mode : Mode
+        :meth:`~microslip.fe.builtin.modes.Modes.select` of the stuck modes.
+    forces : sequence of float, optional
+        Modal forces q; default :func:`qsma_amplitudes` (``count`` of them).
+    history : SineCycles, optional
+    workers : int or None
+        Local processes (1: in this process, the given model; None: one per CPU).
+    scheduler : str, optional
+        A Dask scheduler address: the runs go there instead (as ``microslip sweep`` does).
+    progress : callable, optional
+        ``progress(done, total, eta_s)`` after each amplitude.
+
+    Returns
+    -------
+    QSMACurve
+        An amplitude whose run fails (gross sliding: no convergence) is a point of NaNs with
+        its reason in :attr:`QSMACurve.warnings`.
+    """
+    t0 = time.perf_counter()
+    q = (qsma_amplitudes(model, mode, count) if forces is None
+         else np.asarray(forces, dtype=float))
+    if q.ndim != 1 or q.size == 0 or not np.all(np.isfinite(q) & (q > 0)):
+        raise ParameterError("forces must be one or more modal forces > 0")
+    total = int(q.size)
+    points: list[QSMAPoint | None] = [None] * total
+    done = 0
+
+    def tick() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            spent = time.perf_counter() - t0
+            progress(done, total, spent / done * (total - done))
+
+    if scheduler is not None:
+        from ...cluster import map_on_cluster
+
+        recipe = _Recipe.of(model)
+        payloads = [(recipe, mode, float(f), history) for f in q]
+
+        def on_result(i: int, r: Any) -> None:
+            points[i] = r
+            tick()
+
+        map_on_cluster(_remote_point, payloads, scheduler, on_result=on_result,
+                       key_prefix="microslip-qsma")
+    elif workers == 1 or total == 1:
+        for i, f in enumerate(q):
+            points[i] = _point(model, mode, float(f), history)
+            tick()
+    else:
+        recipe = _Recipe.of(model)
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futures = {pool.submit(_local_point, recipe, mode, float(f), history): i
+                       for i, f in enumerate(q)}
+            for fut in as_completed(futures):
+                points[futures[fut]] = fut.result()
+                tick()
+    out = tuple(p for p in points if p is not None)
+    return QSMACurve(mode=mode.number, label=mode.label,
+                     linear_frequency_Hz=mode.frequency_Hz, points=out,
+                     wall_s=time.perf_counter() - t0)
