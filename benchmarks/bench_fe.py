@@ -17,6 +17,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from microslip import preset
 from microslip.errors import MicroslipError
 from microslip.fe import LEVELS, FECase, MeshSpec, ccx_version, mesh_spec, run_case
 from microslip.validate import validation_row
@@ -25,7 +26,7 @@ from microslip.validate import validation_row
 def _mesh(text: str) -> tuple[str, MeshSpec]:
     """A level (its counts on the Table 1 bar, microslip.meshlevels) or NXxNYxNZ."""
     if text in LEVELS:
-        return text, mesh_spec(text)
+        return text, mesh_spec(text, preset("table1"))
     try:
         nx, ny, nz = (int(v) for v in text.lower().split("x"))
     except ValueError:

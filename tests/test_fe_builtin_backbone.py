@@ -89,7 +89,7 @@ def test_a_masing_joint_from_the_fe_backbone_reproduces_the_fe_cycle(fem, centre
     p = preset("table1")
     study = coupling_study(p, 267.0, 267.0, 90.0, mesh=fem, increments_per_cycle=128)
     run = study.centre_only
-    d = np.ascontiguousarray(run.d_centre[run.last_cycle()][:-1])
+    d = np.ascontiguousarray(run.centre_displacement[run.last_cycle()][:-1])
     w = cycle_work(centre.operator().periodic_force(d)[0], d)
     assert w == pytest.approx(run.dissipated_energy, rel=0.015)
     assert w != pytest.approx(run.dissipated_energy, rel=1e-4)  # a real comparison

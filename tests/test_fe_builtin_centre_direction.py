@@ -55,7 +55,7 @@ def test_axial_and_transverse_differ_and_respond_linearly_while_stuck(model):
     for direction in CENTRE_DIRECTIONS:
         h = run_history(model, [0.0, 0.0], [small, 2 * small], centre_direction=direction)
         assert h.converged
-        d[direction] = np.asarray(h.d_centre)
+        d[direction] = np.asarray(h.centre_displacement)
         assert d[direction][1] == pytest.approx(2 * d[direction][0], rel=1e-9)
         assert d[direction][0] > 0.0  # the load does positive work
     assert d["axial"][0] != pytest.approx(d["transverse"][0], rel=1e-3)

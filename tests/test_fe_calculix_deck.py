@@ -155,7 +155,7 @@ def test_mesh_counts_volumes_and_load_shares(nx, ny, nz):
 def test_named_meshes_and_their_sizes():
     """The levels on the Table 1 bar (the built-in solver's counts) and their C3D20R DOF:
     3 per node (corners and edge mid-points) less u_y on the symmetry plane."""
-    specs = {k: mesh_spec(k) for k in LEVELS}
+    specs = {k: mesh_spec(k, P) for k in LEVELS}
     assert {k: v.label() for k, v in specs.items()} == {
         "tiny": "8x2x1", "coarse": "24x4x1", "medium": "48x4x1", "fine": "96x8x2",
         "paper": "96x4x1"}

@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -50,6 +51,7 @@ __all__ = [
     "is_squat",
     "level_axes",
     "level_counts",
+    "mesh_counts",
     "parse_counts",
 ]
 
@@ -150,6 +152,34 @@ def level_counts(params: ClampParams, level: str) -> tuple[int, int, int]:
         raise ParameterError(
             f"unknown mesh {level!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
     return counts
+
+
+def mesh_counts(params: ClampParams, spec: Any) -> tuple[tuple[int, int, int], bool]:
+    """The one reading of a mesh spec for both solvers: ((nx, ny, nz), graded) of a level or
+    ``"NXxNYxNZ"`` (counts and grading from the clamped zone ``params``) or of counts
+    ``(nx, ny, nz)`` (uniform); each count a whole number >= 1.
+
+    >>> from microslip import preset
+    >>> mesh_counts(preset("table1"), "coarse"), mesh_counts(preset("table1"), (8, 2, 1))
+    (((24, 4, 1), False), ((8, 2, 1), False))
+    """
+    if isinstance(spec, str):
+        counts, graded = level_counts(params, spec), is_graded(params, spec)
+    else:
+        try:
+            counts = tuple(spec)
+        except TypeError:
+            raise ParameterError(
+                f"mesh must be a level ({', '.join(LEVELS)}), NXxNYxNZ or (nx, ny, nz), "
+                f"got {spec!r}") from None
+        if len(counts) != 3:
+            raise ParameterError(f"mesh must be (nx, ny, nz), got {spec!r}")
+        graded = False
+    for name, n in zip(("nx", "ny", "nz"), counts, strict=True):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ParameterError(f"{name} must be an integer >= 1, got {n!r}")
+    nx, ny, nz = (int(n) for n in counts)
+    return (nx, ny, nz), graded
 
 
 def _power(n: int, start: float, end: float, p: float) -> FloatArray:

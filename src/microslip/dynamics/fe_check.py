@@ -173,9 +173,10 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     tip = clamp_joint("tip", params, series, elements=elements)
     centre = clamp_joint("centre", params, series, elements=elements)
     c = study.coupled.last_cycle()
-    orbit = np.column_stack([study.coupled.d_tip[c], study.coupled.d_centre[c]])[:-1]
-    tip_orbit = study.tip_only.d_tip[study.tip_only.last_cycle()][:-1]
-    centre_orbit = study.centre_only.d_centre[study.centre_only.last_cycle()][:-1]
+    coupled = study.coupled
+    orbit = np.column_stack([coupled.tip_displacement[c], coupled.centre_displacement[c]])[:-1]
+    tip_orbit = study.tip_only.tip_displacement[study.tip_only.last_cycle()][:-1]
+    centre_orbit = study.centre_only.centre_displacement[study.centre_only.last_cycle()][:-1]
     across = fe_backbone(params, "centre", mesh=fem).operator("fe-across")
     zeros = np.zeros_like(centre_orbit)
     bars = {"circular": reduced_bar(tip, None, "circular"),

@@ -206,7 +206,7 @@ class LoadPathResult:
         Load parameter of each increment (start-up, then the cycles).
     f_tip, f_centre : ndarray, shape (n,)
         Applied forces, N.
-    d_tip, d_centre : ndarray, shape (n,)
+    tip_displacement, centre_displacement : ndarray, shape (n,)
         Work-conjugate displacements along each force, relative to the clamped state, mm.
     cycle_start : int
         First sample of the first cycle.
@@ -227,8 +227,8 @@ class LoadPathResult:
     theta: FloatArray
     f_tip: FloatArray
     f_centre: FloatArray
-    d_tip: FloatArray
-    d_centre: FloatArray
+    tip_displacement: FloatArray
+    centre_displacement: FloatArray
     cycle_start: int
     samples_per_cycle: int
     centre_direction: str
@@ -288,8 +288,8 @@ class LoadPathResult:
         k0 = self.cycle_start
         skip = int(self.meta.get("prepended_samples", 0))
         c = self.last_cycle()
-        return (np.r_[self.d_tip[skip:k0], self.d_tip[c]],
-                np.r_[self.d_centre[skip:k0], self.d_centre[c]])
+        return (np.r_[self.tip_displacement[skip:k0], self.tip_displacement[c]],
+                np.r_[self.centre_displacement[skip:k0], self.centre_displacement[c]])
 
     def summary(self) -> dict[str, Any]:
         return {"solver": "builtin", "centre_direction": self.centre_direction,

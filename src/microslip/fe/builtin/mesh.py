@@ -22,7 +22,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ParameterError
-from ...meshlevels import LEVELS, MESH_LEVELS, MeshLevel, is_graded, level_axes, level_counts
+from ...meshlevels import (
+    LEVELS,
+    MESH_LEVELS,
+    MeshLevel,
+    level_axes,
+    level_counts,
+    mesh_counts,
+)
 from ...params import ClampParams
 
 __all__ = [
@@ -260,18 +267,7 @@ def mesh_from_spec(params: ClampParams, spec: Any) -> BoxMesh:
                 f"match the clamped zone {dims[0]:g} x {dims[1]:g} x {dims[2]:g} mm")
         return spec
     dims = (params.length, params.width, params.thickness)
+    counts, graded = mesh_counts(params, spec)
     if isinstance(spec, str):
-        counts = level_counts(params, spec)
-        for name, n in zip(("nx", "ny", "nz"), counts, strict=True):
-            _count(name, n, 1)
-        graded = is_graded(params, spec)
         return box_mesh(*dims, *counts, axes=level_axes(*dims, counts, graded))
-    try:
-        counts = tuple(spec)
-    except TypeError:
-        raise ParameterError(
-            f"mesh must be a level ({', '.join(LEVELS)}), NXxNYxNZ or (nx, ny, nz), "
-            f"got {spec!r}") from None
-    if len(counts) != 3:
-        raise ParameterError(f"mesh must be (nx, ny, nz), got {spec!r}")
     return box_mesh(*dims, *counts)

@@ -408,7 +408,7 @@ class History:
     ----------
     f_tip, f_centre : ndarray, shape (n,)
         Applied forces, N.
-    d_tip, d_centre : ndarray, shape (n,)
+    tip_displacement, centre_displacement : ndarray, shape (n,)
         Work-conjugate displacements along each load, relative to the clamped state, mm.
     iterations : ndarray of int, shape (n,)
         Newton iterations of each increment (of all its sub-increments if it was cut).
@@ -434,8 +434,8 @@ class History:
 
     f_tip: FloatArray
     f_centre: FloatArray
-    d_tip: FloatArray
-    d_centre: FloatArray
+    tip_displacement: FloatArray
+    centre_displacement: FloatArray
     iterations: IntArray
     slipping: BoolArray
     friction_work: FloatArray
@@ -450,7 +450,7 @@ class History:
 
     def displacement(self, component: str) -> FloatArray:
         """Work-conjugate displacement of the ``tip`` or ``centre`` load, mm."""
-        return {"tip": self.d_tip, "centre": self.d_centre}[component]
+        return {"tip": self.tip_displacement, "centre": self.centre_displacement}[component]
 
 
 class Simulation:
@@ -557,7 +557,8 @@ class Simulation:
                     u_rec[i], s_rec[i] = self.u, self.slip
         self.increments += done
         return History(
-            f_tip=ft[:done], f_centre=fc[:done], d_tip=d_tip[:done], d_centre=d_cen[:done],
+            f_tip=ft[:done], f_centre=fc[:done], tip_displacement=d_tip[:done],
+            centre_displacement=d_cen[:done],
             iterations=its[:done], slipping=slipping[:done], friction_work=fwork[:done],
             converged=converged, completed=done, message=message,
             wall_s=time.perf_counter() - t0, factorisations=self.stepper.factorisations - f0,

@@ -179,8 +179,8 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
         pos = end
         ft = np.concatenate([x.f_tip for x in hists])
         fc = np.concatenate([x.f_centre for x in hists])
-        dt = np.concatenate([x.d_tip for x in hists])
-        dc = np.concatenate([x.d_centre for x in hists])
+        dt = np.concatenate([x.tip_displacement for x in hists])
+        dc = np.concatenate([x.centre_displacement for x in hists])
         s = slice(k0 + (done_cycles - 1) * n, k0 + done_cycles * n + 1)
         works.append(loop_work(ft[s], dt[s]) + loop_work(fc[s], dc[s]))
         if done_cycles >= cycles:
@@ -192,8 +192,8 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
         end = pos + n
     ft = np.concatenate([x.f_tip for x in hists])
     fc = np.concatenate([x.f_centre for x in hists])
-    dt = np.concatenate([x.d_tip for x in hists])
-    dc = np.concatenate([x.d_centre for x in hists])
+    dt = np.concatenate([x.tip_displacement for x in hists])
+    dc = np.concatenate([x.centre_displacement for x in hists])
     fw = np.concatenate([x.friction_work for x in hists])
     slipping = np.concatenate([x.slipping for x in hists])
     normal = (None if fem.normal is None else
@@ -219,7 +219,8 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
                    f"W per cycle did not settle to {cycle_tol:.1e} in {ncyc} cycles "
                    f"(last change {cw.reached:.2e})")
     return LoadPathResult(
-        theta=theta, f_tip=ft, f_centre=fc, d_tip=dt, d_centre=dc, cycle_start=k0,
+        theta=theta, f_tip=ft, f_centre=fc, tip_displacement=dt, centre_displacement=dc,
+        cycle_start=k0,
         samples_per_cycle=n, centre_direction=centre_direction, cycle_work=cw, loops=loops,
         contact=contact_history(fem, theta, slipping, None, normal),
         stats=solver_stats(fem, hists, setup_s),

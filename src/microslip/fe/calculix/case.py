@@ -116,7 +116,7 @@ class FECase:
     @property
     def spec(self) -> MeshSpec:
         """The mesh as a MeshSpec (``mesh`` is converted on construction)."""
-        return mesh_spec(self.mesh)
+        return mesh_spec(self.mesh, self.params)
 
     @property
     def duration(self) -> float:

@@ -23,8 +23,8 @@ from numpy.typing import NDArray
 
 from ...conventions import DEFAULT_MESH
 from ...errors import ParameterError
-from ...meshlevels import is_graded, level_axes, level_counts
-from ...params import ClampParams, preset
+from ...meshlevels import level_axes, mesh_counts
+from ...params import ClampParams
 
 __all__ = ["ELEMENT", "BarMesh", "MeshSpec", "bar_mesh", "mesh_spec"]
 
@@ -99,25 +99,19 @@ class MeshSpec:
         return f"{self.nx}x{self.ny}x{self.nz}"
 
 
-def mesh_spec(mesh: str | MeshSpec | tuple[int, int, int], params: ClampParams | None = None
-              ) -> MeshSpec:
-    """A :class:`MeshSpec` of a mesh level (:mod:`microslip.meshlevels`: the counts and the
-    grading of the clamped zone ``params``, default Table 1), of counts (nx, ny, nz)
-    (uniform), or a MeshSpec, returned as is.
+def mesh_spec(mesh: str | MeshSpec | tuple[int, int, int], params: ClampParams) -> MeshSpec:
+    """A :class:`MeshSpec` of a mesh level or ``NXxNYxNZ`` (counts and grading of the clamped
+    zone ``params``) or of counts (nx, ny, nz) (uniform), by the one reading of both solvers
+    (:func:`microslip.meshlevels.mesh_counts`); a MeshSpec is returned as is.
 
-    >>> mesh_spec("coarse"), mesh_spec("paper").dof
+    >>> from microslip import preset
+    >>> mesh_spec("coarse", preset("table1")), mesh_spec("paper", preset("table1")).dof
     (MeshSpec(nx=24, ny=4, nz=1, graded=False), 9090)
     """
     if isinstance(mesh, MeshSpec):
         return mesh
-    if isinstance(mesh, str):
-        p = preset("table1") if params is None else params
-        return MeshSpec(*level_counts(p, mesh), graded=is_graded(p, mesh))
-    try:
-        nx, ny, nz = mesh
-    except (TypeError, ValueError):
-        raise ParameterError(f"mesh must be a level name or (nx, ny, nz), got {mesh!r}") from None
-    return MeshSpec(nx, ny, nz)
+    counts, graded = mesh_counts(params, mesh)
+    return MeshSpec(*counts, graded=graded)
 
 
 #: Corner lattice offsets of a C3D20 element (nodes 1-8), then its edge mid-points (9-20).
