@@ -11,30 +11,9 @@ import json
 import re
 
 import pytest
+from conftest import STEEL
 
 from microslip.cli.main import main
-
-#: A steel clamp with a shear layer and a planar load (issue 21).
-STEEL = """\
-[geometry]
-length = 40.0
-width = 20.0
-thickness = 6.0
-[material]
-modulus = 210000.0
-poisson_ratio = 0.3
-[contact]
-friction = 0.6
-stick_slope = 1e4
-[clamping]
-normal_force = 3000.0
-[load]
-model = "tip"
-amplitude = 900.0
-[load.planar]
-tip_amplitude = 900.0
-centre_amplitude = 900.0
-"""
 
 FE = ["--mesh", "tiny", "--substeps", "20"]
 

@@ -13,33 +13,10 @@ import json
 from pathlib import Path
 
 import pytest
+from conftest import STEEL
 
 from microslip.case.run import COMMAND_DEFAULTS
 from microslip.cli.main import build_parser, main
-
-#: A steel clamp with a shear layer in its contact and a planar load (issue 21): the report
-#: used to show the rigid-foundation model here (W_d 0.429 N·mm) against `loop`'s 0.139.
-STEEL = """\
-name = "steel clamp"
-[geometry]
-length = 40.0
-width = 20.0
-thickness = 6.0
-[material]
-modulus = 210000.0
-poisson_ratio = 0.3
-[contact]
-friction = 0.6
-stick_slope = 1e4
-[clamping]
-normal_force = 3000.0
-[load]
-model = "tip"
-amplitude = 900.0
-[load.planar]
-tip_amplitude = 900.0
-centre_amplitude = 900.0
-"""
 
 FE = ["--mesh", "tiny", "--substeps", "20"]
 
