@@ -67,10 +67,12 @@ _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", 
           "beta": "--beta", "stick_slope": "--stick-slope", "elements": "--elements"}
 
 
-def add_joint_options(parser: argparse.ArgumentParser) -> None:
-    """``--joint`` and its parameters, with the clamp's options for the tip and centre joints."""
+def add_joint_options(parser: argparse.ArgumentParser, required: bool = True) -> None:
+    """``--joint`` and its parameters, with the clamp's options for the tip and centre joints;
+    ``required=False`` where another source may give the joint (``modal --mesh``)."""
     g = parser.add_argument_group("joint (units N, mm, N/mm)")
-    add_option(g, "joint", required=True, choices=list(JOINTS))
+    add_option(g, "joint", required=required, choices=list(JOINTS),
+               **({} if required else {"note": "required but with --mesh"}))
     for name in ("joint_stiffness", "slip_force", "chi", "beta"):
         add_option(g, name)
     add_option(g, "stick_slope", note="tip, centre: series spring = slope x width x length "
@@ -90,6 +92,8 @@ def add_joint_options(parser: argparse.ArgumentParser) -> None:
 def spec_from_args(args: argparse.Namespace) -> JointSpec:
     """The joint specification the options describe (as a ``[[joint]]`` table gives it);
     options of another joint are refused."""
+    if getattr(args, "joint", None) is None:
+        raise ParameterError(f"give --joint {' | '.join(JOINTS)}")
     uses = JOINTS[args.joint]
     # with --case, a value the case file gives but this joint does not use is not an error
     # (the case describes the clamp for every command); only options given here are

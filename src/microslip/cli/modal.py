@@ -16,6 +16,7 @@ from ..dynamics.modal import METHODS, energy_method
 from ..errors import ParameterError
 from .common import number
 from .contact import report_warnings
+from .modalmesh import add_modal_mesh_options, refuse_mesh_options, run_modal_mesh
 from .structure import (
     across_warnings,
     add_balance_options,
@@ -39,9 +40,11 @@ def add_parser(sub: Any) -> None:
         "describing function (energy).")
     add_structure_options(p)
     add_balance_options(p)
+    add_modal_mesh_options(p)
     g = p.add_argument_group("amplitudes and output")
-    g.add_argument("--amplitude-range", nargs=2, type=number, required=True,
-                   metavar=("MIN", "MAX"), help="modal amplitudes, mm (geometric spacing)")
+    g.add_argument("--amplitude-range", nargs=2, type=number, metavar=("MIN", "MAX"),
+                   help="modal amplitudes, mm (geometric spacing); required but with --mesh, "
+                        "where the default runs from first slip to near gross sliding")
     g.add_argument("--amplitudes", type=int, default=20, metavar="N",
                    help="number of amplitudes (default 20)")
     g.add_argument("--method", choices=list(METHODS), default="epmc",
@@ -56,6 +59,14 @@ def add_parser(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..io import check_writable, write_csv
     from .common import check_plot, print_json
+
+    if args.mesh is not None:
+        if args.csv:
+            raise ParameterError("--csv is not used with --mesh; use --json")
+        return run_modal_mesh(args)
+    refuse_mesh_options(args)
+    if args.amplitude_range is None:
+        raise ParameterError("give --amplitude-range MIN MAX (modal amplitudes, mm)")
 
     check_plot(args.plot)
     if args.csv:

@@ -87,7 +87,7 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
                    help="mode followed and reported, 1-based by stuck frequency (default 1)")
     add_option(f, "coupling", note="default circular")
     add_across_options(f)
-    add_joint_options(parser)
+    add_joint_options(parser, required=False)
     add_case_option(parser)
     for action in parser._actions:
         if action.dest == "case":

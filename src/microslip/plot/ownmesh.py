@@ -5,14 +5,14 @@ load. Units: N, mm (or um for small loops)."""
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 from .core import COLOURS, displacement_scale, new_figure, save_figure
 
-__all__ = ["plot_mesh_loops"]
+__all__ = ["plot_mesh_loops", "plot_qsma"]
 
 
 def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float],
@@ -30,4 +30,26 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
         ax.legend(loc="upper left", fontsize="small")
     if title:
         fig.suptitle(title)
+    save_figure(fig, path)
+
+
+def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
+    """Frequency (first harmonic and secant) and damping ratio against the response set's
+    amplitude, from ``modal --mesh``'s JSON object ``curve``."""
+    fig, axes = new_figure(ncols=2, width_mm=80.0)
+    a = np.asarray(curve["amplitude_mm"], dtype=float)
+    ax = axes[0][0]
+    ax.semilogx(a, curve["frequency_Hz"], color=COLOURS[0], marker=".",
+                label="first harmonic (as EPMC)")
+    ax.semilogx(a, curve["secant_frequency_Hz"], color=COLOURS[1], marker=".",
+                linestyle="--", label="secant (Lacayo and Allen)")
+    ax.set_xlabel("amplitude of the response set (mm)")
+    ax.set_ylabel("natural frequency f (Hz)")
+    ax.legend(fontsize="small")
+    ax = axes[0][1]
+    ax.semilogx(a, curve["damping_ratio"], color=COLOURS[0], marker=".")
+    ax.set_xlabel("amplitude of the response set (mm)")
+    ax.set_ylabel("damping ratio zeta (-)")
+    fig.suptitle(f"mode {curve['mode']} ({curve['label']}), full-FE quasi-static modal "
+                 "analysis")
     save_figure(fig, path)
