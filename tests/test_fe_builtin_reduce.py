@@ -154,15 +154,33 @@ def test_bad_input_refused(cantilever):
         build_rom(m, -1.0, modes=5)
 
 
-def test_penalty_reduces_but_has_no_structure_yet():
+def test_penalty_reduces_to_3d_contact_elements(tmp_path):
     m = model(12, 3, 1, "penalty")
     mass = full_mass(m, RHO)
     rom = build_rom(m, RHO, modes=60, mass=mass)
     assert rom.per_node == 3 and rom.boundary.size == 3 * m.contact_nodes.size
     full = stuck_frequencies_full(m, mass, 4)
     assert np.max(np.abs(rom.stuck_frequencies(4) / full - 1.0)) < 1e-6
-    with pytest.raises(ParameterError, match="3-D contact element"):
-        rom_structure(rom)
+    s = rom_structure(rom)
+    assert all(link.directions == 3 for link in s.joints)
+    assert np.allclose(s.linear_frequencies(stuck=True)[:4], full, rtol=1e-6)
+    with pytest.raises(ParameterError, match="1-D and 2-D joints"):
+        write_rom(str(tmp_path / "rom.npz"), rom)
+    assert not (tmp_path / "rom.npz").exists()
+
+
+def test_penalty_epmc_follows_the_fixed_one_in_plane():
+    """In-plane bending barely moves the contact normally: the 3-D elements (penalty,
+    limit mu N(t)) give the 2-D elements' curve (fixed normal) to a fraction of a percent."""
+    a = np.geomspace(5e-3, 2e-2, 4)
+    curves = []
+    for normal in ("penalty", "fixed"):
+        rom = build_rom(model(12, 3, 1, normal), RHO, modes=6, response_set="response")
+        curves.append(epmc(rom_structure(rom), a, 3, mode=1))
+    pen, fix = curves
+    assert np.allclose(pen.frequency, fix.frequency, rtol=1e-3)
+    assert np.allclose(pen.damping_ratio, fix.damping_ratio, rtol=0.03, atol=1e-4)
+    assert pen.damping_ratio[-1] > 0.02
 
 
 def _in_plane(structure) -> int:

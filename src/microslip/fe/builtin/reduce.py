@@ -78,6 +78,8 @@ class Rom:
         Fixed-interface natural frequencies, Hz.
     contact_stiffness, slip_force, normal_stiffness : ndarray, shape (n_c,)
         lambda A_i (N/mm), mu N_i (N) and k_n A_i (N/mm, zeros with ``fixed``) per node.
+    friction : float
+        mu (the preload of a node is its slip force / mu).
     output : ndarray, shape (3, n)
         Mean displacement of the response set along the global x, y, z per unit ROM
         coordinate (-); None if no response set was named.
@@ -93,6 +95,7 @@ class Rom:
     contact_stiffness: FloatArray = field(repr=False)
     slip_force: FloatArray = field(repr=False)
     normal_stiffness: FloatArray = field(repr=False)
+    friction: float
     output: FloatArray | None = field(repr=False)
     build_s: float
 
@@ -252,7 +255,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
           else np.asarray(model.normal.stiffness, dtype=float))
     return Rom(mass=m_r, stiffness=k_r, boundary=b, per_node=per_node,
                interface_frequencies=freq, contact_stiffness=model.contact_stiffness.copy(),
-               slip_force=model.friction_limit.copy(), normal_stiffness=kn, output=out,
+               slip_force=model.friction_limit.copy(), normal_stiffness=kn,
+               friction=model.friction, output=out,
                build_s=time.perf_counter() - t0)
 
 
@@ -303,9 +307,10 @@ def _joints(rom: Rom) -> IntArray:
 
 def _fixed_only(rom: Rom) -> None:
     if rom.per_node != 2:
-        raise ParameterError("the ROM of 'penalty' normal contact needs the 3-D contact "
-                             "element (normal penalty with lift-off), not built yet; reduce "
-                             "the model with 'fixed' normal contact")
+        raise ParameterError("the structure file holds 1-D and 2-D joints; the ROM of "
+                             "'penalty' normal contact (a 3-D contact element per node) is a "
+                             "library Structure only (rom_structure); reduce the model with "
+                             "'fixed' normal contact to write it")
 
 
 def rom_matrices(rom: Rom) -> MatrixFile:
@@ -323,18 +328,40 @@ def rom_matrices(rom: Rom) -> MatrixFile:
 def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
     """The ROM as a :class:`~microslip.dynamics.structure.Structure`: each contact node a
     2-D circular Jenkins element (stiffness lambda A_i, slip force mu N_i) on its tangential
-    dofs, to the ground; the output coordinate ``output`` (n_rom,) or, by default, the
-    response set's mean displacement along global y (the contact plane's in-plane bending
-    of the cantilever), else the first coordinate."""
+    dofs, to the ground (``fixed`` normal contact), or the 3-D element of
+    :mod:`microslip.dynamics.operators3d` on its three dofs (``penalty``: k_n A_i with
+    lift-off, preload N_i, limit mu N(t)); the output coordinate ``output`` (n_rom,) or, by
+    default, the response set's mean displacement along global y (the contact plane's
+    in-plane bending of the cantilever), else the first coordinate."""
     from ...dynamics.assemble import from_matrices, with_output
     from ...dynamics.operators import jenkins
 
-    mats = rom_matrices(rom)
-    unused = jenkins(1.0, 1.0)  # every joint has its own law
-    s = from_matrices(mats, mats.joints, unused, "circular")
+    if rom.per_node == 3:
+        s = _penalty_structure(rom)
+    else:
+        mats = rom_matrices(rom)
+        unused = jenkins(1.0, 1.0)  # every joint has its own law
+        s = from_matrices(mats, mats.joints, unused, "circular")
     if output is None:
         output = rom.output[1] if rom.output is not None else np.eye(rom.dofs)[0]
     return with_output(s, np.asarray(output, dtype=float))
+
+
+def _penalty_structure(rom: Rom) -> Structure:
+    from ...dynamics.operators3d import Contact3D
+    from ...dynamics.structure import JointLink, Structure
+
+    n = rom.dofs
+    links = []
+    for i, (kt, s, kn) in enumerate(zip(rom.contact_stiffness, rom.slip_force,
+                                        rom.normal_stiffness, strict=True)):
+        w = np.zeros((n, 3))
+        w[3 * i:3 * i + 3] = np.eye(3)
+        links.append(JointLink(Contact3D(float(kt), float(kn), float(s) / rom.friction,
+                                         rom.friction), w))
+    return Structure(mass=rom.mass * SI_FACTOR, damping=np.zeros((n, n)),
+                     stiffness=rom.stiffness * SI_FACTOR, joints=tuple(links),
+                     output=np.eye(n)[0])
 
 
 def write_rom(path: str, rom: Rom) -> None:
