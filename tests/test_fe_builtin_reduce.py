@@ -259,3 +259,25 @@ def test_epmc_against_time_integration(small, amplitude):
     curve = epmc(s, np.geomspace(5e-3, reached, 6), harmonics, mode=1)
     assert abs(curve.frequency[-1] / (w / (2 * np.pi)) - 1.0) < 0.01
     assert abs(zeta / curve.damping_ratio[-1] - 1.0) < 0.05
+
+
+def test_modal_and_frf_read_the_rom(small, tmp_path, capsys):
+    """``microslip modal --structure rom.npz`` and ``frf`` take the ROM like any structure
+    file; the file's per-node laws replace the command line's joint (which the CLI still
+    asks for)."""
+    import json
+
+    from microslip.cli.main import main
+
+    rom, s = small
+    path = str(tmp_path / "rom.npz")
+    write_rom(path, rom)
+    joint = ["--joint", "jenkins", "--joint-stiffness", "1", "--slip-force", "1"]
+    assert main(["modal", "--structure", path, "--mode", "2", *joint, "--amplitude-range",
+                 "1e-3", "1e-2", "--amplitudes", "2", "--harmonics", "3", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    text = json.dumps(out)
+    assert str(round(float(s.linear_frequencies(stuck=True)[1]), 3))[:7] in text
+    assert main(["frf", "--structure", path, "--mode", "2", *joint, "--force", "1",
+                 "--frequency-range", "1500", "1800", "--harmonics", "1", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)
