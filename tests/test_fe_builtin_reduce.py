@@ -169,6 +169,7 @@ def test_penalty_reduces_to_3d_contact_elements(tmp_path):
     assert not (tmp_path / "rom.npz").exists()
 
 
+@pytest.mark.slow  # about 1 s, 20 s when the 3-D element's kernel compiles
 def test_penalty_epmc_follows_the_fixed_one_in_plane():
     """In-plane bending barely moves the contact normally: the 3-D elements (penalty,
     limit mu N(t)) give the 2-D elements' curve (fixed normal) to a fraction of a percent."""
