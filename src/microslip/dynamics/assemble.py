@@ -22,7 +22,7 @@ from ..errors import ParameterError
 from ..named import readonly
 from .files import MatrixFile, joint_weights
 from .hb import to_time
-from .operators import IwanOperator
+from .operators import IwanOperator, jenkins
 from .operators2d import COUPLINGS
 from .response import FrequencyResponse
 from .structure import JointLink, Structure
@@ -57,7 +57,14 @@ def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
     ((n, directions, 2), :mod:`.files`); two-directional joints coupled by ``coupling``
     (:data:`~.operators2d.COUPLINGS`), ``transverse`` along their second direction (None:
     ``joint``) with ``pairing``. The output coordinate is set by :func:`with_output`.
+
+    A file whose joints carry their own laws (:attr:`MatrixFile.laws`) places, on its own
+    connectivity, each joint's Jenkins element (circular coupling) instead of ``joint``.
     """
+    if matrices.laws is not None and np.array_equal(np.asarray(joints), matrices.joints):
+        return from_joints(matrices, [PlacedJoint(row, jenkins(float(k), float(s)))
+                                      for row, (k, s) in zip(joints, matrices.laws,
+                                                             strict=True)])
     return from_joints(matrices, [PlacedJoint(row, joint, coupling, transverse, pairing)
                                   for row in joints])
 

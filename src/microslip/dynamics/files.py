@@ -6,7 +6,11 @@ Two formats:
 - ``.npz`` (``numpy.savez``), read with pickling disabled: arrays ``M`` and ``K``, optional
   ``C``, optional integer ``joints``: shape (n_joints, 2) for one-directional joints, rows
   ``[i, j]`` (the joint's relative displacement is q_i - q_j; ``j = -1`` for the ground),
-  or (n_joints, 2, 2) for two-directional joints, one ``[i, j]`` row per direction.
+  or (n_joints, 2, 2) for two-directional joints, one ``[i, j]`` row per direction;
+  optional ``joint_stiffness`` (N/mm) and ``joint_slip_force`` (N), shape (n_joints,), both
+  or neither: each joint of the file is then its own Jenkins element (circular on a
+  two-directional joint), as a reduced model with every contact node writes it
+  (:mod:`microslip.fe.builtin.reduce`), in place of the joint the command line names.
 - a directory with Matrix Market files ``M.mtx``, ``K.mtx`` and optional ``C.mtx``
   (:func:`scipy.io.mmread`; joints then come from the command line).
 
@@ -32,7 +36,7 @@ __all__ = ["MatrixFile", "check_matrices", "joint_weights", "read_structure"]
 SYMMETRY_TOLERANCE = 1e-9
 
 #: Arrays an .npz structure file may hold.
-NPZ_ARRAYS = ("M", "K", "C", "joints")
+NPZ_ARRAYS = ("M", "K", "C", "joints", "joint_stiffness", "joint_slip_force")
 
 
 @result
@@ -47,6 +51,9 @@ class MatrixFile:
         ``[i, j]`` per direction, j = -1 for the ground; (0, 1, 2) if the file has none.
     path : str
         Where they came from.
+    laws : ndarray, shape (n_joints, 2), or None
+        Each joint's own Jenkins element: stiffness (N/mm) and slip force (N); None if the
+        file gives none.
     """
 
     mass: np.ndarray
@@ -54,6 +61,7 @@ class MatrixFile:
     damping: np.ndarray
     joints: np.ndarray
     path: str
+    laws: np.ndarray | None = None
 
 
 def read_structure(path: str) -> MatrixFile:
@@ -68,8 +76,31 @@ def read_structure(path: str) -> MatrixFile:
     c = arrays.get("C", np.zeros_like(m) if isinstance(m, np.ndarray) else None)
     mass, stiffness, damping = check_matrices(path, m, k, c)
     joints = _joints(path, arrays.get("joints"), mass.shape[0])
+    laws = _laws(path, arrays.get("joint_stiffness"), arrays.get("joint_slip_force"),
+                 joints.shape[0])
     return MatrixFile(mass=mass, stiffness=stiffness, damping=damping, joints=joints,
-                      path=path)
+                      path=path, laws=laws)
+
+
+def _laws(path: str, stiffness: object, slip_force: object, count: int) -> np.ndarray | None:
+    """(n_joints, 2): each joint's Jenkins stiffness (N/mm) and slip force (N), checked."""
+    if stiffness is None and slip_force is None:
+        return None
+    if stiffness is None or slip_force is None:
+        raise ParameterError(f"{path}: joint_stiffness and joint_slip_force go together; "
+                             "the file has only one of them")
+    out = []
+    for name, unit, a in (("joint_stiffness", "N/mm", stiffness),
+                          ("joint_slip_force", "N", slip_force)):
+        arr = np.asarray(a)
+        if arr.dtype.kind not in "iuf" or arr.shape != (count,):
+            raise ParameterError(f"{path}: {name} must be {count} numbers (one per joint), "
+                                 f"got dtype {arr.dtype} shape {arr.shape}")
+        arr = arr.astype(np.float64)
+        if not np.all(np.isfinite(arr) & (arr > 0.0)):
+            raise ParameterError(f"{path}: {name} must be finite and > 0 {unit}")
+        out.append(arr)
+    return np.column_stack(out)
 
 
 def check_matrices(path: str, m: object, k: object, c: object

@@ -23,6 +23,7 @@ from .continuation import CONTRACTION, MAX_HALVINGS
 from .hbkernel import balance_kernel, corrector_kernel
 from .operators import HystereticOperator, IwanOperator
 from .operators2d import CircularIwan
+from .operators3d import Contact3D
 from .structure import SI_PER_MM, JointLink, Structure
 
 __all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
@@ -181,7 +182,7 @@ class HarmonicBalance:
 
         return correct
 
-    def joint_harmonics(self, operator: HystereticOperator | CircularIwan, u: Array
+    def joint_harmonics(self, operator: HystereticOperator | CircularIwan | Contact3D, u: Array
                         ) -> tuple[Array, Array]:
         """A joint's force harmonics (N, (d (2H + 1),)) and their derivative in its
         displacement harmonics ``u`` (mm, direction-major), N/mm; d its directions."""
@@ -190,12 +191,13 @@ class HarmonicBalance:
             return compiled(u, self._synth, self._analysis)
         h = 2 * self.harmonics + 1
         a = self._analysis
-        if getattr(operator, "directions", 1) == 2:
-            samples = self._synth @ u.reshape(2, h).T
+        d = getattr(operator, "directions", 1)
+        if d >= 2:  # two-directional joints, and the 3-D contact element (operators3d)
+            samples = self._synth @ u.reshape(d, h).T
             f, jb = operator.periodic_force_projected(samples, self._synth)  # type: ignore[union-attr]
             # jb[t, a, b, c] -> d F_a,i / d U_b,c
             df = np.einsum("it,tabc->aibc", a, jb)
-            return (a @ f).T.ravel(), df.reshape(2 * h, 2 * h)
+            return (a @ f).T.ravel(), df.reshape(d * h, d * h)
         f, jac = operator.periodic_force(self._synth @ u)
         return a @ f, a @ jac @ self._synth
 
@@ -239,8 +241,8 @@ def _compiled_joints(links: list[JointLink], dofs: int) -> tuple[Array, Array, A
     return weights, flat(phi), flat(ck), flat(ckp), np.array(offsets, dtype=np.int64)
 
 
-def _condensed(operator: HystereticOperator | CircularIwan, weights: Array, h: int
-               ) -> tuple[HystereticOperator | CircularIwan, NDArray[np.int64], Array,
+def _condensed(operator: HystereticOperator | CircularIwan | Contact3D, weights: Array, h: int
+               ) -> tuple[HystereticOperator | CircularIwan | Contact3D, NDArray[np.int64], Array,
                           tuple[NDArray[np.int64], ...]]:
     """The joint, the coefficient indices of the DOFs it touches, B restricted to them, and
     the index of their block of the Jacobian."""

@@ -25,6 +25,7 @@ from .describing import DEFAULT_SAMPLES, describing_function
 from .hb import DEFAULT_HB_SAMPLES, HarmonicBalance
 from .operators import HystereticOperator
 from .operators2d import CircularIwan
+from .operators3d import Contact3D
 from .structure import SI_PER_MM, Structure
 
 __all__ = ["METHODS", "ModalCurve", "energy_method", "epmc"]
@@ -109,6 +110,9 @@ def energy_method(structure: Structure, amplitude: ArrayLike,
         if p == 0.0:
             continue
         op = link.operator
+        if isinstance(op, Contact3D):
+            raise ParameterError("the energy method takes 1-D and 2-D joints; a 3-D contact "
+                                 "element needs epmc")
         line = (_on_line(op, link.weights.T @ phi / p) if isinstance(op, CircularIwan)
                 else op)
         df = describing_function(line, p * a, samples)

@@ -23,6 +23,7 @@ from ..named import readonly, result
 from ..params import check_positive
 from .operators import HystereticOperator
 from .operators2d import CircularIwan
+from .operators3d import Contact3D
 
 __all__ = ["SI_PER_MM", "JointLink", "Structure", "free_frequency", "one_mode"]
 
@@ -46,7 +47,7 @@ class JointLink:
         weights.
     """
 
-    operator: HystereticOperator | CircularIwan
+    operator: HystereticOperator | CircularIwan | Contact3D
     participation: np.ndarray
 
     def __post_init__(self) -> None:
@@ -54,14 +55,15 @@ class JointLink:
         d = self.directions
         if not ((w.ndim == 1 and d == 1) or (w.ndim == 2 and w.shape[1] == d)):
             raise ParameterError(f"a joint with {d} direction(s) needs participation of "
-                                 f"shape (n_dof,{' 2' if d == 2 else ''}), got {w.shape}")
+                                 f"shape (n_dof,{f' {d}' if d > 1 else ''}), got {w.shape}")
         if not np.all(np.isfinite(w)) or not np.any(w):
             raise ParameterError("joint participation must be finite and not all zero")
         object.__setattr__(self, "participation", readonly(w))
 
     @property
     def directions(self) -> int:
-        """Relative displacement components of the joint (1 or 2)."""
+        """Relative displacement components of the joint (1, 2, or 3 for a contact node's
+        3-D element, :mod:`.operators3d`)."""
         return int(getattr(self.operator, "directions", 1))
 
     @property
@@ -76,6 +78,8 @@ class JointLink:
         degrees of freedom."""
         op = self.operator
         w = self.weights
+        if isinstance(op, Contact3D):
+            return np.asarray((w * np.diag(op.stuck_stiffness)) @ w.T)
         if isinstance(op, CircularIwan) and not op.isotropic:
             return np.asarray((w * np.diag(op.stuck_stiffness)) @ w.T)
         return (w @ w.T) * op.initial_stiffness

@@ -1,0 +1,179 @@
+"""The 3-D contact element of a contact node with ``penalty`` normal contact: a normal
+penalty spring with lift-off and a 2-D Jenkins element whose circular Coulomb limit mu N(t)
+follows the normal force (issue 23, item 3).
+
+Node's displacement from the clamped state ``u = (u_1, u_2, u_n)`` (mm; u_n along the
+body's inward normal, positive away from the base), preload N_0 (N, the clamping step's
+normal force):
+
+* normal: ``N(t) = max(0, N_0 - k_n u_n)``; the restoring force on the node is
+  ``f_n = N_0 - N = min(k_n u_n, N_0)`` (the penalty spring, lost at lift-off);
+* tangential: slider w (2-D), trial ``f* = k_t (u_t - w)``; ``|f*| <= mu N``: stick,
+  ``f_t = f*``; else slip along f*, ``f_t = mu N f* / |f*|``, ``w = u_t - f_t / k_t``;
+  lifted off (N = 0): ``f_t = 0``, ``w = u_t``.
+
+The same element as the built-in FE's contact node (:mod:`microslip.fe.builtin.contact`,
+:mod:`~microslip.fe.builtin.normal`: stick slope x area, k_n A_i) and as the 3-D friction
+elements of tmdsimpy and pyHarm (a penalty normal with a slider whose limit follows the
+normal load; REFERENCES.md). Its periodic steady state for harmonic balance (AFT) is the
+slider history after repeating the period until it closes, with the Jacobian of the force
+samples with respect to the displacement's harmonic coefficients propagated through the
+same steps (exact for the return map, checked against finite differences).
+
+Not yet wired into :class:`~.structure.Structure` (which takes joints of 1 or 2 directions):
+the ROM with ``penalty`` contact needs it there and in :mod:`.hb`.
+
+Units: displacement mm, force N, stiffness N/mm.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from numpy.typing import NDArray
+
+from ..errors import ParameterError
+from ..named import result
+from ..params import check_positive
+
+__all__ = ["Contact3D"]
+
+Array = NDArray[np.float64]
+
+#: Periods repeated at most until the slider's state at the period's start repeats; a
+#: slider that walks (normal and tangential motion out of phase can ratchet it, or its 2-D
+#: memory fades slowly) gives the last of them, as a fixed-count AFT does.
+MAX_PERIODS = 20
+#: The state repeats when it moves by less than this times the slip displacement mu N0/k_t.
+CLOSED = 1e-12
+
+
+@njit(cache=True, nogil=True)
+def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float,
+              f: Array, jb: Array) -> int:  # pragma: no cover - compiled
+    """Force samples f (N, 3) and d f_t,a / d C_b,c (N, 3, 3, m) of the closed cycle;
+    returns the periods run (-1: the state did not repeat; the last period is given)."""
+    n, m = basis.shape
+    w = np.zeros(2)
+    dw = np.zeros((2, 3, m))
+    tol = CLOSED * mu * n0 / kt
+    for period in range(MAX_PERIODS):
+        w_start = w.copy()
+        for t in range(n):
+            un = u[t, 2]
+            normal = n0 - kn * un
+            f[t, :] = 0.0
+            jb[t] = 0.0
+            if normal <= 0.0:  # lifted off
+                f[t, 2] = n0
+                w[0], w[1] = u[t, 0], u[t, 1]
+                dw[:] = 0.0
+                for a in range(2):
+                    for c in range(m):
+                        dw[a, a, c] = basis[t, c]
+                continue
+            f[t, 2] = kn * un
+            for c in range(m):
+                jb[t, 2, 2, c] = kn * basis[t, c]
+            # trial force and its derivative
+            g0 = kt * (u[t, 0] - w[0])
+            g1 = kt * (u[t, 1] - w[1])
+            dg = np.zeros((2, 3, m))
+            for a in range(2):
+                for b in range(3):
+                    for c in range(m):
+                        dg[a, b, c] = -kt * dw[a, b, c]
+                for c in range(m):
+                    dg[a, a, c] += kt * basis[t, c]
+            size = math.sqrt(g0 * g0 + g1 * g1)
+            limit = mu * normal
+            if size <= limit:
+                f[t, 0], f[t, 1] = g0, g1
+                jb[t, 0:2] = dg
+                continue
+            # slip: f_t = limit g / |g|
+            e0, e1 = g0 / size, g1 / size
+            f[t, 0], f[t, 1] = limit * e0, limit * e1
+            dlimit = np.zeros((3, m))
+            for c in range(m):
+                dlimit[2, c] = -mu * kn * basis[t, c]
+            for b in range(3):
+                for c in range(m):
+                    # d(g/|g|) = (I - e e^T) dg / |g|
+                    p = e0 * dg[0, b, c] + e1 * dg[1, b, c]
+                    d0 = (dg[0, b, c] - e0 * p) / size
+                    d1 = (dg[1, b, c] - e1 * p) / size
+                    jb[t, 0, b, c] = dlimit[b, c] * e0 + limit * d0
+                    jb[t, 1, b, c] = dlimit[b, c] * e1 + limit * d1
+            w[0] = u[t, 0] - f[t, 0] / kt
+            w[1] = u[t, 1] - f[t, 1] / kt
+            for b in range(3):
+                for c in range(m):
+                    dw[0, b, c] = -jb[t, 0, b, c] / kt
+                    dw[1, b, c] = -jb[t, 1, b, c] / kt
+            dw[0, 0, :] += basis[t, :]
+            dw[1, 1, :] += basis[t, :]
+        if period > 0 and abs(w[0] - w_start[0]) <= tol and abs(w[1] - w_start[1]) <= tol:
+            return period + 1
+    return -1
+
+
+@result
+class Contact3D:
+    """A contact node's 3-D element: normal penalty with lift-off, circular Coulomb limit
+    mu N(t) on a tangential Jenkins slider.
+
+    Parameters
+    ----------
+    tangential_stiffness : float
+        k_t = lambda A_i, N/mm.
+    normal_stiffness : float
+        k_n = k_n A_i, N/mm.
+    preload : float
+        N_0, N (the clamping step's normal force), > 0.
+    friction : float
+        mu.
+    """
+
+    tangential_stiffness: float
+    normal_stiffness: float
+    preload: float
+    friction: float
+
+    def __post_init__(self) -> None:
+        check_positive("tangential stiffness", self.tangential_stiffness, "N/mm")
+        check_positive("normal stiffness", self.normal_stiffness, "N/mm")
+        check_positive("preload", self.preload, "N")
+        check_positive("friction", self.friction)
+
+    #: Relative displacement components the element takes (tangential 1, 2 and normal).
+    directions = 3
+
+    @property
+    def stuck_stiffness(self) -> Array:
+        """diag(k_t, k_t, k_n), N/mm: the slope from the clamped state."""
+        k = self.tangential_stiffness
+        return np.diag([k, k, self.normal_stiffness])
+
+    def periodic_force_projected(self, u: Array, basis: Array) -> tuple[Array, Array]:
+        """Closed periodic force (N, (N, 3)) at the displacement samples ``u`` (mm, (N, 3))
+        and ``jb[t, a, b, c] = d f_t,a / d C_b,c`` (N/mm, (N, 3, 3, m)) for
+        ``u[:, b] = basis @ C_b`` (``basis`` (N, m))."""
+        u = np.ascontiguousarray(u, dtype=np.float64)
+        basis = np.ascontiguousarray(basis, dtype=np.float64)
+        if u.ndim != 2 or u.shape[1] != 3 or u.shape[0] == 0 or not np.all(np.isfinite(u)):
+            raise ParameterError(f"3-D displacement samples must be finite of shape (N, 3), "
+                                 f"got {u.shape}")
+        if basis.ndim != 2 or basis.shape[0] != u.shape[0]:
+            raise ParameterError(f"basis must have shape ({u.shape[0]}, m), got {basis.shape}")
+        f = np.zeros(u.shape)
+        jb = np.zeros((u.shape[0], 3, 3, basis.shape[1]))
+        _periodic(u, basis, float(self.tangential_stiffness), float(self.normal_stiffness),
+                  float(self.preload), float(self.friction), f, jb)
+        return f, jb
+
+    def periodic_force(self, u: Array) -> Array:
+        """Closed periodic force (N, (N, 3)) at the displacement samples ``u`` (mm, (N, 3))."""
+        return self.periodic_force_projected(u, np.zeros((np.shape(u)[0], 1)))[0]

@@ -1,0 +1,384 @@
+"""A reduced model with every contact node: Craig-Bampton on the user's mesh (issue 23, item 3).
+
+The body of a :class:`~.meshmodel.MeshModel` (its stiffness K without the contact springs,
+the consistent mass M of :mod:`.mass`) is reduced onto
+
+* the *boundary*: every contact node's contact dofs, kept physical (tangential e1, e2 with
+  ``fixed`` normal contact; e1, e2 and the normal e3 with ``penalty``), because the contact
+  is the nonlinear element and each node carries its own law;
+* n *fixed-interface modes*: the body's modes with the boundary held (K_ii phi = w^2 M_ii phi),
+  the lowest ones, by count or below a frequency cut-off.
+
+With the constraint modes Psi = -K_ii^-1 K_ib (Craig and Bampton 1968) the displacements are
+``u = T q``, ``T = [[I, 0], [Psi, Phi]]`` over (boundary, interior), and the reduced matrices
+``K_r = T^T K T`` (block-diagonal: K_bb + K_bi Psi and diag(mu_j w_j^2)) and
+``M_r = T^T M T``. Each fixed-interface mode is scaled to a largest displacement of 1 mm so
+that every ROM coordinate is a displacement in mm (its modal mass mu_j in t). The ROM is
+exact when every interior mode is kept; with fewer its stuck frequencies (the contact's
+tangent springs, stick slope x area, added at the boundary) converge from above
+(:func:`convergence`).
+
+Each contact node then carries the full FE's own law (:func:`rom_structure`): with ``fixed``
+normal contact a 2-D circular Coulomb (Jenkins) element on its two tangential dofs, stiffness
+lambda A_i and slip force mu N_i at the clamping step's normal force, one
+:class:`~microslip.dynamics.operators2d.CircularIwan` of one element per node (its
+circular slip limit, REFERENCES.md 2-D Jenkins). :func:`write_rom` writes it as a structure
+file (:mod:`microslip.dynamics.files`, SI: kg, N/m) with the per-joint laws.
+
+Units: N, mm, s, t (mass in tonnes, N s^2/mm) in the ROM; the structure file is SI.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+from scipy.linalg import eigh
+
+from ...errors import ParameterError
+from .mass import density_t_per_mm3, mass_matrix
+from .meshmodel import MeshModel
+
+if TYPE_CHECKING:
+    from ...dynamics.files import MatrixFile
+    from ...dynamics.structure import Structure
+
+__all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_matrices", "rom_structure",
+           "stuck_frequencies_full", "write_rom"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: Tonnes per kg and N/m per N/mm: the ROM (t, N/mm) times this is SI (kg, N/m).
+SI_FACTOR = 1e3
+
+
+@dataclass(frozen=True, eq=False)
+class Rom:
+    """A Craig-Bampton reduced model of a clamped body with every contact node kept.
+
+    Attributes
+    ----------
+    mass, stiffness : ndarray, shape (n, n)
+        M_r (t) and K_r (N/mm) of the body without the contact springs; coordinates: the
+        boundary dofs (``boundary`` in order), then the fixed-interface modal coordinates
+        (mm: each mode's largest displacement is 1).
+    boundary : ndarray of int, shape (n_b,)
+        Free-dof positions (:attr:`MeshModel.free` order) of the boundary, node-major:
+        e1, e2 (and e3 with penalty) of each contact node.
+    per_node : int
+        Boundary dofs per contact node: 2 (``fixed``) or 3 (``penalty``).
+    interface_frequencies : ndarray, shape (n_m,)
+        Fixed-interface natural frequencies, Hz.
+    contact_stiffness, slip_force, normal_stiffness : ndarray, shape (n_c,)
+        lambda A_i (N/mm), mu N_i (N) and k_n A_i (N/mm, zeros with ``fixed``) per node.
+    friction : float
+        mu (the preload of a node is its slip force / mu).
+    output : ndarray, shape (3, n)
+        Mean displacement of the response set along the global x, y, z per unit ROM
+        coordinate (-); None if no response set was named.
+    build_s : float
+        Seconds to build.
+    """
+
+    mass: FloatArray = field(repr=False)
+    stiffness: FloatArray = field(repr=False)
+    boundary: IntArray = field(repr=False)
+    per_node: int
+    interface_frequencies: FloatArray = field(repr=False)
+    contact_stiffness: FloatArray = field(repr=False)
+    slip_force: FloatArray = field(repr=False)
+    normal_stiffness: FloatArray = field(repr=False)
+    friction: float
+    output: FloatArray | None = field(repr=False)
+    build_s: float
+
+    @property
+    def dofs(self) -> int:
+        """ROM coordinates: boundary dofs plus modes."""
+        return int(self.mass.shape[0])
+
+    @property
+    def modes(self) -> int:
+        """Fixed-interface modes kept."""
+        return int(self.interface_frequencies.size)
+
+    def contact_springs(self) -> FloatArray:
+        """The contact's stuck tangent on the ROM's coordinates (diagonal, N/mm): lambda A_i
+        on each tangential boundary dof, k_n A_i on each normal one, 0 on the modes."""
+        d = np.zeros(self.dofs)
+        nb = self.boundary.size
+        d[:nb].reshape(-1, self.per_node)[:, :2] = self.contact_stiffness[:, None]
+        if self.per_node == 3:
+            d[:nb].reshape(-1, 3)[:, 2] = self.normal_stiffness
+        return d
+
+    def stuck_frequencies(self, count: int | None = None) -> FloatArray:
+        """The ROM's linear natural frequencies with the contact stuck, Hz, ascending."""
+        k = self.stiffness + np.diag(self.contact_springs())
+        lam = eigh(k, self.mass, eigvals_only=True,
+                   subset_by_index=None if count is None else [0, min(count, self.dofs) - 1])
+        return np.asarray(np.sqrt(np.maximum(lam, 0.0)) / (2.0 * np.pi))
+
+
+def full_mass(model: MeshModel, density_kg_m3: float) -> sp.csr_matrix:
+    """Consistent mass of the model's free dofs (t, the model's numbering and frame; the
+    mass of an isotropic density does not change with the rotation)."""
+    rho = density_t_per_mm3(density_kg_m3)
+    inv = np.full(len(model.mesh.nodes), -1, dtype=np.int64)
+    inv[model.order] = np.arange(model.order.size)
+    m = mass_matrix(model.mesh.nodes[model.order], inv[model.mesh.elements], rho)
+    return m[model.free][:, model.free].tocsr()
+
+
+def _boundary(model: MeshModel) -> tuple[IntArray, int]:
+    if model.normal is None:
+        return model.contact_dofs.reshape(-1).astype(np.int64), 2
+    nodes = model.model_nodes(model.contact_nodes)
+    normal = model.index[3 * nodes + 2]
+    return np.column_stack([model.contact_dofs, normal]).reshape(-1).astype(np.int64), 3
+
+
+def _springs(model: MeshModel) -> FloatArray:
+    """The contact's stuck tangent on the free dofs (diagonal, N/mm)."""
+    d = np.zeros(model.dof)
+    d[model.contact_dofs[:, 0]] = model.contact_stiffness
+    d[model.contact_dofs[:, 1]] = model.contact_stiffness
+    if model.normal is not None:
+        d[model.normal.dofs] += model.normal.stiffness
+    return d
+
+
+def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) -> FloatArray:
+    """The full FE's lowest ``count`` linear natural frequencies with the contact stuck
+    (stick slope x area tangentially, the normal held or its penalty), Hz."""
+    k = (model.stiffness + sp.diags(_springs(model))).tocsc()
+    lam = spla.eigsh(k, k=count, M=mass.tocsc(), sigma=0.0, which="LM",
+                     return_eigenvectors=False)
+    return np.asarray(np.sort(np.sqrt(np.maximum(lam, 0.0))) / (2.0 * np.pi))
+
+
+def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None,
+                     cutoff_hz: float | None) -> tuple[FloatArray, FloatArray]:
+    n_i = k_ii.shape[0]
+    limit = n_i - 2  # eigsh needs k < n
+    if modes is not None:
+        if not (isinstance(modes, (int, np.integer)) and 1 <= modes <= limit):
+            raise ParameterError(f"modes must be an integer in [1, {limit}], got {modes!r}")
+        count = int(modes)
+    else:
+        count = min(20, limit)
+    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
+    op = spla.LinearOperator(k_ii.shape, matvec=lu.solve, dtype=np.float64)
+    while True:
+        lam, vec = spla.eigsh(k_ii, k=count, M=m_ii, sigma=0.0, which="LM", OPinv=op)
+        order = np.argsort(lam)
+        lam, vec = lam[order], vec[:, order]
+        f = np.sqrt(np.maximum(lam, 0.0)) / (2.0 * np.pi)
+        if modes is not None:
+            return f, vec
+        assert cutoff_hz is not None
+        if f[-1] > cutoff_hz or count == limit:
+            keep = f <= cutoff_hz
+            return f[keep], vec[:, keep]
+        count = min(2 * count, limit)
+
+
+def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = None,
+              cutoff_hz: float | None = None, response_set: str | None = None,
+              mass: sp.csr_matrix | None = None) -> Rom:
+    """Craig-Bampton ROM of ``model`` with every contact node's dofs kept.
+
+    Parameters
+    ----------
+    model : MeshModel
+        After the clamping step (its normal forces give the slip limits).
+    density_kg_m3 : float
+        Density, kg/m^3.
+    modes : int, optional
+        Fixed-interface modes kept (the lowest). Give this or ``cutoff_hz``.
+    cutoff_hz : float, optional
+        Keep every fixed-interface mode below this frequency, Hz.
+    response_set : str, optional
+        A node set whose mean displacement is the ROM's output rows.
+    mass : sparse matrix, optional
+        The full mass (:func:`full_mass`), if already built.
+
+    Returns
+    -------
+    Rom
+    """
+    t0 = time.perf_counter()
+    if (modes is None) == (cutoff_hz is None):
+        raise ParameterError("give the number of fixed-interface modes or a cut-off "
+                             "frequency (Hz), one of them")
+    if cutoff_hz is not None and not (math.isfinite(cutoff_hz) and cutoff_hz > 0.0):
+        raise ParameterError(f"cut-off frequency must be > 0 Hz, got {cutoff_hz!r}")
+    m_full = full_mass(model, density_kg_m3) if mass is None else mass
+    k_full = model.stiffness.tocsr()
+    b, per_node = _boundary(model)
+    inner = np.setdiff1d(np.arange(model.dof), b)
+    k_ii = k_full[inner][:, inner].tocsc()
+    m_ii = m_full[inner][:, inner].tocsc()
+    k_ib = k_full[inner][:, b]
+    m_ib = m_full[inner][:, b]
+    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz)
+    if freq.size == 0:
+        raise ParameterError(f"no fixed-interface mode below {cutoff_hz} Hz (the lowest is "
+                             "above it): raise the cut-off")
+    phi = phi / np.max(np.abs(phi), axis=0) * np.sign(phi[np.argmax(np.abs(phi), axis=0),
+                                                          np.arange(phi.shape[1])])
+    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
+    psi = -lu.solve(k_ib.toarray())  # constraint modes (n_i, n_b)
+    k_bb = k_full[b][:, b].toarray() + (k_ib.T @ psi)
+    m_ii_psi = m_ii @ psi
+    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi.T @ m_ii_psi)
+    m_bm = (m_ib.T + m_ii_psi.T) @ phi
+    mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
+    nb, nm = b.size, phi.shape[1]
+    m_r = np.zeros((nb + nm, nb + nm))
+    k_r = np.zeros_like(m_r)
+    m_r[:nb, :nb] = 0.5 * (m_bb + m_bb.T)
+    m_r[:nb, nb:] = m_bm
+    m_r[nb:, :nb] = m_bm.T
+    m_r[nb:, nb:] = np.diag(mu)
+    k_r[:nb, :nb] = 0.5 * (k_bb + k_bb.T)
+    k_r[nb:, nb:] = np.diag(mu * (2.0 * np.pi * freq) ** 2)
+    out = None if response_set is None else _output(model, response_set, b, inner, psi, phi)
+    kn = (np.zeros_like(model.contact_stiffness) if model.normal is None
+          else np.asarray(model.normal.stiffness, dtype=float))
+    return Rom(mass=m_r, stiffness=k_r, boundary=b, per_node=per_node,
+               interface_frequencies=freq, contact_stiffness=model.contact_stiffness.copy(),
+               slip_force=model.friction_limit.copy(), normal_stiffness=kn,
+               friction=model.friction, output=out,
+               build_s=time.perf_counter() - t0)
+
+
+def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: FloatArray,
+            phi: FloatArray) -> FloatArray:
+    """(3, n_rom): the response set's mean displacement along global x, y, z."""
+    if name not in model.mesh.node_sets:
+        raise ParameterError(f"{model.mesh.source}: no node set {name!r} for the response "
+                             f"(sets: {', '.join(model.mesh.set_names()) or 'none'})")
+    nodes = model.model_nodes(model.mesh.node_sets[name])
+    where_b = np.full(model.dof, -1, dtype=np.int64)
+    where_b[b] = np.arange(b.size)
+    where_i = np.full(model.dof, -1, dtype=np.int64)
+    where_i[inner] = np.arange(inner.size)
+    local = np.zeros((3, b.size + phi.shape[1]))
+    for c in range(3):
+        pos = model.index[3 * nodes + c]
+        pos = pos[pos >= 0]  # held dofs do not move
+        ib = where_b[pos]
+        np.add.at(local[c], ib[ib >= 0], 1.0)
+        ii = where_i[pos[ib < 0]]
+        local[c, :b.size] += psi[ii].sum(axis=0)
+        local[c, b.size:] += phi[ii].sum(axis=0)
+    local /= nodes.size
+    return np.asarray(model.rotation.T @ local)  # u_global = R^T u_model
+
+
+def convergence(model: MeshModel, density_kg_m3: float, counts: list[int],
+                compare: int = 6, mass: sp.csr_matrix | None = None
+                ) -> dict[str, list[float] | list[int] | list[list[float]]]:
+    """Relative error of the ROM's lowest ``compare`` stuck frequencies against the full FE,
+    for each number of fixed-interface modes in ``counts``."""
+    m = full_mass(model, density_kg_m3) if mass is None else mass
+    full = stuck_frequencies_full(model, m, compare)
+    errors = []
+    for n in counts:
+        rom = build_rom(model, density_kg_m3, modes=n, mass=m)
+        errors.append(list((rom.stuck_frequencies(compare) - full) / full))
+    return {"modes": list(counts), "full_Hz": list(full), "relative_error": errors}
+
+
+def _joints(rom: Rom) -> IntArray:
+    """(n_c, 2, 2): each contact node's joint on its two tangential ROM dofs, to ground."""
+    first = np.arange(rom.contact_stiffness.size) * rom.per_node
+    rows = np.stack([first, first + 1], axis=1)
+    return np.stack([rows, np.full_like(rows, -1)], axis=2).astype(np.int64)
+
+
+def _fixed_only(rom: Rom) -> None:
+    if rom.per_node != 2:
+        raise ParameterError("the structure file holds 1-D and 2-D joints; the ROM of "
+                             "'penalty' normal contact (a 3-D contact element per node) is a "
+                             "library Structure only (rom_structure); reduce the model with "
+                             "'fixed' normal contact to write it")
+
+
+def rom_matrices(rom: Rom) -> MatrixFile:
+    """The ROM as the matrices of a structure file (SI: kg, N/m; no damping), its joints
+    one per contact node with their own laws (lambda A_i, mu N_i)."""
+    from ...dynamics.files import MatrixFile, check_matrices
+
+    _fixed_only(rom)
+    m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
+                             np.zeros_like(rom.mass))
+    return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
+                      laws=np.column_stack([rom.contact_stiffness, rom.slip_force]))
+
+
+def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
+    """The ROM as a :class:`~microslip.dynamics.structure.Structure`: each contact node a
+    2-D circular Jenkins element (stiffness lambda A_i, slip force mu N_i) on its tangential
+    dofs, to the ground (``fixed`` normal contact), or the 3-D element of
+    :mod:`microslip.dynamics.operators3d` on its three dofs (``penalty``: k_n A_i with
+    lift-off, preload N_i, limit mu N(t)); the output coordinate ``output`` (n_rom,) or, by
+    default, the response set's mean displacement along global y (the contact plane's
+    in-plane bending of the cantilever), else the first coordinate."""
+    from ...dynamics.assemble import from_matrices, with_output
+    from ...dynamics.operators import jenkins
+
+    if rom.per_node == 3:
+        s = _penalty_structure(rom)
+    else:
+        mats = rom_matrices(rom)
+        unused = jenkins(1.0, 1.0)  # every joint has its own law
+        s = from_matrices(mats, mats.joints, unused, "circular")
+    if output is None:
+        output = rom.output[1] if rom.output is not None else np.eye(rom.dofs)[0]
+    return with_output(s, np.asarray(output, dtype=float))
+
+
+def _penalty_structure(rom: Rom) -> Structure:
+    from ...dynamics.operators3d import Contact3D
+    from ...dynamics.structure import JointLink, Structure
+
+    n = rom.dofs
+    links = []
+    for i, (kt, s, kn) in enumerate(zip(rom.contact_stiffness, rom.slip_force,
+                                        rom.normal_stiffness, strict=True)):
+        w = np.zeros((n, 3))
+        w[3 * i:3 * i + 3] = np.eye(3)
+        links.append(JointLink(Contact3D(float(kt), float(kn), float(s) / rom.friction,
+                                         rom.friction), w))
+    return Structure(mass=rom.mass * SI_FACTOR, damping=np.zeros((n, n)),
+                     stiffness=rom.stiffness * SI_FACTOR, joints=tuple(links),
+                     output=np.eye(n)[0])
+
+
+def write_rom(path: str, rom: Rom) -> None:
+    """Write the ROM as a structure file (.npz, :mod:`microslip.dynamics.files`): ``M``
+    (kg), ``K`` (N/m), ``joints`` (n_c, 2, 2) and each joint's ``joint_stiffness`` (N/mm)
+    and ``joint_slip_force`` (N). Written to a temporary name and renamed, so a failure
+    leaves no half-written file."""
+    import os
+
+    mats = rom_matrices(rom)
+    assert mats.laws is not None
+    tmp = f"{path}.part"
+    try:
+        with open(tmp, "wb") as fh:
+            np.savez(fh, M=mats.mass, K=mats.stiffness, joints=mats.joints,
+                     joint_stiffness=mats.laws[:, 0], joint_slip_force=mats.laws[:, 1])
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

@@ -1,0 +1,300 @@
+"""The reduced model with every contact node (issue 23, item 3): Craig-Bampton on the
+cantilever's own mesh against the full FE's stuck frequencies, the response set's output
+rows, the ROM as a structure file that ``modal`` and ``frf`` read (each contact node its own
+circular Jenkins element), and its EPMC (softening, damping rising from the stuck values;
+against its own time integration)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from microslip.dynamics.assemble import from_matrices, mode_shape
+from microslip.dynamics.continuation import newton
+from microslip.dynamics.files import read_structure
+from microslip.dynamics.hb import HarmonicBalance
+from microslip.dynamics.modal import epmc
+from microslip.dynamics.operators import jenkins
+from microslip.dynamics.operators2d import CircularIwan
+from microslip.dynamics.structure import SI_PER_MM
+from microslip.dynamics.timeint import transient
+from microslip.errors import ParameterError
+from microslip.fe.builtin.meshmodel import build_mesh_model
+from microslip.fe.builtin.reduce import (
+    build_rom,
+    convergence,
+    full_mass,
+    rom_structure,
+    stuck_frequencies_full,
+    write_rom,
+)
+from microslip.fe.examples import cantilever_mesh
+
+#: Aluminium cantilever, the issue's values (MPa, -, kg/m^3, -, N, N/mm^3).
+E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6
+
+
+def model(nx: int = 24, ny: int = 6, nz: int = 2, normal: str = "fixed"):
+    return build_mesh_model(cantilever_mesh(nx, ny, nz), contact_set="contact",
+                            clamp_set="clamp", normal_force=FN, modulus=E, poisson_ratio=NU,
+                            friction=MU, stick_slope=LAM, normal_contact=normal,
+                            normal_slope=KN)
+
+
+@pytest.fixture(scope="module")
+def cantilever():
+    m = model()
+    return m, full_mass(m, RHO)
+
+
+@pytest.fixture(scope="module")
+def small():
+    """The 12x3x1 cantilever's ROM (20 contact nodes, 6 modes): fast enough to integrate."""
+    rom = build_rom(model(12, 3, 1), RHO, modes=6, response_set="response")
+    return rom, rom_structure(rom)
+
+
+@pytest.mark.slow
+def test_stuck_frequencies_equal_the_full_fe_with_enough_modes(cantilever):
+    m, mass = cantilever
+    full = stuck_frequencies_full(m, mass, 6)
+    rom = build_rom(m, RHO, modes=60, mass=mass)
+    assert np.max(np.abs(rom.stuck_frequencies(6) / full - 1.0)) < 1e-6
+    assert 480.0 < full[0] < 500.0  # the out-of-plane bending, the lowest
+
+
+@pytest.mark.slow
+def test_error_falls_with_the_number_of_modes(cantilever):
+    m, mass = cantilever
+    table = convergence(m, RHO, [5, 20, 60], compare=6, mass=mass)
+    err = np.abs(np.array(table["relative_error"]))
+    worst = err.max(axis=1)
+    assert worst[0] > 1e-3 and worst[1] < 1e-5 and worst[2] < 1e-6
+    assert np.all(np.diff(worst) < 0.0)
+    # CB from above (a constrained Rayleigh-Ritz): never below the full FE (to rounding)
+    assert np.all(np.array(table["relative_error"]) > -1e-9)
+
+
+def test_cutoff_keeps_every_mode_below_it(cantilever):
+    m, mass = cantilever
+    rom = build_rom(m, RHO, cutoff_hz=60000.0, mass=mass)
+    more = build_rom(m, RHO, modes=rom.modes + 1, mass=mass)
+    assert rom.interface_frequencies[-1] <= 60000.0 < more.interface_frequencies[-1]
+    assert rom.dofs == 2 * m.contact_nodes.size + rom.modes
+
+
+def test_output_rows_are_exact_for_contact_loads(cantilever):
+    """A static load on the contact dofs is reproduced exactly by the constraint modes
+    (whatever the modes kept): the response set's mean displacement equals the full FE's."""
+    m, mass = cantilever
+    rom = build_rom(m, RHO, modes=3, response_set="response", mass=mass)
+    springs = rom.contact_springs()
+    f_rom = np.zeros(rom.dofs)
+    f_rom[1:rom.boundary.size:2] = 1.0  # 1 N along e2 on every contact node
+    q = np.linalg.solve(rom.stiffness + np.diag(springs), f_rom)
+    s = np.zeros(m.dof)
+    s[m.contact_dofs.ravel()] = np.repeat(m.contact_stiffness, 2)
+    f = np.zeros(m.dof)
+    f[m.contact_dofs[:, 1]] = 1.0
+    u = sp.linalg.spsolve((m.stiffness + sp.diags(s)).tocsc(), f)
+    nodes = m.mesh.node_sets["response"]
+    mean = m.global_vectors(u)[nodes].mean(axis=0)
+    assert np.allclose(rom.output @ q, mean, rtol=0.0, atol=1e-9 * np.abs(mean).max())
+    assert abs(mean[1]) > 10 * abs(mean[0])
+
+
+def test_structure_file_round_trip(cantilever, tmp_path):
+    m, mass = cantilever
+    rom = build_rom(m, RHO, modes=10, response_set="response", mass=mass)
+    path = str(tmp_path / "rom.npz")
+    write_rom(path, rom)
+    mf = read_structure(path)
+    assert mf.joints.shape == (m.contact_nodes.size, 2, 2)
+    assert np.array_equal(mf.laws[:, 0], m.contact_stiffness)
+    assert np.array_equal(mf.laws[:, 1], m.friction_limit)
+    # the command line's joint is not used: every node carries its own law
+    s = from_matrices(mf, mf.joints, jenkins(1.0, 1.0), "circular")
+    ops = [link.operator for link in s.joints]
+    assert all(isinstance(op, CircularIwan) for op in ops)
+    assert np.allclose([op.initial_stiffness for op in ops], m.contact_stiffness, rtol=1e-14)
+    assert np.allclose([op.slip_force for op in ops], m.friction_limit, rtol=1e-12)
+    assert np.allclose(s.linear_frequencies(stuck=True)[:6], rom.stuck_frequencies(6),
+                       rtol=1e-9)
+    assert np.allclose(rom_structure(rom).linear_frequencies(stuck=True)[:6],
+                       rom.stuck_frequencies(6), rtol=1e-9)
+    # another connectivity (--joint-dof) takes the command line's joint
+    other = from_matrices(mf, mf.joints[::-1], jenkins(5.0, 2.0), "circular")
+    assert all(link.operator.initial_stiffness == 5.0 for link in other.joints)
+
+
+def test_structure_file_laws_checked(tmp_path):
+    path = tmp_path / "bad.npz"
+    np.savez(path, M=np.eye(2), K=np.eye(2), joints=np.array([[[0, -1], [1, -1]]]),
+             joint_stiffness=np.array([1.0]))
+    with pytest.raises(ParameterError, match="go together"):
+        read_structure(str(path))
+    np.savez(path, M=np.eye(2), K=np.eye(2), joints=np.array([[[0, -1], [1, -1]]]),
+             joint_stiffness=np.array([1.0]), joint_slip_force=np.array([-1.0]))
+    with pytest.raises(ParameterError, match="joint_slip_force must be finite and > 0"):
+        read_structure(str(path))
+    np.savez(path, M=np.eye(2), K=np.eye(2), joints=np.array([[[0, -1], [1, -1]]]))
+    assert read_structure(str(path)).laws is None
+
+
+def test_bad_input_refused(cantilever):
+    m, mass = cantilever
+    with pytest.raises(ParameterError, match="one of them"):
+        build_rom(m, RHO, modes=5, cutoff_hz=1e4, mass=mass)
+    with pytest.raises(ParameterError, match="modes must be an integer"):
+        build_rom(m, RHO, modes=0, mass=mass)
+    with pytest.raises(ParameterError, match="no node set 'nowhere'"):
+        build_rom(m, RHO, modes=5, response_set="nowhere", mass=mass)
+    with pytest.raises(ParameterError, match="density"):
+        build_rom(m, -1.0, modes=5)
+
+
+def test_penalty_reduces_to_3d_contact_elements(tmp_path):
+    m = model(12, 3, 1, "penalty")
+    mass = full_mass(m, RHO)
+    rom = build_rom(m, RHO, modes=60, mass=mass)
+    assert rom.per_node == 3 and rom.boundary.size == 3 * m.contact_nodes.size
+    full = stuck_frequencies_full(m, mass, 4)
+    assert np.max(np.abs(rom.stuck_frequencies(4) / full - 1.0)) < 1e-6
+    s = rom_structure(rom)
+    assert all(link.directions == 3 for link in s.joints)
+    assert np.allclose(s.linear_frequencies(stuck=True)[:4], full, rtol=1e-6)
+    with pytest.raises(ParameterError, match="1-D and 2-D joints"):
+        write_rom(str(tmp_path / "rom.npz"), rom)
+    assert not (tmp_path / "rom.npz").exists()
+
+
+@pytest.mark.slow  # about 1 s, 20 s when the 3-D element's kernel compiles
+def test_penalty_epmc_follows_the_fixed_one_in_plane():
+    """In-plane bending barely moves the contact normally: the 3-D elements (penalty,
+    limit mu N(t)) give the 2-D elements' curve (fixed normal) to a fraction of a percent."""
+    a = np.geomspace(5e-3, 2e-2, 4)
+    curves = []
+    for normal in ("penalty", "fixed"):
+        rom = build_rom(model(12, 3, 1, normal), RHO, modes=6, response_set="response")
+        curves.append(epmc(rom_structure(rom), a, 3, mode=1))
+    pen, fix = curves
+    assert np.allclose(pen.frequency, fix.frequency, rtol=1e-3)
+    assert np.allclose(pen.damping_ratio, fix.damping_ratio, rtol=0.03, atol=1e-4)
+    assert pen.damping_ratio[-1] > 0.02
+
+
+def _in_plane(structure) -> int:
+    """The stuck mode that moves the response set most along y (the contact plane)."""
+    from scipy.linalg import eigh
+
+    _, vec = eigh(structure.stuck_stiffness(), structure.mass)
+    return int(np.argmax(np.abs(structure.output @ vec[:, :4])))
+
+
+def test_epmc_softens_and_damps_from_the_stuck_values(small):
+    _rom, s = small
+    mode = _in_plane(s)
+    assert mode == 1
+    stuck = s.linear_frequencies(stuck=True)[mode]
+    a = np.geomspace(2e-3, 4e-2, 8)
+    c = epmc(s, a, 5, mode=mode)
+    assert abs(c.frequency[0] / stuck - 1.0) < 1e-9 and abs(c.damping_ratio[0]) < 1e-12
+    assert np.all(np.diff(c.frequency) <= 1e-9 * stuck)
+    assert c.frequency[-1] < 0.95 * stuck
+    assert np.all(np.diff(c.damping_ratio) >= -1e-12) and c.damping_ratio[-1] > 0.02
+
+
+def _epmc_state(s, a: float, harmonics: int, mode: int):
+    """The EPMC solution at amplitude ``a`` (harmonics (dofs, 2H+1), omega, xi), by
+    Newton from the continuation's frequency and damping at ``a``."""
+    c = epmc(s, np.geomspace(5e-3, a, 6), harmonics, mode=mode)
+    hb = HarmonicBalance(s, harmonics, 128)
+    h, n = 2 * harmonics + 1, hb.size
+    phi = mode_shape(s, mode)
+    y = np.zeros(n + 2)
+    y[:n].reshape(s.dofs, h)[:, 1] = a * phi / (s.output @ phi)
+    y[n] = 2 * np.pi * c.frequency[-1]
+    y[n + 1] = 2 * c.damping_ratio[-1] * y[n]
+    rows = np.zeros((2, n + 2))
+    rows[0, :n].reshape(s.dofs, h)[:, 1] = s.output
+    rows[1, :n].reshape(s.dofs, h)[:, 2] = s.output
+
+    def fun(y):
+        res = hb.residual(y[:n], float(y[n]), np.zeros(n), float(y[n + 1]))
+        return (np.concatenate([res.r, rows @ y - (a, 0.0)]),
+                np.vstack([np.column_stack([res.dx, res.dw, res.dxi]), rows]))
+
+    y, ok, _ = newton(fun, y, np.concatenate([np.full(n, a), [y[n], y[n]]]), 1e-11, 50)
+    assert ok
+    return y[:n].reshape(s.dofs, h), float(y[n]), float(y[n + 1])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("amplitude", [1.2e-2, 1.5e-2, 2e-2])
+def test_epmc_against_time_integration(small, amplitude):
+    """Phase resonance: the EPMC's self-excitation xi M q' (first harmonic) at amplitude a
+    loads the ROM, integrated in time (central differences) at the EPMC frequency until
+    settled. From the last period: the response amplitude a', its phase to the load (-90
+    degrees at resonance), and the damping ratio the load's work W per cycle gives,
+    ``zeta = W / (2 pi w^2 sum_k k^2 X_k^H M X_k)`` (every harmonic of the motion, as the
+    EPMC's xi M q' balances). Against the EPMC at a': frequency within 1 %, damping ratio
+    within 5 % (7 harmonics; the gap is the harmonic truncation of stick-slip: 15 harmonics
+    halve it)."""
+    _rom, s = small
+    harmonics = 7
+    x, w, xi = _epmc_state(s, amplitude, harmonics, 1)
+    load = SI_PER_MM * xi * w * (s.mass @ x[:, 1])
+    run = transient(s, load, w / (2 * np.pi), 80, steps=64)
+    assert run.change < 1e-3
+    n = run.steps
+    k = np.arange(1, 16)
+    basis = (2.0 / n) * np.exp(-2j * np.pi * np.outer(k, np.arange(1, n + 1)) / n)
+    xk = basis @ run.displacement  # (15, dofs): x(t) = Re sum X_k e^{i k w t}
+    work = -np.pi * float(load @ xk[0].imag)  # N mm per cycle
+    kinetic = float(np.sum(k**2 * np.real(np.einsum("ki,ij,kj->k", xk.conj(), s.mass, xk))))
+    zeta = work / (2 * np.pi * w**2 * SI_PER_MM * kinetic)
+    reached = abs(s.output @ xk[0])
+    assert abs(reached / amplitude - 1.0) < 0.03
+    assert abs(np.degrees(np.angle(s.output @ xk[0])) + 90.0) < 3.0
+    curve = epmc(s, np.geomspace(5e-3, reached, 6), harmonics, mode=1)
+    assert abs(curve.frequency[-1] / (w / (2 * np.pi)) - 1.0) < 0.01
+    assert abs(zeta / curve.damping_ratio[-1] - 1.0) < 0.05
+
+
+def test_modal_and_frf_read_the_rom(small, tmp_path, capsys):
+    """``microslip modal --structure rom.npz`` and ``frf`` take the ROM like any structure
+    file; the file's per-node laws replace the command line's joint (which the CLI still
+    asks for)."""
+    import json
+
+    from microslip.cli.main import main
+
+    rom, s = small
+    path = str(tmp_path / "rom.npz")
+    write_rom(path, rom)
+    joint = ["--joint", "jenkins", "--joint-stiffness", "1", "--slip-force", "1"]
+    assert main(["modal", "--structure", path, "--mode", "2", *joint, "--amplitude-range",
+                 "1e-3", "1e-2", "--amplitudes", "2", "--harmonics", "3", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    text = json.dumps(out)
+    assert str(round(float(s.linear_frequencies(stuck=True)[1]), 3))[:7] in text
+    assert main(["frf", "--structure", path, "--mode", "2", *joint, "--force", "1",
+                 "--frequency-range", "1500", "1800", "--harmonics", "1", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)
+
+
+def test_odd_harmonic_epmc_is_the_same_curve(small):
+    """Circular Jenkins elements to the ground are odd: the balance on the odd harmonics
+    alone gives the EPMC's curve to rounding (at a fraction of the cost)."""
+    from microslip.dynamics.modal_odd import epmc_odd
+
+    _rom, s = small
+    a = np.geomspace(5e-3, 3e-2, 5)
+    full, odd = epmc(s, a, 5, mode=1), epmc_odd(s, a, 5, mode=1)
+    assert odd.damping_ratio[-1] > 0.02
+    assert np.allclose(odd.frequency, full.frequency, rtol=1e-10)
+    assert np.allclose(odd.damping_ratio, full.damping_ratio, rtol=1e-8, atol=1e-14)
+    pen = rom_structure(build_rom(model(12, 3, 1, "penalty"), RHO, modes=4))
+    with pytest.raises(ParameterError, match="odd joint forces"):
+        epmc_odd(pen, a, 3, mode=1)
