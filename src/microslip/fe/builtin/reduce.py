@@ -42,8 +42,8 @@ from numpy.typing import NDArray
 from scipy.linalg import eigh
 
 from ...errors import ParameterError
-from .mass import density_t_per_mm3, mass_matrix
 from .meshmodel import MeshModel
+from .modes import modal_mass, modal_stiffness
 
 if TYPE_CHECKING:
     from ...dynamics.files import MatrixFile
@@ -128,13 +128,8 @@ class Rom:
 
 
 def full_mass(model: MeshModel, density_kg_m3: float) -> sp.csr_matrix:
-    """Consistent mass of the model's free dofs (t, the model's numbering and frame; the
-    mass of an isotropic density does not change with the rotation)."""
-    rho = density_t_per_mm3(density_kg_m3)
-    inv = np.full(len(model.mesh.nodes), -1, dtype=np.int64)
-    inv[model.order] = np.arange(model.order.size)
-    m = mass_matrix(model.mesh.nodes[model.order], inv[model.mesh.elements], rho)
-    return m[model.free][:, model.free].tocsr()
+    """Consistent mass of the model's free dofs (t): :func:`.modes.modal_mass`."""
+    return modal_mass(model, density_kg_m3)
 
 
 def _boundary(model: MeshModel) -> tuple[IntArray, int]:
@@ -157,8 +152,9 @@ def _springs(model: MeshModel) -> FloatArray:
 
 def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) -> FloatArray:
     """The full FE's lowest ``count`` linear natural frequencies with the contact stuck
-    (stick slope x area tangentially, the normal held or its penalty), Hz."""
-    k = (model.stiffness + sp.diags(_springs(model))).tocsc()
+    (:func:`.modes.modal_stiffness`: stick slope x area tangentially, the normal held or its
+    penalty), Hz."""
+    k = modal_stiffness(model, "stuck").tocsc()
     lam = spla.eigsh(k, k=count, M=mass.tocsc(), sigma=0.0, which="LM",
                      return_eigenvectors=False)
     return np.asarray(np.sort(np.sqrt(np.maximum(lam, 0.0))) / (2.0 * np.pi))
