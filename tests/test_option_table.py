@@ -9,7 +9,7 @@ import pytest
 
 from microslip.case.options import CASE_OPTIONS
 from microslip.case.schema import JOINT_KEYS, KEYS
-from microslip.case.table import OPTIONS, SOLVERS, mesh_level, mesh_or_file, number
+from microslip.case.table import OPTIONS, SOLVERS, mesh_file, mesh_level, mesh_or_file, number
 from microslip.cli.main import build_parser, main
 
 
@@ -76,6 +76,7 @@ def test_mesh_is_checked_the_same_on_every_command_that_takes_it():
     assert {"fe", "planar", "sweep", "report", "validate"} <= set(found)
     # fe's --mesh takes a mesh file of the user's own too; every other command a level
     assert found.pop("fe").type is mesh_or_file
+    assert found.pop("modal").type is mesh_file  # the structure's own mesh
     assert {a.type for a in found.values()} == {mesh_level}
     assert actions("--fe-mesh")["modal"].type is mesh_level
 

@@ -93,6 +93,13 @@ def mesh_or_file(text: str) -> str:
         "existing mesh file (.inp, .msh, .vtu, ...)")
 
 
+def mesh_file(text: str) -> str:
+    """argparse type: a mesh file that exists (``modal --mesh``)."""
+    if Path(text).is_file():
+        return text
+    raise argparse.ArgumentTypeError(f"no mesh file {text!r} (.inp, .msh, .vtu, ...)")
+
+
 def set_name(text: str) -> str:
     """argparse type: a non-empty set name of a mesh file."""
     if not text.strip():

@@ -1,0 +1,76 @@
+"""``microslip modal --mesh FILE``: stuck and free modes of the user's mesh, full-FE QSMA
+(--solver fe) and EPMC on the contact-node ROM (--solver rom) on the same amplitudes, and the
+bad inputs of issue 23 refused in one line."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from microslip.cli.main import main
+from microslip.fe.examples import cantilever_mesh
+from microslip.fe.meshfile import write_inp
+
+BASE = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "2000",
+        "--friction", "0.5", "--stick-slope", "1e4", "--modulus", "70000",
+        "--poisson-ratio", "0.33", "--response-set", "response"]
+
+
+@pytest.fixture(scope="module")
+def mesh(tmp_path_factory: pytest.TempPathFactory) -> str:
+    path = tmp_path_factory.mktemp("modal") / "cantilever_12x3x1.inp"
+    return str(write_inp(cantilever_mesh(12, 3, 1), path))
+
+
+def _json(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
+    assert main(["modal", *argv, "--json"]) == 0
+    out, _ = capsys.readouterr()
+    return json.loads(out)
+
+
+def test_fe_and_rom_side_by_side(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
+    """In-plane bending of the cantilever: the ROM keeps the full FE's stuck frequencies (to
+    1e-6 with 60 fixed-interface modes), both curves start at the stuck frequency and soften
+    while the damping ratio rises, and at the first slipping amplitude they agree within a
+    few percent (the ROM's EPMC against the full FE's QSMA)."""
+    argv = ["--mesh", mesh, *BASE, "--density", "2700", "--mode", "2", "--amplitudes", "3"]
+    fe = _json(capsys, *argv, "--solver", "fe")
+    rom = _json(capsys, *argv, "--solver", "rom")
+    assert len(fe["linear_frequencies_Hz"]) >= 6 and len(fe["free_frequencies_Hz"]) >= 6
+    assert fe["label"] == "bending in the contact plane"
+    stuck = fe["linear_frequencies_Hz"][1]
+    assert rom["rom_frequencies_Hz"][1] == pytest.approx(stuck, rel=1e-6)
+    assert all(f <= stuck * (1 + 1e-6) for f in fe["frequency_Hz"] + rom["frequency_Hz"])
+    assert fe["damping_ratio"][-1] > fe["damping_ratio"][0] > 0
+    assert rom["damping_ratio"][-1] > rom["damping_ratio"][0] > 0
+    # the first amplitude: the same force grid, mapped through the stuck mode for the ROM
+    assert rom["amplitude_mm"][0] == pytest.approx(fe["amplitude_mm"][0], rel=0.02)
+    assert rom["frequency_Hz"][0] == pytest.approx(fe["frequency_Hz"][0], rel=0.005)
+    assert rom["damping_ratio"][0] == pytest.approx(fe["damping_ratio"][0], rel=0.1)
+    # free contact: the in-plane rigid motions are 0 Hz, every free mode below a stuck one
+    assert sum(f < 1.0 for f in fe["free_frequencies_Hz"]) == 3
+    assert not any(math.isnan(z) for z in fe["damping_ratio"])
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    ([], "needs --density KG/M3"),
+    (["--density", "2700", "--mode", "51"], "--mode must be in [1, 50]"),
+    (["--density", "2700", "--frequency", "100"], "--frequency not used with --mesh"),
+    (["--density", "2700", "--harmonics", "5"], "--harmonics applies to --solver rom only"),
+    (["--density", "-1"], "density must be > 0 kg/m^3"),
+])
+def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
+                               extra: list[str], message: str) -> None:
+    assert main(["modal", "--mesh", mesh, *BASE, *extra]) == 1
+    _, err = capsys.readouterr()
+    assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["modal", "--frequency", "100", "--modal-mass", "1", "--joint", "jenkins",
+                 "--joint-stiffness", "100", "--slip-force", "5", "--amplitude-range", "0.01",
+                 "1", "--density", "2700"]) == 1
+    _, err = capsys.readouterr()
+    assert "--density applies to modal --mesh FILE only" in err
