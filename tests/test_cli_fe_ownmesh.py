@@ -104,3 +104,35 @@ def test_mesh_options_are_refused_on_the_box(capsys: pytest.CaptureFixture[str])
 def test_a_missing_file_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
     code, line = _error(capsys, "--mesh", "no_such_mesh.inp")
     assert code == 2 and "no_such_mesh.inp" in line
+
+
+@pytest.mark.ccx
+@pytest.mark.slow
+def test_validate_a_mesh_against_calculix(capsys: pytest.CaptureFixture[str],
+                                          tmp_path: Path) -> None:
+    """``validate --mesh FILE``: the built-in solver and CalculiX on the same mesh, loads and
+    cycles; W within the 3 % of the issue on a 12x3x1 cantilever under a lateral load, and
+    the verdict (exit code, ``passed``) follows the stated tolerances."""
+    from microslip.fe.examples import cantilever_mesh
+    from microslip.fe.meshfile import write_inp
+
+    mesh = str(write_inp(cantilever_mesh(12, 3, 1), tmp_path / "c.inp"))
+    argv = ["validate", "--mesh", mesh, "--contact-set", "contact", "--clamp-set", "clamp",
+            "--normal-force", "2000", "--friction", "0.5", "--stick-slope", "1e4",
+            "--normal-slope", "1e6", "--modulus", "70000", "--poisson-ratio", "0.33",
+            "--load", "tip:0,1,0:50", "--out", str(tmp_path / "v"), "--json"]
+    code = main(argv)
+    out = json.loads(capsys.readouterr().out)
+    b, c = out["builtin"], out["calculix"]
+    assert b["cycles"] == c["cycles"] and b["dof"] == c["dof"]
+    dw = c["dissipated_energy_Nmm"] / b["dissipated_energy_Nmm"] - 1
+    assert out["relative_difference"]["dissipated_energy_Nmm"] == pytest.approx(dw, rel=1e-12)
+    assert abs(dw) < 0.03
+    assert code == (0 if out["passed"] else 1)
+    assert (tmp_path / "v" / "validation_mesh.json").exists()
+
+
+def test_validate_a_mesh_refuses_the_box_options(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "--mesh", CANTILEVER, "--model", "tip", "--out", "x"]) == 1
+    err = capsys.readouterr().err
+    assert "--model applies to the box" in err and len(err.strip().splitlines()) == 1

@@ -13,9 +13,11 @@ from typing import Any
 
 from ..case.table import add_option, number
 from ..errors import ParameterError
+from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import check_output_dir, check_plot, print_json
 
-__all__ = ["add_own_mesh_options", "is_mesh_file", "refuse_mesh_options", "run_own_mesh"]
+__all__ = ["add_own_mesh_options", "is_mesh_file", "mesh_case", "refuse_mesh_options",
+           "run_own_mesh"]
 
 #: Options of a mesh file only (destinations).
 MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_cycles",
@@ -36,10 +38,19 @@ def is_mesh_file(mesh: str) -> bool:
     return not is_mesh_spec(mesh)
 
 
-def add_own_mesh_options(p: argparse.ArgumentParser) -> None:
+def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> None:
+    """The options of a mesh file; ``validate``: those ``validate --mesh FILE`` takes too (the
+    clamp, the contact law and the substeps, which ``fe`` has of its own)."""
     from ..fe.ownmesh import HISTORIES
 
     g = p.add_argument_group("your own mesh (--mesh FILE; docs/ownmesh.md)")
+    if validate:
+        g.add_argument("--normal-contact", choices=["penalty"], default=None,
+                       help="CalculiX takes penalty normal contact only (the default)")
+        g.add_argument("--normal-slope", type=number, default=None, metavar="N/MM3",
+                       help="penalty normal stiffness per area, N/mm^3 (default 1e5)")
+        g.add_argument("--substeps", type=int, default=50, metavar="N",
+                       help="substeps over 1.25 cycles, a multiple of 5 (default 50)")
     add_option(g, "contact_set")
     add_option(g, "clamp_set")
     g.add_argument("--load", action="append", metavar="SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]",
@@ -54,10 +65,11 @@ def add_own_mesh_options(p: argparse.ArgumentParser) -> None:
                         "(default 1e-3)")
     g.add_argument("--max-cycles", type=int, default=None, metavar="N",
                    help="builtin: at most N cycles before W settles (default 10)")
-    g.add_argument("--cycles", type=int, default=None, metavar="N",
-                   help="calculix: cycles to run (default 3; compare cycle_work_Nmm)")
-    g.add_argument("--plot", metavar="FILE.png",
-                   help="draw each load's loop over the settled cycle")
+    if not validate:
+        g.add_argument("--cycles", type=int, default=None, metavar="N",
+                       help="calculix: cycles to run (default 3; compare cycle_work_Nmm)")
+        g.add_argument("--plot", metavar="FILE.png",
+                       help="draw each load's loop over the settled cycle")
 
 
 def _verb(flags: list[str]) -> str:
@@ -77,7 +89,7 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
                              f"own), not to the box --mesh {args.mesh}; remove them")
 
 
-def _case(args: argparse.Namespace) -> Any:
+def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
@@ -94,6 +106,9 @@ def _case(args: argparse.Namespace) -> Any:
         missing.append("--load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
     if missing:
         raise ParameterError(f"--mesh {args.mesh} needs {', '.join(missing)}")
+    for dest in ("cycles", "plot", "settle_tol", "max_cycles", "history"):
+        if not hasattr(args, dest):
+            setattr(args, dest, None)
     if args.solver == "builtin" and args.cycles is not None:
         raise ParameterError("--cycles applies to --solver calculix (the built-in solver runs "
                              "until W settles: --settle-tol, --max-cycles)")
@@ -110,13 +125,15 @@ def _case(args: argparse.Namespace) -> Any:
     if args.solver == "calculix":
         extra = {"options": {k: v for k, v in (("timeout", args.timeout),
                                                ("threads", args.threads)) if v is not None}}
-    elif _given(args, "timeout") or _given(args, "threads"):
+    elif getattr(args, "command", "fe") == "fe" and (_given(args, "timeout")
+                                                     or _given(args, "threads")):
         raise ParameterError("--timeout and --threads apply to --solver calculix")
     return OwnMeshCase(
         args.mesh, args.contact_set, args.clamp_set, float(args.normal_force),
         tuple(MeshLoad.parse(s) for s in args.load), float(args.friction),
         float(args.modulus), float(args.poisson_ratio), stick_slope=float(args.stick_slope),
-        normal_contact=normal, normal_slope=float(args.normal_slope),
+        normal_contact=normal, normal_slope=float(
+            DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope),
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
@@ -127,7 +144,7 @@ def run_own_mesh(args: argparse.Namespace) -> int:
     from ..fe.ownmesh import loops_of
     from ..fe.ownmesh import run_own_mesh as run
 
-    case = _case(args)
+    case = mesh_case(args)
     check_output_dir(args.out)
     check_plot(args.plot)
     done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)

@@ -7,11 +7,12 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
-from ..case.table import add_option
+from ..case.table import add_option, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from .common import add_params, check_output_dir, number, params_from_args, print_json
+from .ownmesh import add_own_mesh_options, is_mesh_file, mesh_case, refuse_mesh_options
 
 __all__ = ["add_parser", "run"]
 
@@ -26,7 +27,11 @@ def add_parser(sub: Any) -> None:
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     p.add_argument("--out", metavar="DIR", required=True, help="output directory")
     add_params(p, default_preset="table1")
-    add_option(p, "mesh", action="append", note="repeat for several")
+    add_option(p, "mesh", action="append", type=mesh_or_file, metavar="LEVEL|FILE",
+               note="repeat for several; or one mesh file of your own clamp (.inp, .msh, "
+               ".vtu, ...) with --contact-set, --clamp-set and --load: the built-in solver "
+               "against CalculiX on it (docs/ownmesh.md)")
+    add_own_mesh_options(p, validate=True)
     p.add_argument("--model", choices=list(LOAD_CASES), action="append",
                    help="load case, repeat for several (default: tip and centre)")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
@@ -48,6 +53,9 @@ def add_parser(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..validate import run_validation
 
+    if any(is_mesh_file(m) for m in args.mesh or []):
+        return _run_mesh(args)
+    refuse_mesh_options(args)
     if args.timeout is not None and not (math.isfinite(args.timeout) and args.timeout > 0):
         raise ParameterError(f"--timeout must be > 0 s, got {args.timeout!r}")
     if not 1 <= args.threads <= 256:
@@ -68,3 +76,34 @@ def run(args: argparse.Namespace) -> int:
         for f in report.files:
             print(f"wrote {f}")
     return 0 if report.passed else 1
+
+
+def _run_mesh(args: argparse.Namespace) -> int:
+    """``validate --mesh FILE``: the built-in solver against CalculiX on the user's mesh."""
+    from ..fe.ownmesh import compare_solvers
+
+    if len(args.mesh) != 1:
+        raise ParameterError("give one --mesh FILE (a mesh of your own) to validate, not "
+                             f"{len(args.mesh)} meshes")
+    if args.model:
+        raise ParameterError("--model applies to the box (--mesh LEVEL); with --mesh FILE "
+                             "--load gives the loads")
+    args.mesh = args.mesh[0]
+    args.solver = "calculix"
+    case = mesh_case(args)
+    check_output_dir(args.out)
+    result = compare_solvers(case, args.out)
+    if args.json:
+        print_json(result)
+    else:
+        b, c, d = result["builtin"], result["calculix"], result["relative_difference"]
+        print(f"mesh {result['mesh']}: built-in against CalculiX, {b['cycles']} cycles")
+        print(f"  W  built-in {b['dissipated_energy_Nmm']:.6g} N·mm, CalculiX "
+              f"{c['dissipated_energy_Nmm']:.6g} N·mm: {d['dissipated_energy_Nmm']:+.2%} "
+              f"(tolerance 3 %)")
+        print(f"  d  built-in {b['peak_displacement_mm']:.6g} mm, CalculiX "
+              f"{c['peak_displacement_mm']:.6g} mm: {d['peak_displacement_mm']:+.2%} "
+              f"(tolerance 1 %)")
+        print(f"  {'passed' if result['passed'] else 'NOT passed'}; wrote "
+              f"{args.out}/validation_mesh.json")
+    return 0 if result["passed"] else 1

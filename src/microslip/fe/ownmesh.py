@@ -218,3 +218,29 @@ def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path 
 def loops_of(run: OwnMeshRun) -> Sequence[tuple[str, Any, Any]]:
     """(set, force N, work-conjugate displacement mm) of every load over the settled cycle."""
     return _loops(run.result)
+
+
+#: Agreement of the built-in solver with CalculiX that ``validate --mesh`` requires
+#: (issue 22): relative difference of W and of the first load's displacement.
+VALIDATION_TOLERANCE = {"dissipated_energy_Nmm": 0.03, "peak_displacement_mm": 0.01}
+
+
+def compare_solvers(case: OwnMeshCase, out: str | Path | None = None) -> dict[str, Any]:
+    """The built-in solver and CalculiX on the same mesh, sets, loads and history: the
+    built-in runs until W settles, CalculiX then runs as many cycles from the same ramp.
+    Returns both summaries and the relative differences, with ``passed`` against
+    :data:`VALIDATION_TOLERANCE`; with ``out`` writes ``validation_mesh.json`` there."""
+    builtin = run_own_mesh(case, "builtin").summary
+    from dataclasses import replace
+
+    ccx = run_own_mesh(replace(case, cycles=int(builtin["cycles"])), "calculix").summary
+    diff = {k: ccx[k] / builtin[k] - 1.0 if builtin[k] else float("nan")
+            for k in VALIDATION_TOLERANCE}
+    passed = all(abs(diff[k]) <= tol for k, tol in VALIDATION_TOLERANCE.items())
+    result = {"mesh": str(case.mesh_file), "builtin": builtin, "calculix": ccx,
+              "relative_difference": diff, "tolerance": dict(VALIDATION_TOLERANCE),
+              "passed": passed}
+    if out is not None:
+        with atomic_write(Path(out) / "validation_mesh.json") as fh:
+            json.dump(result, fh, indent=2, default=float)
+    return result
