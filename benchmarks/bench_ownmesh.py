@@ -7,7 +7,8 @@ and thickness 6.35 mm, clamped over its first 50.8 mm (contact = the bottom face
 rigid base; clamp = the top face there, F_N = 2000 N) with a free overhang of 101.6 mm, mu 0.5,
 stick slope 1e4 N/mm^3, penalty normal contact 1e6 N/mm^3, loaded on its free end face along
 the bar (500 N, half of mu F_N) in 40 increments per cycle until W per cycle settles to 1e-3.
-Meshes: 24x6x2 and 48x12x4 8-node hexahedra (C3D8I), built here by a structured generator.
+Meshes: 24x6x2, 48x12x4 and (``--large``) 96x24x6 (50.9k DOF) 8-node hexahedra (C3D8I),
+from :func:`microslip.fe.examples.cantilever_mesh`.
 
 Printed per mesh: dofs, the set-up (assembly and clamping step), the cycles run, the wall time
 of the loading and of one cycle (the loading's time over the cycles), W and the peak
@@ -22,35 +23,20 @@ from __future__ import annotations
 import argparse
 import time
 
-import numpy as np
-
-from microslip.fe.builtin.mesh import box_mesh
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles, solve_mesh
-from microslip.fe.hexmesh import HexMesh
+from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshload import MeshLoad
 
-CLAMPED, OVERHANG, WIDTH, THICKNESS = 50.8, 101.6, 25.4, 6.35
-TARGETS = {(24, 6, 2): 1.0, (48, 12, 4): 10.0}
-
-
-def cantilever(nx: int, ny: int, nz: int) -> HexMesh:
-    """The bar as a structured hex8 mesh (nx along the whole length; a node plane at the
-    clamp's edge x = 50.8 when nx is a multiple of 3) with the sets contact, clamp, tip."""
-    length = CLAMPED + OVERHANG
-    box = box_mesh(length, WIDTH, THICKNESS, nx, ny, nz)
-    x, z = box.nodes[:, 0], box.nodes[:, 2]
-    tol = 1e-9 * length
-    under = x <= CLAMPED + tol
-    sets = {"contact": np.flatnonzero(under & (z <= tol)),
-            "clamp": np.flatnonzero(under & (z >= THICKNESS - tol)),
-            "tip": np.flatnonzero(x >= length - tol)}
-    return HexMesh(box.nodes, box.elements, sets, source=f"cantilever {nx}x{ny}x{nz}")
+#: Mesh counts -> target for set-up plus one settled cycle, s (issue 22); 96x24x6 is the
+#: 50k-DOF mesh (its CalculiX comparison, >= 50x slower within 1 %, is not run here: ccx
+#: takes on the order of an hour on it on this machine).
+TARGETS = {(24, 6, 2): 1.0, (48, 12, 4): 10.0, (96, 24, 6): 60.0}
 
 
 def run(counts: tuple[int, int, int]) -> dict[str, float]:
     t0 = time.perf_counter()
-    model = build_mesh_model(cantilever(*counts), contact_set="contact", clamp_set="clamp",
+    model = build_mesh_model(cantilever_mesh(*counts), contact_set="contact", clamp_set="clamp",
                              normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
                              friction=0.5, stick_slope=1e4, normal_contact="penalty",
                              normal_slope=1e6)
@@ -65,11 +51,15 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="the 24x6x2 mesh only")
     ap.add_argument("--repeat", type=int, default=2, help="best of this many runs")
+    ap.add_argument("--large", action="store_true", help="also the 50k-DOF 96x24x6 mesh")
     args = ap.parse_args()
-    meshes = [(24, 6, 2)] if args.quick else list(TARGETS)
-    print("own-mesh built-in FE, cantilever, axial end load 500 N, 40 increments/cycle")
+    meshes = [(24, 6, 2)] if args.quick else [c for c in TARGETS
+                                              if args.large or c != (96, 24, 6)]
+    print("own-mesh built-in FE, cantilever, axial end load 500 N, 40 increments/cycle",
+          flush=True)
     for counts in meshes:
-        best = min((run(counts) for _ in range(args.repeat)), key=lambda r: r["loading"])
+        repeat = 1 if counts == (96, 24, 6) else args.repeat
+        best = min((run(counts) for _ in range(repeat)), key=lambda r: r["loading"])
         one = best["setup"] + best["cycle"]
         whole = best["setup"] + best["loading"]
         target = TARGETS[counts]
@@ -80,7 +70,7 @@ def main() -> None:
               f"{whole:.2f} s; target < {target:g} s: "
               f"{'meets' if one < target else 'MISSES'} / "
               f"{'meets' if whole < target else 'MISSES'}; W = {best['W']:.6g} N·mm, "
-              f"peak displacement {best['d']:.6g} mm")
+              f"peak displacement {best['d']:.6g} mm", flush=True)
 
 
 if __name__ == "__main__":
