@@ -153,38 +153,51 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
         return _epmc(structure, _amplitudes(amplitude), harmonics, samples, mode)
 
 
-def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int
-          ) -> ModalCurve:
+def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int,
+          coefficients: NDArray[np.int64] | None = None) -> ModalCurve:
+    """EPMC on the harmonic ``coefficients`` (indices into the balance's unknowns;
+    None: all of them). The others are held at zero (:func:`.modal_odd.epmc_odd` keeps the
+    odd harmonics)."""
     hb = HarmonicBalance(structure, harmonics, samples)
     h = 2 * harmonics + 1
     n = hb.size
+    keep: NDArray[np.int64] = (np.arange(n, dtype=np.int64) if coefficients is None
+                               else coefficients)
+    m_k = keep.size
     phi, m, _, c = stuck_mode(structure, mode)
     omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
-    guess = np.zeros(n + 2)
-    guess[:n].reshape(structure.dofs, h)[:, 1] = phi
-    guess[n], guess[n + 1] = omega0, c / m
-    rows = np.zeros((2, n + 2))
-    rows[0, :n].reshape(structure.dofs, h)[:, 1] = structure.output
-    rows[1, :n].reshape(structure.dofs, h)[:, 2] = structure.output
+    first = np.zeros((structure.dofs, h))
+    first[:, 1] = phi
+    guess = np.zeros(m_k + 2)
+    guess[:m_k] = first.ravel()[keep]
+    guess[m_k], guess[m_k + 1] = omega0, c / m
+    out = np.zeros((2, structure.dofs, h))
+    out[0, :, 1] = structure.output
+    out[1, :, 2] = structure.output
+    rows = np.zeros((2, m_k + 2))
+    rows[:, :m_k] = out.reshape(2, -1)[:, keep]
     load = np.zeros(n)
+    full = np.zeros(n)
     freq = np.empty(a.size)
     zeta = np.empty(a.size)
     previous = 1.0
     for i, ai in enumerate(a):
         def fun(y: Array, ai: float = ai) -> tuple[Array, Array]:
-            res = hb.residual(y[:n], float(y[n]), load, float(y[n + 1]))
-            r = np.concatenate([res.r, rows @ y - (ai, 0.0)])
-            jac = np.vstack([np.column_stack([res.dx, res.dw, res.dxi]), rows])
+            full[keep] = y[:m_k]
+            res = hb.residual(full, float(y[m_k]), load, float(y[m_k + 1]))
+            r = np.concatenate([res.r[keep], rows @ y - (ai, 0.0)])
+            jac = np.vstack([np.column_stack([res.dx[np.ix_(keep, keep)], res.dw[keep],
+                                              res.dxi[keep]]), rows])
             return r, jac
 
-        guess[:n] *= ai / previous
-        scale = np.concatenate([np.full(n, ai), [omega0, omega0]])
+        guess[:m_k] *= ai / previous
+        scale = np.concatenate([np.full(m_k, ai), [omega0, omega0]])
         y, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=50)
         if not ok:
             raise ParameterError(f"the extended periodic motion concept did not converge at "
                                  f"amplitude {ai:.6g} mm")
-        freq[i] = y[n] / (2.0 * np.pi)
-        zeta[i] = y[n + 1] / (2.0 * y[n])
+        freq[i] = y[m_k] / (2.0 * np.pi)
+        zeta[i] = y[m_k + 1] / (2.0 * y[m_k])
         guess, previous = y, ai
     return ModalCurve(method="epmc", amplitude=a, frequency=freq, damping_ratio=zeta,
                       harmonics=harmonics, samples=samples)
