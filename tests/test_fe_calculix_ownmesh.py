@@ -23,11 +23,9 @@ from microslip.fe.calculix.meshdeck import (
     build_mesh_deck,
     dsload_card,
     element_surface_card,
-    load_factors,
-    load_history,
     load_plan,
-    load_times,
 )
+from microslip.fe.calculix.meshhistory import load_factors, load_history, load_times
 from microslip.fe.calculix.meshrun import run_mesh_calculix
 from microslip.fe.hexmesh import HexMesh
 from microslip.fe.meshload import MeshLoad

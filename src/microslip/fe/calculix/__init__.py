@@ -9,7 +9,8 @@
   :class:`~microslip.fe.result.FELoopResult`;
 - :mod:`~microslip.fe.calculix.meshdeck`: the deck of the user's own
   :class:`~microslip.fe.hexmesh.HexMesh` with named sets and
-  :class:`~microslip.fe.meshload.MeshLoad` loads (issue 22);
+  :class:`~microslip.fe.meshload.MeshLoad` loads (issue 22), and
+  :mod:`~microslip.fe.calculix.meshhistory` its load history;
 - :mod:`~microslip.fe.calculix.meshrun`: that deck run and read into a
   :class:`~microslip.fe.calculix.meshrun.MeshCalculixResult`.
 """

@@ -18,9 +18,10 @@ named sets:
 5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
    as ``*CLOAD`` nodal forces, the consistent shares of a uniform traction on each load's
    faces (:func:`~microslip.fe.hexmesh.face_load`) times its direction, each scaled by a
-   tabular ``*AMPLITUDE`` exact at every increment end (:func:`load_history`, ``DIRECT``
-   increments); u of every loaded node to the ``.dat`` file, u and the contact slips and
-   tractions to the ``.frd`` file at every increment.
+   tabular ``*AMPLITUDE`` exact at every increment end
+   (:func:`~.meshhistory.load_history`, ``DIRECT`` increments); u of every loaded node to
+   the ``.dat`` file, u and the contact slips and tractions to the ``.frd`` file at every
+   increment.
 
 Unlike the box deck there is no symmetry plane (a general mesh has none): as in the built-in
 solver, the in-plane rigid-body motions are held by friction alone.
@@ -66,25 +67,21 @@ from .deck import (
     step_card,
     surface_interaction_card,
 )
+from .meshhistory import _STARTUP_TEXT, LoadHistory, load_history
 
 __all__ = [
     "CLAMP_TIME",
     "LOADED_NSET",
     "MESH_ELEMENTS",
     "NORMAL_CONTACTS",
-    "STARTUPS",
     "BaseSlab",
-    "LoadHistory",
     "MeshLoadPlan",
     "base_slab",
     "build_frequency_deck",
     "build_mesh_deck",
     "dsload_card",
     "element_surface_card",
-    "load_factors",
-    "load_history",
     "load_plan",
-    "load_times",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -127,115 +124,6 @@ def dsload_card(surface: str, pressure: float) -> str:
     """
     return (f"*DSLOAD\n{_name('surface', surface)}, P, "
             f"{_num(pressure, 'pressure (MPa)', positive=True)}\n")
-
-
-def load_times(increments_per_cycle: int, cycles: int) -> FloatArray:
-    """Increment ends of the load step, cycles: 0, 1/n, ..., cycles + 1/4.
-
-    The first quarter cycle brings the loads from zero onto their cycle (:func:`load_factors`);
-    then ``cycles`` full cycles follow, from t = 1/4 to cycles + 1/4. The last of them is the
-    settled one whose work is reported. One cycle is the paper's load step (t = 0 .. 1.25 s).
-
-    >>> load_times(8, 1).tolist()
-    [0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0, 1.125, 1.25]
-    """
-    n = increments_per_cycle
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 4 or n % 4:
-        raise ParameterError(f"increments_per_cycle must be a multiple of 4 (>= 4), got {n!r}")
-    c = cycles
-    if isinstance(c, bool) or not isinstance(c, (int, np.integer)) or not 1 <= c <= 100:
-        raise ParameterError(f"cycles must be an integer in [1, 100], got {c!r}")
-    return np.arange(int(n) * int(c) + int(n) // 4 + 1) / float(n)
-
-
-def load_factors(load: MeshLoad, times: ArrayLike) -> FloatArray:
-    """F_l(t) / A_l at the increment ends: sin(2 pi t + phi) from t = 1/4 on, and before it the
-    straight ramp sin(2 pi t) cos(phi) from zero to the cycle's value at t = 1/4.
-
-    For phi = 0 this is the paper's sine over the whole step (PaperSine); for several loads it
-    is a straight ramp in force space to their values at t = 1/4, then the cycles.
-
-    >>> from microslip.fe.meshload import MeshLoad
-    >>> load_factors(MeshLoad("a", (1, 0, 0), 1.0, 90.0), [0, .25, .5]).round(12).tolist()
-    [0.0, 0.0, -1.0]
-    """
-    t = np.asarray(times, dtype=float)
-    phi = math.radians(load.phase_deg)
-    cyc = np.sin(2 * np.pi * np.mod(t, 1.0) + phi)  # exact zeros at whole cycles
-    ramp = np.sin(2 * np.pi * np.minimum(t, 0.25)) * math.cos(phi)
-    return np.where(t < 0.25, ramp, cyc)
-
-
-@dataclass(frozen=True, eq=False)
-class LoadHistory:
-    """The load samples of step 2: one per increment end.
-
-    Attributes
-    ----------
-    time : ndarray, shape (k + 1,)
-        Time of each sample, cycles (negative during a start-up ramp before t = 0).
-    factors : ndarray, shape (k + 1, loads)
-        F_l / A_l at each sample.
-    increments_per_cycle : int
-    first_cycle : int
-        Index of the first sample of the first full cycle; the cycles follow back to back and
-        the last one ends at the last sample.
-    """
-
-    time: FloatArray
-    factors: FloatArray
-    increments_per_cycle: int
-    first_cycle: int
-
-    @property
-    def step_time(self) -> FloatArray:
-        """CalculiX's step time of each sample, s (1 s per cycle, from 0)."""
-        return self.time - self.time[0]
-
-    @property
-    def cycles(self) -> int:
-        return (self.time.size - 1 - self.first_cycle) // self.increments_per_cycle
-
-
-def _quarter(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
-    t = load_times(n, cycles)
-    return LoadHistory(t, np.column_stack([load_factors(ld, t) for ld in loads]), n, n // 4)
-
-
-def _ramp(loads: Sequence[MeshLoad], n: int, cycles: int) -> LoadHistory:
-    load_times(n, cycles)  # the same checks
-    t = np.arange(n * cycles + 1) / n
-    f = np.column_stack([ld.force(t) / ld.amplitude for ld in loads])
-    if float(np.max(np.abs(f[0]))) <= 1e-12:
-        f[0] = 0.0
-        return LoadHistory(t, f, n, 0)
-    m = n // 4
-    ramp = np.arange(m) / m
-    return LoadHistory(np.concatenate([(ramp - 1.0) / 4.0, t]),
-                       np.concatenate([ramp[:, None] * f[0][None, :], f]), n, m)
-
-
-#: How step 2 starts, name -> history(loads, increments_per_cycle, cycles). ``quarter``: the
-#: paper's load step (:func:`load_times`, :func:`load_factors`: a quarter-cycle start, cycles
-#: from t = 1/4). ``ramp``: the built-in own-mesh solver's sine cycles: cycles from t = 0, a
-#: straight ramp of a quarter cycle's increments from rest to the loads at t = 0 only when a
-#: phase makes them non-zero there.
-STARTUPS = {"quarter": _quarter, "ramp": _ramp}
-_STARTUP_TEXT = {"quarter": "a quarter-cycle start", "ramp": "a straight ramp if needed"}
-
-
-def load_history(loads: Sequence[MeshLoad], increments_per_cycle: int, cycles: int,
-                 startup: str = "quarter") -> LoadHistory:
-    """The samples of step 2 (:data:`STARTUPS`).
-
-    >>> from microslip.fe.meshload import MeshLoad
-    >>> h = load_history([MeshLoad("a", (1, 0, 0), 1.0, 90.0)], 4, 1, "ramp")
-    >>> h.time.tolist(), h.factors[:, 0].round(12).tolist(), h.first_cycle, h.cycles
-    ([-0.25, 0.0, 0.25, 0.5, 0.75, 1.0], [0.0, 1.0, 0.0, -1.0, -0.0, 1.0], 1, 1)
-    """
-    if startup not in STARTUPS:
-        raise ParameterError(f"startup must be one of {', '.join(STARTUPS)}, got {startup!r}")
-    return STARTUPS[startup](loads, increments_per_cycle, cycles)
 
 
 @dataclass(frozen=True, eq=False)
@@ -473,6 +361,50 @@ def _check_positive(name: str, value: float, unit: str) -> float:
     return v
 
 
+def _role_faces(mesh: HexMesh, contact_set: str, clamp_set: str
+                ) -> tuple[IntArray, IntArray, float]:
+    """The contact and clamp sets' faces (each must hold one) and the clamp's area, mm^2."""
+    contact = mesh.faces(contact_set)
+    clamp = mesh.faces(clamp_set)
+    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
+        if faces.size == 0:
+            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
+    _, _, clamp_area = face_load(mesh, clamp)
+    return contact, clamp, clamp_area
+
+
+def _body_cards(mesh: HexMesh, base: BaseSlab, etype: str, heading: str) -> list[str]:
+    """The heading, every node (the body's, then the base's), the body and base elements and
+    the base's node set NBASE."""
+    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
+    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
+    return [heading_card(heading),
+            nodes_card(np.vstack([mesh.nodes, base.nodes])),
+            elements_card(etype, "BODY", mesh.elements + 1, first=1),
+            elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=n_el + 1),
+            nset_card("NBASE", base_nodes)]
+
+
+def _surface_cards(mesh: HexMesh, base: BaseSlab, contact: IntArray, clamp: IntArray
+                   ) -> list[str]:
+    """SCONTACT and SCLAMP on the body, SBASE (face S2, the top) on the base's elements."""
+    n_el = mesh.elements.shape[0]
+    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
+    return [element_surface_card("SCONTACT", contact),
+            element_surface_card("SCLAMP", clamp),
+            element_surface_card("SBASE", np.column_stack([base_ids - 1,
+                                                           np.ones_like(base_ids)]))]
+
+
+def _clamping_step(normal_force: float, clamp_area: float, clamp_set: str) -> list[str]:
+    """The clamping step's opening: its comment, ``*STEP``, ``*STATIC`` and the pressure."""
+    return [f"** step 1: clamping pressure F_N / A = {normal_force:g} N / {clamp_area:g} "
+            f"mm^2 on {clamp_set}\n",
+            step_card(100),
+            static_card(1.0, CLAMP_TIME, direct=False),
+            dsload_card("SCLAMP", normal_force / clamp_area)]
+
+
 def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
                     loads: Sequence[MeshLoad], friction: float, stick_slope: float,
                     normal_contact: str = "penalty", normal_slope: float = 1.0e5,
@@ -492,7 +424,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
     normal_force : float
         F_N, N: the pressure F_N / A on the clamp set's faces of area A.
     loads : sequence of MeshLoad
-        F_l(t) = A_l sin(2 pi t + phi_l) on their sets (:func:`load_factors`).
+        F_l(t) = A_l sin(2 pi t + phi_l) on their sets (:func:`~.meshhistory.load_factors`).
     friction, stick_slope : float
         mu and lambda (N/mm^3) of ``*FRICTION``.
     normal_contact : str
@@ -503,7 +435,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         E (MPa) and nu of the body (and of the base, whose nodes are all fixed).
     increments_per_cycle, cycles : int
         Equal ``DIRECT`` increments per cycle (a multiple of 4) and full cycles after the
-        start-up (:func:`load_history`).
+        start-up (:func:`~.meshhistory.load_history`).
     max_iterations : int
         Equilibrium iterations per increment (``*CONTROLS`` I_C; the box deck's 26).
     fixed : sequence of (str, int, int)
@@ -511,8 +443,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         ``[("sym", 2, 2)]`` for a symmetry plane y = const. None by default: the in-plane
         rigid-body motions are held by friction alone, as in the built-in solver.
     startup : str
-        How the loads start (:data:`STARTUPS`): ``"quarter"`` (the paper's load step) or
-        ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
+        How the loads start (:data:`~.meshhistory.STARTUPS`): ``"quarter"`` (the paper's load
+        step) or ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
 
     Returns
     -------
@@ -528,19 +460,12 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             "overclosure, so normal forces frozen at the clamping step ('fixed') have no "
             "counterpart; compare with the built-in solver's 'penalty'")
     fn = _check_positive("normal_force", normal_force, "N")
-    contact = mesh.faces(contact_set)
-    clamp = mesh.faces(clamp_set)
-    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
-        if faces.size == 0:
-            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
-    _, _, clamp_area = face_load(mesh, clamp)
+    contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
     plan = load_plan(mesh, loads)
     history = load_history(plan.loads, increments_per_cycle, cycles, startup)
     base = base_slab(mesh, contact, contact_set)
     etype = MESH_ELEMENTS[mesh.nodes_per_element]
-    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
-    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
-    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
+    n_el = mesh.elements.shape[0]
     amps, cloads = _load_cards(plan, history)
     fixed_sets, fixed_rows = _fixed_cards(mesh, fixed)
     n = int(history.time.size - 1)
@@ -550,18 +475,12 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         f"{ld.set} {ld.amplitude:g} N along ({', '.join(f'{d:g}' for d in ld.direction)}) "
         f"at {ld.phase_deg:g} deg" for ld in plan.loads)
     parts = [
-        heading_card(f"microslip own mesh {mesh.source}: {n_el} {etype}, "
+        *_body_cards(mesh, base, etype,
+                     f"microslip own mesh {mesh.source}: {n_el} {etype}, "
                      f"{ext[0]:g} x {ext[1]:g} x {ext[2]:g} mm, on a rigid base"),
-        nodes_card(np.vstack([mesh.nodes, base.nodes])),
-        elements_card(etype, "BODY", mesh.elements + 1, first=1),
-        elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=int(base_ids[0])),
-        nset_card("NBASE", base_nodes),
         nset_card(LOADED_NSET, plan.loaded + 1),
         fixed_sets,
-        element_surface_card("SCONTACT", contact),
-        element_surface_card("SCLAMP", clamp),
-        element_surface_card("SBASE", np.column_stack([base_ids - 1,
-                                                       np.ones_like(base_ids)])),
+        *_surface_cards(mesh, base, contact, clamp),
         material_card("BODY", modulus, poisson_ratio),
         solid_section_card("BODY", "BODY"),
         solid_section_card("BASE", "BODY"),
@@ -569,11 +488,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         contact_pair_card("SI", "SCONTACT", "SBASE"),
         boundary_card([("NBASE", 1, 3), *fixed_rows]),
         amps,
-        f"** step 1: clamping pressure F_N / A = {fn:g} N / {clamp_area:g} mm^2 on "
-        f"{clamp_set}\n",
-        step_card(100),
-        static_card(1.0, CLAMP_TIME, direct=False),
-        dsload_card("SCLAMP", fn / clamp_area),
+        *_clamping_step(fn, clamp_area, clamp_set),
         node_print_card(LOADED_NSET),
         node_file_card(),
         contact_file_card(),
@@ -612,12 +527,7 @@ def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
     rho = _check_positive("density", density_kg_m3, "kg/m^3") * 1e-12
     if isinstance(modes, bool) or not isinstance(modes, int) or not 1 <= modes <= 1000:
         raise ParameterError(f"modes must be a whole number in [1, 1000], got {modes!r}")
-    contact = mesh.faces(contact_set)
-    clamp = mesh.faces(clamp_set)
-    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
-        if faces.size == 0:
-            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
-    _, _, clamp_area = face_load(mesh, clamp)
+    contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
     base = base_slab(mesh, contact, contact_set)
     etype = MESH_ELEMENTS[mesh.nodes_per_element]
     if element is not None:
@@ -625,20 +535,11 @@ def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
             raise ParameterError(f"element must be C3D8I or C3D8 for 8-node hexahedra, got "
                                  f"{element!r}")
         etype = element
-    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
-    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
-    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
     parts = [
-        heading_card(f"microslip own mesh {mesh.source}: linear modes about the clamped "
-                     f"state, {n_el} {etype}"),
-        nodes_card(np.vstack([mesh.nodes, base.nodes])),
-        elements_card(etype, "BODY", mesh.elements + 1, first=1),
-        elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=int(base_ids[0])),
-        nset_card("NBASE", base_nodes),
-        element_surface_card("SCONTACT", contact),
-        element_surface_card("SCLAMP", clamp),
-        element_surface_card("SBASE", np.column_stack([base_ids - 1,
-                                                       np.ones_like(base_ids)])),
+        *_body_cards(mesh, base, etype,
+                     f"microslip own mesh {mesh.source}: linear modes about the clamped "
+                     f"state, {mesh.elements.shape[0]} {etype}"),
+        *_surface_cards(mesh, base, contact, clamp),
         material_card("BODY", modulus, poisson_ratio),
         f"*DENSITY\n{rho:.10g}\n",
         solid_section_card("BODY", "BODY"),
@@ -646,11 +547,7 @@ def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
         surface_interaction_card("SI", normal_slope, friction, stick_slope),
         contact_pair_card("SI", "SCONTACT", "SBASE"),
         boundary_card([("NBASE", 1, 3)]),
-        f"** step 1: clamping pressure F_N / A = {fn:g} N / {clamp_area:g} mm^2 on "
-        f"{clamp_set}\n",
-        step_card(100),
-        static_card(1.0, CLAMP_TIME, direct=False),
-        dsload_card("SCLAMP", fn / clamp_area),
+        *_clamping_step(fn, clamp_area, clamp_set),
         end_step_card(),
         "** step 2: linear modes with the contact linearised about the clamped state\n",
         "*STEP, PERTURBATION\n*FREQUENCY\n",

@@ -55,13 +55,12 @@ from .collect import contact_status
 from .meshdeck import (
     CLAMP_TIME,
     MESH_ELEMENTS,
-    LoadHistory,
     MeshLoadPlan,
     build_frequency_deck,
     build_mesh_deck,
-    load_history,
     load_plan,
 )
+from .meshhistory import LoadHistory, load_history
 from .readers import read_dat, read_frd, read_sta
 from .runner import JOBNAME, find_ccx, run_ccx
 
@@ -83,7 +82,7 @@ class MeshCalculixResult:
     loads : tuple of MeshLoad
     time : ndarray, shape (k + 1,)
         Increment ends of the load step, cycles (the first sample is the clamped state; a
-        ``ramp`` start-up has negative times, :data:`~.meshdeck.STARTUPS`).
+        ``ramp`` start-up has negative times, :data:`~.meshhistory.STARTUPS`).
     force : ndarray, shape (k + 1, loads)
         F_l(t), N.
     displacement : ndarray, shape (k + 1, loads)
