@@ -46,7 +46,7 @@ from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
 from .linalg import Backend, make_backend
 from .model import NewtonOptions
 from .normal import PenaltyNormal, check_normal_contact
-from .solve import clamping_step
+from .solve import clamping_step, contact_partition
 
 __all__ = [
     "AUTO_BAND_LIMIT",
@@ -430,17 +430,8 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     area = c_share[sort] * c_area
     n_all = 3 * order.size
     held = 3 * contact + 2
-    mask = np.ones(n_all, dtype=bool)
-    if not penalty:
-        mask[held] = False
-    free = np.flatnonzero(mask).astype(np.int64)
-    index = np.full(n_all, -1, dtype=np.int64)
-    index[free] = np.arange(free.size)
-    k_ff = k_all[free][:, free].tocsr()
-    k_rf = k_all[held][:, free].tocsr()
-    cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
-    kc = lam * area
-    springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
+    free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
+        k_all, contact, area, lam, k_n, penalty)
     try:
         with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
             backend = _backend(linear_solver, k_ff, cdofs, kc,

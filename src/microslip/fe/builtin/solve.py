@@ -128,21 +128,10 @@ def build_model(params: ClampParams, mesh: Any = DEFAULT_MESH, *, stick_slope: f
     box = mesh_from_spec(params, mesh)
     box.face_nodes("mid")  # even nx required
     k_all = assemble_stiffness(box, params.modulus, params.poisson_ratio, element)
-    n_all = 3 * box.n_nodes
     bottom = box.face_nodes("bottom")
-    fixed = 3 * bottom + 2
-    mask = np.ones(n_all, dtype=bool)
-    if not penalty:
-        mask[fixed] = False
-    free = np.flatnonzero(mask).astype(np.int64)
-    index = np.full(n_all, -1, dtype=np.int64)
-    index[free] = np.arange(free.size)
-    k_ff = k_all[free][:, free].tocsr()
-    k_rf = k_all[fixed][:, free].tocsr()
-    cdofs = np.stack([index[3 * bottom], index[3 * bottom + 1]], axis=1)
     area = box.face_weights("bottom")
-    kc = lam * area
-    springs = PenaltyNormal(k_n * area, index[fixed], k_n) if penalty else None
+    free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
+        k_all, bottom, area, lam, k_n, penalty)
     backend = make_backend(linear_solver, k_ff, cdofs[:, 0], cdofs[:, 1], kc,
                            None if springs is None else springs.stiffness)
 
@@ -170,6 +159,35 @@ def build_model(params: ClampParams, mesh: Any = DEFAULT_MESH, *, stick_slope: f
         clamp_load=clamp, u0=u, slip0=slip, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton,
     )
+
+
+def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray, lam: float,
+                      k_n: float, penalty: bool
+                      ) -> tuple[IntArray, IntArray, sp.csr_matrix, sp.csr_matrix, IntArray,
+                                 FloatArray, PenaltyNormal | None]:
+    """The dofs of a body on its rigid base (any mesh), its contact nodes ``contact`` (with
+    their areas, mm^2) on the plane normal to z (the model frame).
+
+    Returns ``free`` (the free dofs: all but the contact nodes' u_z under ``fixed`` normal
+    contact, every dof under ``penalty``), ``index`` (dof -> free position, -1 if held),
+    ``k_ff`` and ``k_rf`` (the stiffness on the free dofs, and from them to the contact
+    nodes' u_z), ``cdofs`` (the contact nodes' free x, y positions), ``kc`` (the stick
+    springs lambda A_i, N/mm) and the penalty normal springs (None under ``fixed``).
+    """
+    n_all = k_all.shape[0]
+    held = 3 * contact + 2
+    mask = np.ones(n_all, dtype=bool)
+    if not penalty:
+        mask[held] = False
+    free = np.flatnonzero(mask).astype(np.int64)
+    index = np.full(n_all, -1, dtype=np.int64)
+    index[free] = np.arange(free.size)
+    k_ff = k_all[free][:, free].tocsr()
+    k_rf = k_all[held][:, free].tocsr()
+    cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
+    kc = lam * area
+    springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
+    return free, index, k_ff, k_rf, cdofs, kc, springs
 
 
 def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
