@@ -17,6 +17,8 @@ from typing import Any
 from ..case.table import add_option, mesh_file, number
 from ..errors import ParameterError
 from .common import check_plot, print_json
+from .ownmesh import REQUIRED as MESH_REQUIRED
+from .ownmesh import given, verb
 
 __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 
@@ -37,9 +39,7 @@ MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "dens
              "response_set", "solver", "workers", "rom_modes")
 #: Highest mode number ``--mode`` takes with --mesh (the eigen-solve computes that many).
 MAX_MODE = 50
-REQUIRED = {"normal_force": "--normal-force N", "friction": "--friction X",
-            "modulus": "--modulus MPA", "poisson_ratio": "--poisson-ratio X",
-            "density": "--density KG/M3"}
+REQUIRED = {**MESH_REQUIRED, "density": "--density KG/M3"}
 
 
 def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
@@ -77,20 +77,17 @@ def _nulls(values: Any) -> list[float | None]:
     return [None if v is None or math.isnan(v) else float(v) for v in values]
 
 
-def _given(args: argparse.Namespace, dest: str) -> bool:
-    return dest in getattr(args, "given_options", frozenset())
-
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """Without --mesh, the mesh's options given on the command line are refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in (*MESH_ONLY, "scheduler") if _given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in (*MESH_ONLY, "scheduler") if given(args, d)]
     if bad:
-        verb = "apply" if len(bad) > 1 else "applies"
-        raise ParameterError(f"{', '.join(bad)} {verb} to modal --mesh FILE only; remove them")
+        raise ParameterError(f"{', '.join(bad)} {verb(bad)} to modal --mesh FILE only; remove "
+                             "them")
 
 
 def _check(args: argparse.Namespace) -> None:
-    bad = [f"--{d.replace('_', '-')}" for d in NOT_WITH_MESH if _given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in NOT_WITH_MESH if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} not used with --mesh (the mesh gives the "
                              "structure, its contact the joint)")
@@ -105,11 +102,10 @@ def _check(args: argparse.Namespace) -> None:
     solver = args.solver or "fe"
     if solver == "fe":
         bad = [flag for dest, flag in (("harmonics", "--harmonics"), ("rom_modes",
-               "--rom-modes")) if _given(args, dest)]
+               "--rom-modes")) if given(args, dest)]
         if bad:
-            verb = "apply" if len(bad) > 1 else "applies"
-            raise ParameterError(f"{', '.join(bad)} {verb} to --solver rom only")
-    elif _given(args, "workers") or _given(args, "scheduler"):
+            raise ParameterError(f"{', '.join(bad)} {verb(bad)} to --solver rom only")
+    elif given(args, "workers") or given(args, "scheduler"):
         raise ParameterError("--workers and --scheduler apply to --solver fe only")
     if not 1 <= args.amplitudes <= 200:
         raise ParameterError(f"--amplitudes must be in [1, 200] with --mesh, got "

@@ -16,8 +16,8 @@ from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import check_output_dir, check_plot, print_json
 
-__all__ = ["add_own_mesh_options", "is_mesh_file", "mesh_case", "refuse_mesh_options",
-           "run_own_mesh"]
+__all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
+           "refuse_mesh_options", "run_own_mesh", "verb"]
 
 #: Options of a mesh file only (destinations).
 MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_cycles",
@@ -72,20 +72,22 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
                        help="draw each load's loop over the settled cycle")
 
 
-def _verb(flags: list[str]) -> str:
+def verb(flags: list[str]) -> str:
+    """'applies' after one flag, 'apply' after several."""
     return "apply" if len(flags) > 1 else "applies"
 
 
-def _given(args: argparse.Namespace, dest: str) -> bool:
+def given(args: argparse.Namespace, dest: str) -> bool:
+    """Whether the option ``dest`` was given on the command line (not by a case file)."""
     given: frozenset[str] = getattr(args, "given_options", frozenset())
     return dest in given
 
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """The box's run: a mesh file's option given on the command line is refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in MESH_ONLY if _given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in MESH_ONLY if given(args, d)]
     if bad:
-        raise ParameterError(f"{', '.join(bad)} {_verb(bad)} to --mesh FILE only (a mesh of your "
+        raise ParameterError(f"{', '.join(bad)} {verb(bad)} to --mesh FILE only (a mesh of your "
                              f"own), not to the box --mesh {args.mesh}; remove them")
 
 
@@ -93,9 +95,9 @@ def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
-    bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if _given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if given(args, d)]
     if bad:
-        raise ParameterError(f"{', '.join(bad)} {_verb(bad)} to the box (--mesh LEVEL) only; with "
+        raise ParameterError(f"{', '.join(bad)} {verb(bad)} to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} the mesh gives the geometry and --load the "
                              "loads")
     missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
@@ -118,15 +120,15 @@ def mesh_case(args: argparse.Namespace) -> Any:
                 raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver builtin "
                                      "(CalculiX runs --cycles cycles)")
     normal = args.normal_contact or ("penalty" if args.solver == "calculix" else "fixed")
-    if normal == "fixed" and _given(args, "normal_slope"):
+    if normal == "fixed" and given(args, "normal_slope"):
         raise ParameterError("--normal-slope needs --normal-contact penalty (the fixed normal "
                              "contact has no normal stiffness)")
     extra: dict[str, Any] = {}
     if args.solver == "calculix":
         extra = {"options": {k: v for k, v in (("timeout", args.timeout),
                                                ("threads", args.threads)) if v is not None}}
-    elif getattr(args, "command", "fe") == "fe" and (_given(args, "timeout")
-                                                     or _given(args, "threads")):
+    elif getattr(args, "command", "fe") == "fe" and (given(args, "timeout")
+                                                     or given(args, "threads")):
         raise ParameterError("--timeout and --threads apply to --solver calculix")
     return OwnMeshCase(
         args.mesh, args.contact_set, args.clamp_set, float(args.normal_force),
