@@ -12,6 +12,8 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 from ..case.table import add_option, mesh_file, number
@@ -22,12 +24,6 @@ from .ownmesh import given, verb
 
 __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 
-#: What ``modal --mesh ... --solver`` computes; only ``fe`` is built (issue 23).
-MESH_SOLVERS = {
-    "fe": "quasi-static modal analysis of the full frictional FE (the truth)",
-    "rom": "EPMC by harmonic balance on a Craig-Bampton model that keeps every contact node "
-           "with the FE's own contact law (--rom-modes fixed-interface modes)",
-}
 #: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
 NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
                  "participation", "structure", "joint_dof", "coupling", "joint",
@@ -60,7 +56,7 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                    help="set whose mean displacement along the mode is the amplitude "
                         "(amplitude_mm)")
     g.add_argument("--solver", choices=list(MESH_SOLVERS), default=None,
-                   help="; ".join(f"{k}: {v}" for k, v in MESH_SOLVERS.items())
+                   help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
                    + " (default fe)")
     g.add_argument("--rom-modes", type=int, default=None, metavar="N",
                    help="rom: fixed-interface modes kept (default 60; the ROM's stuck "
@@ -100,42 +96,44 @@ def _check(args: argparse.Namespace) -> None:
     if args.normal_contact != "penalty" and args.normal_slope is not None:
         raise ParameterError("--normal-slope needs --normal-contact penalty")
     solver = args.solver or "fe"
-    if solver == "fe":
-        bad = [flag for dest, flag in (("harmonics", "--harmonics"), ("rom_modes",
-               "--rom-modes")) if given(args, dest)]
-        if bad:
-            raise ParameterError(f"{', '.join(bad)} {verb(bad)} to --solver rom only")
-    elif given(args, "workers") or given(args, "scheduler"):
-        raise ParameterError("--workers and --scheduler apply to --solver fe only")
+    for dest in dict.fromkeys(o for s in MESH_SOLVERS.values() for o in s.options):
+        if given(args, dest) and dest not in MESH_SOLVERS[solver].options:
+            owners = [n for n, s in MESH_SOLVERS.items() if dest in s.options]
+            raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver "
+                                 f"{' or '.join(owners)} only")
     if not 1 <= args.amplitudes <= 200:
         raise ParameterError(f"--amplitudes must be in [1, 200] with --mesh, got "
                              f"{args.amplitudes}")
 
 
-def _forces(args: argparse.Namespace, model: Any, modes: Any, number: int) -> Any:
-    """The modal force levels: the grid from first slip to near gross sliding, or
-    --amplitude-range mapped through the stuck mode (linear: the response set's amplitude is
-    q r / omega^2 at modal force q, r its motion per unit modal coordinate)."""
+def _grid(args: argparse.Namespace, model: Any, modes: Any, number: int) -> tuple[Any, Any]:
+    """The modal forces q and the amplitudes (mm) of the one grid: from first slip to near
+    gross sliding, or --amplitude-range; linear through the stuck mode, the response set's
+    amplitude is a = q r / omega^2 at modal force q (r its motion per unit modal
+    coordinate)."""
     import numpy as np
 
     from ..fe.builtin.qsma import qsma_amplitudes
 
     mode = modes.select(number)
+    scale = float(np.linalg.norm(modes.response_motion[number - 1])) / (
+        2 * math.pi * mode.frequency_Hz) ** 2
     if args.amplitude_range is None:
-        return qsma_amplitudes(model, mode, args.amplitudes)
+        forces = qsma_amplitudes(model, mode, args.amplitudes)
+        return forces, forces * scale
     lo, hi = args.amplitude_range
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
         raise ParameterError(f"--amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
                              f"{lo:g} {hi:g}")
-    r = float(np.linalg.norm(modes.response_motion[number - 1]))
-    omega2 = (2 * math.pi * mode.frequency_Hz) ** 2
-    return np.geomspace(lo, hi, args.amplitudes) * omega2 / r
+    amplitudes = np.geomspace(lo, hi, args.amplitudes)
+    return amplitudes / scale, amplitudes
 
 
-def run_modal_mesh(args: argparse.Namespace) -> int:
+def mesh_study(args: argparse.Namespace) -> MeshStudy:
+    """Check the command line, read the mesh, clamp it, compute the stuck and free modes and
+    the amplitude grid: everything the solvers share."""
     from ..fe.builtin.meshmodel import build_mesh_model
     from ..fe.builtin.modes import linear_modes
-    from ..fe.builtin.qsma import qsma
     from ..fe.constants import DEFAULT_NORMAL_SLOPE
     from ..fe.meshcheck import check_roles
     from ..fe.meshfile import read_mesh
@@ -152,40 +150,33 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
         stick_slope=float(args.stick_slope),
         normal_contact=args.normal_contact or "fixed",
         normal_slope=DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope)
-    number_ = 1 if args.mode is None else args.mode
-    if not 1 <= number_ <= MAX_MODE:
-        raise ParameterError(f"--mode must be in [1, {MAX_MODE}] with --mesh, got {number_}")
-    n = max(6, number_)
+    number = 1 if args.mode is None else args.mode
+    if not 1 <= number <= MAX_MODE:
+        raise ParameterError(f"--mode must be in [1, {MAX_MODE}] with --mesh, got {number}")
+    n = max(6, number)
     stuck = linear_modes(model, args.density, n, "stuck", args.response_set)
     free = linear_modes(model, args.density, n, "free", args.response_set)
-    mode = stuck.select(number_)
+    forces, amplitudes = _grid(args, model, stuck, number)
+    return MeshStudy(args=args, model=model, stuck=stuck, free=free, number=number,
+                     forces=forces, amplitudes=amplitudes)
 
-    forces = _forces(args, model, stuck, number_)
-    if (args.solver or "fe") == "rom":
-        return _rom(args, model, stuck, number_, forces, free)
 
-    def progress(done: int, total: int, eta: float) -> None:
-        if not args.json:
-            print(f"\r  amplitude {done}/{total}, about {eta:.0f} s left", end="",
-                  file=sys.stderr, flush=True)
+def study_output(study: MeshStudy, solver: str, curve: MeshCurve) -> dict[str, Any]:
+    """The JSON of one solver's curve on the study."""
+    args = study.args
+    return {"mesh": args.mesh, "solver": solver, "mode": study.number,
+            "label": study.mode.label, "density_kg_m3": args.density,
+            "linear_frequencies_Hz": [float(f) for f in study.stuck.frequencies_Hz],
+            "free_frequencies_Hz": [float(f) for f in study.free.frequencies_Hz],
+            "modes": study.stuck.summary(), **curve.values, **curve.extra,
+            "warnings": curve.warnings}
 
-    curve = qsma(model, mode, forces, workers=args.workers or 1,
-                 scheduler=args.scheduler, progress=progress)
-    if not args.json:
-        print(file=sys.stderr)
-    summary = curve.summary()
-    out = {"mesh": args.mesh, "solver": args.solver or "fe", "mode": number_,
-           "label": summary["label"], "density_kg_m3": args.density,
-           "linear_frequencies_Hz": [float(f) for f in stuck.frequencies_Hz],
-           "free_frequencies_Hz": [float(f) for f in free.frequencies_Hz],
-           "modes": stuck.summary(),
-           "amplitude_mm": _nulls(summary["amplitude_mm"]),
-           "frequency_Hz": _nulls(summary["frequency_Hz"]),
-           "secant_frequency_Hz": _nulls(summary["secant_frequency_Hz"]),
-           "damping_ratio": _nulls(summary["damping_ratio"]),
-           "modal_force": summary["force"],
-           "dissipated_energy_Nmm": _nulls(summary["dissipated_energy_Nmm"]),
-           "slip_fraction": _nulls(summary["slip_fraction"]), "warnings": summary["warnings"]}
+
+def run_modal_mesh(args: argparse.Namespace) -> int:
+    study = mesh_study(args)
+    solver = args.solver or "fe"
+    curve = MESH_SOLVERS[solver].run(study)
+    out = study_output(study, solver, curve)
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     if args.plot:
@@ -195,25 +186,98 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
         return 0
-    print(f"mesh {args.mesh}: mode {number_} ({out['label']}), stuck "
-          f"{out['linear_frequencies_Hz'][number_ - 1]:.6g} Hz, free "
-          f"{out['free_frequencies_Hz'][number_ - 1]:.6g} Hz; quasi-static modal analysis "
-          "of the full FE")
-    print(f"{'a (mm)':>12} {'f (Hz)':>12} {'f_sec (Hz)':>12} {'zeta (-)':>12} "
-          f"{'slip (-)':>9}")
-    for row in zip(out["amplitude_mm"], out["frequency_Hz"], out["secant_frequency_Hz"],
-                   out["damping_ratio"], out["slip_fraction"], strict=True):
+    number = study.number
+    print(f"mesh {args.mesh}: mode {number} ({out['label']}), stuck "
+          f"{out['linear_frequencies_Hz'][number - 1]:.6g} Hz, free "
+          f"{out['free_frequencies_Hz'][number - 1]:.6g} Hz; {curve.label}")
+    print(" ".join(f"{h:>12}" if f.startswith("{:12") else f"{h:>9}"
+                   for h, f in curve.columns.values()))
+    for row in zip(*(out[k] for k in curve.columns), strict=True):
         if row[0] is None:
             print(f"{'failed':>12} (see the warnings)")
             continue
-        print("{:12.5g} {:12.7g} {:12.7g} {:12.5g} {:9.3f}".format(*row))
+        print(" ".join(fmt.format(v) for v, (_, fmt) in zip(row, curve.columns.values(),
+                                                          strict=True)))
     return 0
 
 
-def _rom(args: argparse.Namespace, model: Any, stuck: Any, number: int, forces: Any,
-         free: Any) -> int:
-    """``--solver rom``: EPMC on the contact-node ROM over the amplitudes of the force grid
-    (through the stuck mode: a = q r / omega^2, the response set's amplitude)."""
+@dataclass(frozen=True)
+class MeshStudy:
+    """What every solver of ``modal --mesh`` shares: the clamped model, its stuck and free
+    modes, the mode studied, and the one amplitude grid.
+
+    ``forces`` are the QSMA's modal forces q; ``amplitudes`` (mm) are the same levels mapped
+    through the stuck mode (a = q r / omega^2, r the response set's motion per unit modal
+    coordinate), or ``--amplitude-range`` itself: the grid every solver runs on."""
+
+    args: argparse.Namespace
+    model: Any
+    stuck: Any
+    free: Any
+    number: int
+    forces: Any
+    amplitudes: Any
+
+    @property
+    def mode(self) -> Any:
+        return self.stuck.select(self.number)
+
+
+@dataclass(frozen=True)
+class MeshCurve:
+    """One solver's frequency and damping ratio against amplitude, with its own columns
+    (``columns``: JSON key -> (table header, format)) and figures (``extra``)."""
+
+    label: str
+    columns: dict[str, tuple[str, str]]
+    values: dict[str, list[float | None]]
+    extra: dict[str, Any]
+    warnings: list[str]
+
+
+@dataclass(frozen=True)
+class MeshSolver:
+    """One ``--solver`` of ``modal --mesh``: what it is, the options only it takes and the
+    function that computes its curve."""
+
+    help: str
+    options: tuple[str, ...]
+    run: Callable[[MeshStudy], MeshCurve]
+
+
+BASE_COLUMNS = {"amplitude_mm": ("a (mm)", "{:12.5g}"), "frequency_Hz": ("f (Hz)", "{:12.7g}"),
+                "damping_ratio": ("zeta (-)", "{:12.5g}")}
+
+
+def _fe(study: MeshStudy) -> MeshCurve:
+    """Quasi-static modal analysis of the full frictional FE at the grid's modal forces."""
+    from ..fe.builtin.qsma import qsma
+
+    args = study.args
+
+    def progress(done: int, total: int, eta: float) -> None:
+        if not args.json:
+            print(f"\r  amplitude {done}/{total}, about {eta:.0f} s left", end="",
+                  file=sys.stderr, flush=True)
+
+    curve = qsma(study.model, study.mode, study.forces, workers=args.workers or 1,
+                 scheduler=args.scheduler, progress=progress)
+    if not args.json:
+        print(file=sys.stderr)
+    s = curve.summary()
+    columns = {"amplitude_mm": BASE_COLUMNS["amplitude_mm"],
+               "frequency_Hz": BASE_COLUMNS["frequency_Hz"],
+               "secant_frequency_Hz": ("f_sec (Hz)", "{:12.7g}"),
+               "damping_ratio": BASE_COLUMNS["damping_ratio"],
+               "slip_fraction": ("slip (-)", "{:9.3f}")}
+    values = {k: _nulls(s[k]) for k in (*columns, "dissipated_energy_Nmm")}
+    return MeshCurve(label="quasi-static modal analysis of the full FE", columns=columns,
+                     values=values, extra={"modal_force": s["force"]},
+                     warnings=list(s["warnings"]))
+
+
+def _rom(study: MeshStudy) -> MeshCurve:
+    """EPMC on the contact-node ROM at the grid's amplitudes."""
     import numpy as np
 
     from ..dynamics.modal import epmc
@@ -221,40 +285,36 @@ def _rom(args: argparse.Namespace, model: Any, stuck: Any, number: int, forces: 
     from ..fe.builtin.reduce import build_rom, rom_structure
     from .structure import balance_from_args
 
-    mode = stuck.select(number)
-    r = float(np.linalg.norm(stuck.response_motion[number - 1]))
-    omega2 = (2 * math.pi * mode.frequency_Hz) ** 2
-    if args.amplitude_range is not None:
-        lo, hi = args.amplitude_range
-        amps = np.geomspace(lo, hi, args.amplitudes)
-    else:
-        amps = np.asarray(forces) * r / omega2
+    args, mode = study.args, study.mode
     harmonics, samples = balance_from_args(args)
-    rom = build_rom(model, args.density, modes=args.rom_modes or 60,
-                    response_set=args.response_set)
+    modes = args.rom_modes or DEFAULT_ROM_MODES
+    rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
     structure = rom_structure(rom, mode.direction @ rom.output)
     method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
-    curve = method(structure, amps, harmonics, samples, number - 1)
-    out = {"mesh": args.mesh, "solver": "rom", "mode": number, "label": mode.label,
-           "density_kg_m3": args.density,
-           "linear_frequencies_Hz": [float(f) for f in stuck.frequencies_Hz],
-           "free_frequencies_Hz": [float(f) for f in free.frequencies_Hz],
-           "rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(len(
-               stuck.frequencies_Hz))],
-           "rom": {"dofs": rom.dofs, "fixed_interface_modes": args.rom_modes or 60,
-                   "contact_nodes": len(rom.slip_force),
-                   "harmonics": curve.harmonics, "samples": curve.samples},
-           "amplitude_mm": [float(a) for a in curve.amplitude],
-           "frequency_Hz": [float(f) for f in curve.frequency],
-           "damping_ratio": [float(z) for z in curve.damping_ratio], "warnings": []}
-    if args.json:
-        print_json(out)
-        return 0
-    print(f"mesh {args.mesh}: mode {number} ({mode.label}), stuck "
-          f"{out['linear_frequencies_Hz'][number - 1]:.6g} Hz; EPMC on the contact-node ROM "
-          f"({rom.dofs} DOF, {curve.harmonics} harmonics)")
-    print(f"{'a (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")
-    for row in zip(out["amplitude_mm"], out["frequency_Hz"], out["damping_ratio"],
-                   strict=True):
-        print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
-    return 0
+    curve = method(structure, np.asarray(study.amplitudes), harmonics, samples,
+                   study.number - 1)
+    count = len(study.stuck.frequencies_Hz)
+    return MeshCurve(
+        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
+        columns=dict(BASE_COLUMNS),
+        values={"amplitude_mm": [float(a) for a in curve.amplitude],
+                "frequency_Hz": [float(f) for f in curve.frequency],
+                "damping_ratio": [float(z) for z in curve.damping_ratio]},
+        extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
+               "rom": {"dofs": rom.dofs, "fixed_interface_modes": modes,
+                       "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
+                       "samples": curve.samples}},
+        warnings=[])
+
+
+#: What ``modal --mesh ... --solver`` computes, each on the same amplitude grid.
+MESH_SOLVERS: dict[str, MeshSolver] = {
+    "fe": MeshSolver("quasi-static modal analysis of the full frictional FE (the truth)",
+                     ("workers", "scheduler"), _fe),
+    "rom": MeshSolver("EPMC by harmonic balance on a Craig-Bampton model that keeps every "
+                      "contact node with the FE's own contact law (--rom-modes "
+                      "fixed-interface modes)", ("harmonics", "rom_modes"), _rom),
+}
+#: Fixed-interface modes of the ROM unless --rom-modes says (its stuck frequencies then
+#: equal the full FE's to about 1e-6 on the cantilever).
+DEFAULT_ROM_MODES = 60

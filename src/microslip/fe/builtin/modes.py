@@ -291,7 +291,9 @@ def _eigen(k: sp.csr_matrix, m: sp.csr_matrix, n: int, contact: str) -> tuple[Fl
     sigma = -1e-8 * scale if contact == "free" else 0.0
     kk = min(n, k.shape[0] - 2)
     try:
-        w, v = spla.eigsh(k.tocsc(), k=kk, M=m.tocsc(), sigma=sigma, which="LM")
+        # a fixed start vector: ARPACK's random one makes every run differ in the last digits
+        w, v = spla.eigsh(k.tocsc(), k=kk, M=m.tocsc(), sigma=sigma, which="LM",
+                          v0=np.ones(k.shape[0]))
     except RuntimeError as exc:  # singular factor
         raise ParameterError(f"the linear modes could not be computed ({exc}): is the body "
                              "held by its contact?") from None
