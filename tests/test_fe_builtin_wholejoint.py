@@ -141,3 +141,25 @@ def test_whole_joint_against_the_full_fe(model, modes) -> None:  # type: ignore[
     share = loading.rigid_work[1:] / loading.work[1:]
     assert 0.1 < share[1] < 0.2 and share[-1] > 0.6
     assert math.isfinite(curve.damping_ratio[0])
+
+
+def test_penalty_interface_holds_its_normal_motion_on_the_summed_springs() -> None:
+    """With penalty normal contact the interface also translates along the normal (w) and
+    tilts: a unit w stretches no element and compresses every penalty spring, K_j[w, w] =
+    sum k_n A_i, and the tilts are held by sum k_n A_i times the squared arm (over R^2),
+    uncoupled from w about the area-weighted centroid."""
+    m = build_mesh_model(cantilever_mesh(6, 1, 1), contact_set="contact", clamp_set="clamp",
+                         normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
+                         friction=0.5, stick_slope=1e4, normal_contact="penalty")
+    rom = build_rom(m, RHO, modes=5)
+    face = interface(m)
+    assert face.coordinates == ("r1", "r2", "c", "w", "t1", "t2")
+    _, _, k = reduce_to_interface(rom, face)
+    kn = np.asarray(m.normal.stiffness)
+    assert k[3, 3] == pytest.approx(kn.sum(), rel=1e-9)
+    x = face.points  # a tilt of the whole body is rigid too: only the springs resist it
+    assert k[4, 4] == pytest.approx(float(kn @ x[:, 1] ** 2) / face.radius**2, rel=1e-9)
+    assert k[5, 5] == pytest.approx(float(kn @ x[:, 0] ** 2) / face.radius**2, rel=1e-9)
+    assert abs(k[3, 4]) < 1e-9 * kn.sum() and abs(k[3, 5]) < 1e-9 * kn.sum()
+    for j in range(3):
+        assert abs(k[j, j]) < 1e-9 * kn.sum()
