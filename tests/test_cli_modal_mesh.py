@@ -103,3 +103,12 @@ def test_whole_joint_solver(capsys: pytest.CaptureFixture[str], mesh: str) -> No
     out1 = _json(capsys, *argv, "--mode", "1")
     assert out1["joint"]["source"] == "pull"
     assert any("does not load the interface as a whole" in w for w in out1["warnings"])
+
+
+def test_backbone_is_the_joint_solver_s_option(capsys: pytest.CaptureFixture[str],
+                                               mesh: str) -> None:
+    assert main(["modal", "--mesh", mesh, *BASE, "--density", "2700", "--backbone",
+                 "tip"]) == 1
+    _, err = capsys.readouterr()
+    assert "--backbone applies to --solver joint only" in err
+    assert len(err.strip().splitlines()) == 1

@@ -163,3 +163,27 @@ def test_penalty_interface_holds_its_normal_motion_on_the_summed_springs() -> No
     assert abs(k[3, 4]) < 1e-9 * kn.sum() and abs(k[3, 5]) < 1e-9 * kn.sum()
     for j in range(3):
         assert abs(k[j, j]) < 1e-9 * kn.sum()
+
+
+def test_clamp_model_backbone_on_the_contact_patch(model, modes) -> None:  # type: ignore[no-untyped-def]
+    """--backbone tip: the paper's tip model on the contact patch seen along the mode's
+    motion (in-plane bending: along y, the patch 25.4 mm long, 50.8 mm wide, the bar 6.35 mm
+    thick) behind the contact layer sum lambda A_i: its initial slope is near the FE's
+    stuck interface stiffness and it slides as a whole at mu F_N."""
+    from microslip.fe.builtin.wholejoint import clamp_backbone, patch
+
+    mode = modes.select(2)
+    face = interface(model)
+    p = patch(model, face, np.array([0.0, 1.0]))
+    c = CANTILEVER
+    assert (p.length, p.width, p.thickness) == pytest.approx(
+        (c["width"], c["clamped_length"], c["thickness"]), rel=1e-12)
+    bb = clamp_backbone(model, mode, "tip", face)
+    k = float(model.contact_stiffness.sum())
+    assert bb.source == "tip" and bb.loading is None and bb.rotation.size == 0
+    # the first segment is the secant to the model's first force step (mu F_N / 201): the
+    # bar's own microslip (F ~ sqrt(d)) in series with the layer takes 3.5 % off k there
+    slope = bb.force[1] / bb.displacement[1]
+    assert 0.95 * k < slope < k
+    assert bb.force[-1] == pytest.approx(0.5 * 2000.0, rel=1e-9)
+    assert bb.translation().initial_stiffness == pytest.approx(slope, rel=1e-9)

@@ -55,6 +55,12 @@ response set's nodes along e, the FE's own joint for a resultant load. The rigid
 cannot represent that mode's damping at all: it comes from the distortion the reduction
 removes (:attr:`JointBackbone.source` says which loading made the joint).
 
+Instead of the FE's loading the translation's curve may be the paper's 1-D clamp model
+(:data:`BACKBONES` ``tip``, ``centre``; :func:`clamp_backbone`) on the contact patch seen
+along e (its length along e, its width across, the body's thickness along the normal) behind
+the contact layer sum lambda A_i, with the rotation's stuck spring: no FE run at all, what
+the joint of a large structure is built from when the FE cannot be run.
+
 EPMC on the whole-joint :class:`~microslip.dynamics.structure.Structure`
 (:func:`whole_joint_epmc`) uses the odd harmonics (both joints are odd; the penalty springs are
 linear here). Units: N, mm, t (ROM), kg and N/m (Structure, SI), Hz.
@@ -79,9 +85,9 @@ from .meshrun import VectorLoad, _Run
 from .modes import Mode, response_nodes
 from .reduce import SI_FACTOR, Rom
 
-__all__ = ["PULL", "TORSION", "FirstLoading", "Interface", "JointBackbone", "WholeJoint",
-           "build_whole_joint", "first_loading", "interface", "joint_backbone",
-           "reduce_to_interface", "whole_joint_epmc"]
+__all__ = ["BACKBONES", "PULL", "TORSION", "FirstLoading", "Interface", "JointBackbone",
+           "WholeJoint", "build_whole_joint", "clamp_backbone", "first_loading", "interface",
+           "joint_backbone", "patch", "reduce_to_interface", "whole_joint_epmc"]
 
 FloatArray = NDArray[np.float64]
 
@@ -349,9 +355,10 @@ class JointBackbone:
     stuck_stiffness : float
         sum lambda A_i, N/mm: the FE's stuck interface stiffness in r1, r2 and c.
     source : str
-        The loading the translation's curve comes from: ``mode`` or ``pull``.
-    loading : FirstLoading
-        The mode's first loading (the rotation's curve).
+        Where the translation's curve comes from: the FE's ``mode`` or ``pull`` loading, or
+        a clamp model of :data:`~microslip.conventions.CLAMP_MODELS` (``tip``, ``centre``).
+    loading : FirstLoading or None
+        The mode's first loading on the FE (the rotation's curve); None for a clamp model.
     """
 
     direction: FloatArray = field(repr=False)
@@ -363,7 +370,7 @@ class JointBackbone:
     macroslip_moment: float
     stuck_stiffness: float
     source: str
-    loading: FirstLoading = field(repr=False)
+    loading: FirstLoading | None = field(repr=False)
 
     def translation(self) -> Any:
         """The two-directional translation joint: :func:`circular` of the Iwan operator of
@@ -395,7 +402,7 @@ class JointBackbone:
                 "macroslip_force_N": self.macroslip_force,
                 "macroslip_torsion_force_N": self.macroslip_moment,
                 "stuck_stiffness_N_per_mm": self.stuck_stiffness,
-                "first_loading": self.loading.message}
+                "first_loading": None if self.loading is None else self.loading.message}
 
 
 #: A first loading's generalised force below this share of mu F_N at its top does not load
@@ -459,6 +466,70 @@ def joint_backbone(model: MeshModel, mode: Mode, face: Interface | None = None
                          source=source, loading=own)
 
 
+def patch(model: MeshModel, face: Interface, direction: FloatArray) -> Any:
+    """The contact patch as the paper's clamped zone (:class:`~microslip.params.ClampParams`):
+    its length along the in-plane ``direction`` and its width across (the extents of the
+    contact nodes, mm), the body's thickness along the contact normal (the extent of its
+    nodes, mm), the model's modulus, Poisson's ratio, mu and F_N."""
+    from ...params import ClampParams
+
+    e = np.asarray(direction, dtype=float)
+    across = np.array([-e[1], e[0]])
+    normal = np.asarray(model.mesh.nodes, dtype=float)[model.order] @ model.rotation[2]
+    return ClampParams(length=float(np.ptp(face.points @ e)),
+                       width=float(np.ptp(face.points @ across)),
+                       thickness=float(np.ptp(normal)), modulus=model.modulus,
+                       poisson_ratio=model.poisson_ratio, friction=model.friction,
+                       normal_force=model.clamp_force)
+
+
+def clamp_backbone(model: MeshModel, mode: Mode, name: str, face: Interface | None = None
+                   ) -> JointBackbone:
+    """The whole joint's translation from the paper's 1-D clamp model ``name`` (``tip`` or
+    ``centre``) on the contact patch (:func:`patch`, along the mode's direction of motion)
+    behind the contact layer's stiffness sum lambda A_i
+    (:func:`~microslip.dynamics.distributions.clamp_joint`: the bar on a rigid Coulomb
+    foundation has no finite stiffness at zero load); so its initial slope is the FE's
+    stuck interface stiffness, less the bar's compliance at the model's first force step
+    (3.5 % on the cantilever). No FE loading: the rotation keeps its stuck stiffness (the
+    1-D models have no torsion)."""
+    from ...conventions import CLAMP_MODELS
+    from ...dynamics.distributions import clamp_joint
+
+    if name not in CLAMP_MODELS:
+        raise ParameterError(f"unknown clamp model {name!r}; choose one of "
+                             f"{', '.join(CLAMP_MODELS)}")
+    face = interface(model) if face is None else face
+    e = _direction(mode, model, face)
+    k = float(model.contact_stiffness.sum())
+    op = clamp_joint(name, patch(model, face, e), k)
+    # the operator's virgin-curve nodes: F(a) at the elements' slip displacements
+    d = np.concatenate([[0.0], np.sort(op.slip)])
+    f = np.asarray(op.backbone_force(d), dtype=float)
+    return JointBackbone(direction=e, displacement=d, force=f, rotation=np.zeros(0),
+                         moment=np.zeros(0), macroslip_force=float(f[-1]),
+                         macroslip_moment=0.0, stuck_stiffness=k, source=name, loading=None)
+
+
+def _fe_backbone(model: MeshModel, mode: Mode, face: Interface) -> JointBackbone:
+    return joint_backbone(model, mode, face)
+
+
+def _tip(model: MeshModel, mode: Mode, face: Interface) -> JointBackbone:
+    return clamp_backbone(model, mode, "tip", face)
+
+
+def _centre(model: MeshModel, mode: Mode, face: Interface) -> JointBackbone:
+    return clamp_backbone(model, mode, "centre", face)
+
+
+#: Where the whole joint's backbone comes from: ``fe`` the FE's own first loading by the
+#: mode (:func:`joint_backbone`), ``tip`` and ``centre`` the paper's 1-D clamp models on
+#: the contact patch (:func:`clamp_backbone`).
+BACKBONES: dict[str, Callable[[MeshModel, Mode, Interface], JointBackbone]] = {
+    "fe": _fe_backbone, "tip": _tip, "centre": _centre}
+
+
 def _torsion_iwan(backbone: JointBackbone, face: Interface) -> Any:
     return backbone.torsion()
 
@@ -512,21 +583,25 @@ class WholeJoint:
 
 
 def build_whole_joint(rom: Rom, model: MeshModel, mode: Mode, output: FloatArray, *,
-                      torsion: str = "iwan", backbone: JointBackbone | None = None
+                      torsion: str = "iwan", backbone: JointBackbone | str = "fe"
                       ) -> WholeJoint:
     """The whole-joint :class:`~microslip.dynamics.structure.Structure` of ``mode``: the
     ROM reduced to the interface's rigid motion (:func:`reduce_to_interface`), the joint of
-    :func:`joint_backbone` on it, the output ``output`` (n_rom,: the response set's mean
-    displacement along the mode per ROM coordinate, as for
-    :func:`~.reduce.rom_structure`) carried through T."""
+    ``backbone`` (a name of :data:`BACKBONES`, or a :class:`JointBackbone`) on it, the
+    output ``output`` (n_rom,: the response set's mean displacement along the mode per ROM
+    coordinate, as for :func:`~.reduce.rom_structure`) carried through T."""
     from ...dynamics.structure import JointLink, Structure
 
     if torsion not in TORSION:
         raise ParameterError(f"unknown torsion {torsion!r}; choose one of "
                              f"{', '.join(TORSION)}")
+    if isinstance(backbone, str) and backbone not in BACKBONES:
+        raise ParameterError(f"unknown backbone {backbone!r}; choose one of "
+                             f"{', '.join(BACKBONES)}")
     face = interface(model)
     t, m, k = reduce_to_interface(rom, face)
-    bb = joint_backbone(model, mode, face) if backbone is None else backbone
+    bb = (BACKBONES[backbone](model, mode, face) if isinstance(backbone, str)
+          else backbone)
     n = m.shape[0]
     w = np.zeros((n, 2))
     w[0, 0] = w[1, 1] = 1.0
