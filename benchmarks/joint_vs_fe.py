@@ -11,8 +11,9 @@ E 70000 MPa, nu 0.33, density 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N
 
 * ``fe``: quasi-static modal analysis of the full frictional FE (the truth);
 * ``joint``: EPMC (7 harmonics) on the whole-joint model
-  (:mod:`microslip.fe.builtin.wholejoint`) with its default torsion joint (``iwan``, the
-  rotation's own first-loading curve), and ``stuck`` torsion (the classical linear spring),
+  (:mod:`microslip.fe.builtin.wholejoint`) as ``--solver joint`` builds it (torsion joint
+  ``iwan``, the rotation's own first-loading curve); ``stuckT`` the same with the classical
+  linear torsion spring; ``work`` with the work-equivalent backbone (``--backbone work``);
   at the FE's own amplitudes (equal amplitude: the response set's first harmonic along the
   mode).
 
@@ -38,6 +39,8 @@ from microslip.fe.examples import cantilever_mesh
 
 RHO = 2700.0
 HARMONICS, SAMPLES = 7, 64
+#: Whole-joint variants: name -> (torsion, backbone) of :func:`build_whole_joint`.
+VARIANTS = {"joint": ("iwan", "fe"), "stuckT": ("stuck", "fe"), "work": ("iwan", "work")}
 
 
 def _pct(x: float, ref: float) -> str:
@@ -62,41 +65,42 @@ def compare(model: object, number: int, count: int) -> None:
     assert rom.output is not None
     out = mode.direction @ rom.output
     curves, joints, times = {}, {}, {}
-    for torsion in ("iwan", "stuck"):
+    for name, (torsion, backbone) in VARIANTS.items():
         t0 = time.perf_counter()
         wj = build_whole_joint(rom, model, mode, out, torsion=torsion,  # type: ignore[arg-type]
-                               backbone=None if not joints else joints["iwan"].backbone)
-        curves[torsion], failed = whole_joint_epmc(wj, amplitudes, HARMONICS, SAMPLES,
-                                                   mode.frequency_Hz)
+                               backbone=backbone)
+        curves[name], failed = whole_joint_epmc(wj, amplitudes, HARMONICS, SAMPLES,
+                                                mode.frequency_Hz)
         for w in failed:
-            print(f"  warning ({torsion} torsion): {w}")
-        joints[torsion], times[torsion] = wj, time.perf_counter() - t0
-    wj = joints["iwan"]
-    stuck = float(wj.stuck_frequencies()[wj.mode_index(mode.frequency_Hz)])
-    bb = wj.backbone
-    share = bb.loading.rigid_work / np.where(bb.loading.work > 0, bb.loading.work, np.nan)
-    print(f"\nmode {number} ({mode.label}): full FE stuck {mode.frequency_Hz:.2f} Hz, "
-          f"whole-joint stuck {stuck:.2f} Hz ({_pct(stuck, mode.frequency_Hz).strip()} %)")
-    print(f"  joint: translation from the {bb.source} loading, direction "
-          f"({bb.direction[0]:+.3f}, {bb.direction[1]:+.3f}) in the contact plane; torsion "
-          f"{'curve' if bb.rotation.size else 'none (the mode does not turn the interface)'}")
+            print(f"  warning ({name}): {w}")
+        joints[name], times[name] = wj, time.perf_counter() - t0
+    print(f"\nmode {number} ({mode.label}): full FE stuck {mode.frequency_Hz:.2f} Hz; "
+          f"full-FE QSMA {t_fe:.1f} s")
+    for name, wj in joints.items():
+        stuck = float(wj.stuck_frequencies()[wj.mode_index(mode.frequency_Hz)])
+        bb = wj.backbone
+        print(f"  {name:>6}: stuck {stuck:.2f} Hz ({_pct(stuck, mode.frequency_Hz).strip()} %), "
+              f"translation from the {bb.source} loading, torsion "
+              f"{wj.torsion if bb.rotation.size else 'stuck (the mode does not turn it)'}, "
+              f"initial slope {bb.force[1] / bb.displacement[1]:.4g} N/mm (stuck interface "
+              f"{bb.stuck_stiffness:.4g}), build + EPMC {times[name]:.1f} s")
+    loading = joints["joint"].backbone.loading
+    assert loading is not None
+    share = loading.rigid_work / np.where(loading.work > 0, loading.work, np.nan)
     k = np.unique(np.linspace(1, share.size - 1, 5).astype(int))
     print("  share of the interface's work through its rigid motion along the first loading: "
           + ", ".join(f"{s:.2f} (stuck {a:.2f})" for s, a in
-                      zip(share[k], bb.loading.stuck_share[k], strict=True)))
-    print(f"  wall: full-FE QSMA {t_fe:.1f} s, whole joint (build + EPMC) "
-          f"{times['iwan']:.1f} s, {times['stuck']:.1f} s")
-    print(f"  {'a (mm)':>10} {'f_FE (Hz)':>10} {'zeta_FE':>9} | {'f_WJ (Hz)':>10} "
-          f"{'zeta_WJ':>9} {'df %':>8} {'dzeta %':>8} | {'f_WJs':>10} {'zeta_WJs':>9} "
-          f"{'df %':>8} {'dzeta %':>8}")
+                      zip(share[k], loading.stuck_share[k], strict=True)))
+    head = f"  {'a (mm)':>10} {'f_FE (Hz)':>10} {'zeta_FE':>9}"
+    for name in VARIANTS:
+        head += f" | {'f_' + name:>10} {'zeta_' + name:>11} {'df %':>7} {'dzeta %':>8}"
+    print(head)
     for i, a in enumerate(amplitudes):
         ff, zf = fe.frequency_Hz[i], fe.damping_ratio[i]
-        row = f"  {a:10.4g} {ff:10.2f} {zf:9.4g} |"
-        for torsion in ("iwan", "stuck"):
-            c = curves[torsion]
-            fj, zj = c.frequency[i], c.damping_ratio[i]
-            row += (f" {fj:10.2f} {zj:9.4g} {_pct(fj, ff)} {_pct(zj, zf)}"
-                    + (" |" if torsion == "iwan" else ""))
+        row = f"  {a:10.4g} {ff:10.2f} {zf:9.4g}"
+        for name in VARIANTS:
+            fj, zj = curves[name].frequency[i], curves[name].damping_ratio[i]
+            row += f" | {fj:10.2f} {zj:11.4g} {_pct(fj, ff)[1:]} {_pct(zj, zf)}"
         print(row)
 
 

@@ -61,9 +61,10 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--rom-modes", type=int, default=None, metavar="N",
                    help="rom, joint: fixed-interface modes kept (default 60; the ROM's stuck "
                         "frequencies then equal the full FE's to about 1e-6)")
-    g.add_argument("--backbone", choices=["fe", "tip", "centre"], default=None,
+    g.add_argument("--backbone", choices=["fe", "work", "tip", "centre"], default=None,
                    help="joint: the whole joint's backbone, the FE's own first loading by "
-                        "the mode (fe, default) or the paper's 1-D clamp model on the "
+                        "the mode (fe, default), the same with work-equivalent "
+                        "displacements (work), or the paper's 1-D clamp model on the "
                         "contact patch (tip, centre)")
     g.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes for the amplitudes (independent runs; default 1)")
