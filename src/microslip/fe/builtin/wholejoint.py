@@ -281,8 +281,7 @@ def first_loading(model: MeshModel, mode: Mode, face: Interface, *, pattern: str
     up by factors ``step`` until less than :data:`GROSS_STICK` of the contact area sticks,
     an increment fails to converge (gross sliding) or the in-plane resultant would reach
     mu F_N. ``pull``: 1 N along ``direction`` (in-plane, model frame) shared by the
-    response set's nodes, scaled the same way from the force at which the stuck interface's
-    first node would slip.
+    response set's nodes, scaled the same way from its own first-slip force (N).
     """
     from .qsma import first_slip_force
 
@@ -293,9 +292,8 @@ def first_loading(model: MeshModel, mode: Mode, face: Interface, *, pattern: str
         if direction is None:
             raise ParameterError("the pull test needs its in-plane direction")
         p = _pull_pattern(model, mode, np.asarray(direction, dtype=float))
-        # stuck: the pull's resultant spreads as lambda A_i over the nodes at first
-        q1 = float(np.min(model.friction_limit / model.contact_stiffness)
-                   * model.contact_stiffness.sum())
+        # the first-slip force of the pull's pattern under the stuck response
+        q1 = first_slip_force(model, replace(mode, inertia=p))
     else:
         raise ParameterError(f"unknown first-loading pattern {pattern!r}; choose mode or "
                              f"{PULL}")
