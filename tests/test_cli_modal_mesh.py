@@ -58,7 +58,8 @@ def test_fe_and_rom_side_by_side(capsys: pytest.CaptureFixture[str], mesh: str) 
     ([], "needs --density KG/M3"),
     (["--density", "2700", "--mode", "51"], "--mode must be in [1, 50]"),
     (["--density", "2700", "--frequency", "100"], "--frequency not used with --mesh"),
-    (["--density", "2700", "--harmonics", "5"], "--harmonics applies to --solver rom only"),
+    (["--density", "2700", "--harmonics", "5"],
+     "--harmonics applies to --solver rom or joint only"),
     (["--density", "-1"], "density must be > 0 kg/m^3"),
 ])
 def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
@@ -74,3 +75,40 @@ def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[s
                  "1", "--density", "2700"]) == 1
     _, err = capsys.readouterr()
     assert "--density applies to modal --mesh FILE only" in err
+
+
+@pytest.mark.slow
+def test_whole_joint_solver(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
+    """--solver joint: the same JSON keys, its backbone (force_N against displacement_mm,
+    starting at the stuck interface stiffness), its stuck frequency 3.6 % above the full
+    FE's (the rigid interface stiffens the clamp) and an EPMC that softens from there;
+    out-of-plane bending says in a warning that the joint does not see its damping."""
+    argv = ["--mesh", mesh, *BASE, "--density", "2700", "--amplitudes", "2",
+            "--solver", "joint", "--harmonics", "3"]
+    out = _json(capsys, *argv, "--mode", "2")
+    for key in ("amplitude_mm", "frequency_Hz", "damping_ratio", "linear_frequencies_Hz",
+                "free_frequencies_Hz", "warnings"):
+        assert key in out
+    joint = out["joint"]
+    assert joint["source"] == "mode" and out["warnings"] == []
+    assert joint["force_N"][0] == 0 and joint["displacement_mm"][0] == 0
+    assert joint["force_N"][1] / joint["displacement_mm"][1] == pytest.approx(
+        joint["stuck_stiffness_N_per_mm"], rel=1e-9)
+    stuck = out["linear_frequencies_Hz"][1]
+    assert joint["stuck_frequency_Hz"] == pytest.approx(stuck * (1 + joint[
+        "stuck_frequency_error"]), rel=1e-12)
+    assert 0.03 < joint["stuck_frequency_error"] < 0.042
+    assert out["frequency_Hz"][1] < out["frequency_Hz"][0] < joint["stuck_frequency_Hz"]
+    assert out["damping_ratio"][1] > out["damping_ratio"][0] > 0
+    out1 = _json(capsys, *argv, "--mode", "1")
+    assert out1["joint"]["source"] == "pull"
+    assert any("does not load the interface as a whole" in w for w in out1["warnings"])
+
+
+def test_backbone_is_the_joint_solver_s_option(capsys: pytest.CaptureFixture[str],
+                                               mesh: str) -> None:
+    assert main(["modal", "--mesh", mesh, *BASE, "--density", "2700", "--backbone",
+                 "tip"]) == 1
+    _, err = capsys.readouterr()
+    assert "--backbone applies to --solver joint only" in err
+    assert len(err.strip().splitlines()) == 1

@@ -32,7 +32,7 @@ NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
                  "fe_mesh")
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-             "response_set", "solver", "workers", "rom_modes")
+             "response_set", "solver", "workers", "rom_modes", "backbone")
 #: Highest mode number ``--mode`` takes with --mesh (the eigen-solve computes that many).
 MAX_MODE = 50
 REQUIRED = {**MESH_REQUIRED, "density": "--density KG/M3"}
@@ -59,8 +59,13 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                    help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
                    + " (default fe)")
     g.add_argument("--rom-modes", type=int, default=None, metavar="N",
-                   help="rom: fixed-interface modes kept (default 60; the ROM's stuck "
+                   help="rom, joint: fixed-interface modes kept (default 60; the ROM's stuck "
                         "frequencies then equal the full FE's to about 1e-6)")
+    g.add_argument("--backbone", choices=["fe", "work", "tip", "centre"], default=None,
+                   help="joint: the whole joint's backbone, the FE's own first loading by "
+                        "the mode (fe, default), the same with work-equivalent "
+                        "displacements (work), or the paper's 1-D clamp model on the "
+                        "contact patch (tip, centre)")
     g.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes for the amplitudes (independent runs; default 1)")
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
@@ -307,6 +312,54 @@ def _rom(study: MeshStudy) -> MeshCurve:
         warnings=[])
 
 
+def _joint(study: MeshStudy) -> MeshCurve:
+    """EPMC on the whole-joint model (:mod:`microslip.fe.builtin.wholejoint`) at the grid's
+    amplitudes: the ROM reduced to the interface's rigid motion, one joint from the FE's
+    first loading."""
+    import numpy as np
+
+    from ..fe.builtin.reduce import build_rom
+    from ..fe.builtin.wholejoint import build_whole_joint, whole_joint_epmc
+    from .structure import balance_from_args
+
+    args, mode = study.args, study.mode
+    harmonics, samples = balance_from_args(args)
+    modes = args.rom_modes or DEFAULT_ROM_MODES
+    rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
+    assert rom.output is not None
+    joint = build_whole_joint(rom, study.model, mode, mode.direction @ rom.output,
+                              backbone=args.backbone or "fe")
+    curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), harmonics,
+                                     samples, mode.frequency_Hz)
+    stuck = float(joint.stuck_frequencies()[joint.mode_index(mode.frequency_Hz)])
+    bb = joint.backbone
+    warnings = list(failed)
+    if bb.source == "pull":
+        warnings.append(f"mode {study.number} does not load the interface as a whole (its "
+                        "contact resultant does not follow its mean displacement): the joint "
+                        "is the interface's pull test, and the whole-joint model misses the "
+                        "damping of the interface's distortion")
+    loading = bb.loading
+    share = (float(loading.rigid_work[-1] / loading.work[-1])
+             if loading is not None and loading.work[-1] > 0 else None)
+    return MeshCurve(
+        label=f"EPMC on the whole-joint model ({joint.structure.dofs} DOF, "
+              f"{curve.harmonics} harmonics; stuck {stuck:.6g} Hz, "
+              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)",
+        columns=dict(BASE_COLUMNS),
+        values={"amplitude_mm": _nulls(np.where(np.isnan(curve.frequency), np.nan,
+                                                curve.amplitude)),
+                "frequency_Hz": _nulls(curve.frequency),
+                "damping_ratio": _nulls(curve.damping_ratio)},
+        extra={"joint": {**bb.summary(), "torsion": joint.torsion,
+                         "rigid_work_share": share,
+                         "stuck_frequency_Hz": stuck,
+                         "stuck_frequency_error": stuck / mode.frequency_Hz - 1.0,
+                         "dofs": joint.structure.dofs, "fixed_interface_modes": modes,
+                         "harmonics": curve.harmonics, "samples": curve.samples}},
+        warnings=warnings)
+
+
 #: What ``modal --mesh ... --solver`` computes, each on the same amplitude grid.
 MESH_SOLVERS: dict[str, MeshSolver] = {
     "fe": MeshSolver("quasi-static modal analysis of the full frictional FE (the truth)",
@@ -314,6 +367,10 @@ MESH_SOLVERS: dict[str, MeshSolver] = {
     "rom": MeshSolver("EPMC by harmonic balance on a Craig-Bampton model that keeps every "
                       "contact node with the FE's own contact law (--rom-modes "
                       "fixed-interface modes)", ("harmonics", "rom_modes"), _rom),
+    "joint": MeshSolver("EPMC by harmonic balance on the whole-joint model: the contact "
+                        "reduced to its rigid motion in its plane, one joint whose backbone "
+                        "is the FE's first loading by the mode (or --backbone tip|centre)",
+                        ("harmonics", "rom_modes", "backbone"), _joint),
 }
 #: Fixed-interface modes of the ROM unless --rom-modes says (its stuck frequencies then
 #: equal the full FE's to about 1e-6 on the cantilever).
