@@ -13,18 +13,24 @@ from __future__ import annotations
 import sys
 from typing import Any
 
+from ..case.model import Case
+from ..case.table import CASE_DESTS, OPTIONS
 from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
-from .modalmesh import MESH_SOLVERS, MeshCurve, MeshStudy, study_output
+from .modalmesh import ALL, MESH_SOLVERS, MeshCurve, MeshStudy, mesh_study, study_output
 from .structure import balance_from_args
 
-__all__ = ["SHARED", "TRUTH", "compare_output", "run_modal_all"]
+__all__ = ["REPORT_AMPLITUDES", "SHARED", "TRUTH", "case_argv", "case_comparison",
+           "compare_output", "run_all", "run_modal_all"]
 
 #: Keys of a solver's JSON that the study gives, the same for every solver: written once.
 SHARED = ("mesh", "mode", "label", "density_kg_m3", "linear_frequencies_Hz",
           "free_frequencies_Hz", "modes")
 #: The solver every other is judged against.
 TRUTH = "fe"
+#: Amplitudes of the structure section of ``microslip report`` (first slip to near gross
+#: sliding).
+REPORT_AMPLITUDES = 6
 
 
 def compare_output(study: MeshStudy, curves: dict[str, MeshCurve]) -> dict[str, Any]:
@@ -59,9 +65,8 @@ def _table(values: dict[str, Any], curve: MeshCurve) -> list[str]:
     return lines
 
 
-def run_modal_all(study: MeshStudy) -> int:
-    """Run every registered solver on ``study``, print them side by side with the verdicts,
-    and draw them (``--plot``)."""
+def run_all(study: MeshStudy) -> tuple[dict[str, MeshCurve], dict[str, Any]]:
+    """Every registered solver's curve on ``study``, and :func:`compare_output` of them."""
     args = study.args
     balance_from_args(args)  # a bad --harmonics must not wait for the full FE's runs
     curves: dict[str, MeshCurve] = {}
@@ -69,7 +74,45 @@ def run_modal_all(study: MeshStudy) -> int:
         if not args.json:
             print(f"solver {k + 1}/{len(MESH_SOLVERS)}: {name}", file=sys.stderr, flush=True)
         curves[name] = solver.run(study)
-    out = compare_output(study, curves)
+    return curves, compare_output(study, curves)
+
+
+def case_argv(case: Case, amplitudes: int = REPORT_AMPLITUDES) -> list[str] | None:
+    """The command line ``modal --mesh ... --solver all --json`` of a case file's structure
+    ([mesh] file, sets, density, mode, response set; the material, contact and clamping
+    values), or None when the case has no mesh file or no density."""
+    v = case.values
+    if "mesh.file" not in v or "mesh.density" not in v:
+        return None
+    argv = ["modal", "--mesh", str(v["mesh.file"]), "--solver", ALL, "--json",
+            "--amplitudes", str(amplitudes), "--mode", str(case.get("mesh.mode"))]
+    for key in ("mesh.contact_set", "mesh.clamp_set", "mesh.density", "mesh.response_set",
+                "material.modulus", "material.poisson_ratio", "contact.friction",
+                "contact.stick_slope", "clamping.normal_force"):
+        value = case.get(key)
+        if value is not None:
+            argv += [OPTIONS[CASE_DESTS[key][0]].flag,
+                     str(value)]  # a float's shortest repr: the same number back
+    return argv
+
+
+def case_comparison(case: Case, amplitudes: int = REPORT_AMPLITUDES) -> dict[str, Any] | None:
+    """:func:`compare_output` of every solver on the structure of a case file
+    (:func:`case_argv`; None without one): what ``microslip report`` shows in its section
+    "Damping of the structure's mode"."""
+    from .main import build_parser
+
+    argv = case_argv(case, amplitudes)
+    if argv is None:
+        return None
+    return run_all(mesh_study(build_parser(argv).parse_args(argv)))[1]
+
+
+def run_modal_all(study: MeshStudy) -> int:
+    """Run every registered solver on ``study``, print them side by side with the verdicts,
+    and draw them (``--plot``)."""
+    args = study.args
+    curves, out = run_all(study)
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     if args.plot:
