@@ -216,3 +216,13 @@ def test_bad_input_with_all_is_one_line_and_writes_nothing(
     _, err = capsys.readouterr()
     assert code == 1 and message in err and len(err.strip().splitlines()) == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["c.inp"]
+
+
+def test_one_solver_figure_takes_a_curve_without_secant(tmp_path: Path) -> None:
+    """``--solver rom --plot``: the ROM's curve has no secant frequency (the full FE's only)."""
+    from microslip.plot.ownmesh import plot_qsma
+
+    rom = {"mode": 2, "label": "bending", "solver": "rom", "amplitude_mm": [0.01, 0.02],
+           "frequency_Hz": [99.0, 98.0], "damping_ratio": [0.01, 0.02]}
+    plot_qsma(rom, tmp_path / "rom.png")
+    assert (tmp_path / "rom.png").read_bytes()[:4] == b"\x89PNG"

@@ -39,15 +39,17 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
 
 
 def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
-    """Frequency (first harmonic and secant) and damping ratio against the response set's
-    amplitude, from ``modal --mesh``'s JSON object ``curve``."""
+    """Frequency (first harmonic, and the secant one of the full FE) and damping ratio
+    against the response set's amplitude, from ``modal --mesh``'s JSON object ``curve`` (of
+    any one solver)."""
     fig, axes = new_figure(ncols=2, width_mm=80.0)
     a = np.asarray(curve["amplitude_mm"], dtype=float)
     ax = axes[0][0]
     ax.semilogx(a, curve["frequency_Hz"], color=COLOURS[0], marker=".",
                 label="first harmonic (as EPMC)")
-    ax.semilogx(a, curve["secant_frequency_Hz"], color=COLOURS[1], marker=".",
-                linestyle="--", label="secant (Lacayo and Allen)")
+    if "secant_frequency_Hz" in curve:  # the full FE's QSMA only
+        ax.semilogx(a, curve["secant_frequency_Hz"], color=COLOURS[1], marker=".",
+                    linestyle="--", label="secant (Lacayo and Allen)")
     ax.set_xlabel("amplitude of the response set (mm)")
     ax.set_ylabel("natural frequency f (Hz)")
     ax.legend(fontsize="small")
@@ -55,8 +57,9 @@ def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
     ax.semilogx(a, curve["damping_ratio"], color=COLOURS[0], marker=".")
     ax.set_xlabel("amplitude of the response set (mm)")
     ax.set_ylabel("damping ratio zeta (-)")
-    fig.suptitle(f"mode {curve['mode']} ({curve['label']}), full-FE quasi-static modal "
-                 "analysis")
+    how = {"fe": "full-FE quasi-static modal analysis", "rom": "EPMC on the contact-node ROM"}
+    solver = curve.get("solver", "fe")
+    fig.suptitle(f"mode {curve['mode']} ({curve['label']}), {how.get(solver, solver)}")
     save_figure(fig, path)
 
 
