@@ -325,6 +325,16 @@ _OPTIONS: tuple[Option, ...] = (
     Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area", "",
            "a set name of the mesh file", type=set_name, metavar="NAME", key="mesh.clamp_set",
            check=text, scope="mesh"),
+    # the structure of the user's own mesh (modal --mesh FILE; the report's structure section)
+    Option("density", "density of the body of the mesh (aluminium 2700, steel 7850)",
+           "kg/m^3", "> 0", metavar="KG/M3", key="mesh.density", check=positive("kg/m^3"),
+           scope="mesh", case_note="with it, report adds the damping of the structure's mode"),
+    Option("mode", "the structure's mode whose damping is studied, 1 the lowest stuck mode",
+           "", "[1, 50]", type=int, metavar="N", key="mesh.mode", check=whole(1, 50),
+           scope="mesh", case_default=1),
+    Option("response_set", "set of the mesh whose mean displacement along the mode is the "
+           "amplitude", "", "a set name of the mesh file", type=set_name, metavar="NAME",
+           key="mesh.response_set", check=text, scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

@@ -33,6 +33,8 @@ NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
              "response_set", "solver", "workers", "rom_modes", "backbone")
+#: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
+ALL = "all"
 #: Highest mode number ``--mode`` takes with --mesh (the eigen-solve computes that many).
 MAX_MODE = 50
 REQUIRED = {**MESH_REQUIRED, "density": "--density KG/M3"}
@@ -55,9 +57,10 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--response-set", metavar="NAME", default=None,
                    help="set whose mean displacement along the mode is the amplitude "
                         "(amplitude_mm)")
-    g.add_argument("--solver", choices=list(MESH_SOLVERS), default=None,
+    g.add_argument("--solver", choices=[*MESH_SOLVERS, ALL], default=None,
                    help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
-                   + " (default fe)")
+                   + f"; {ALL}: every one of them side by side, with a verdict on each "
+                   "against the full FE (default fe)")
     g.add_argument("--rom-modes", type=int, default=None, metavar="N",
                    help="rom, joint: fixed-interface modes kept (default 60; the ROM's stuck "
                         "frequencies then equal the full FE's to about 1e-6)")
@@ -102,7 +105,7 @@ def _check(args: argparse.Namespace) -> None:
         raise ParameterError("--normal-slope needs --normal-contact penalty")
     solver = args.solver or "fe"
     for dest in dict.fromkeys(o for s in MESH_SOLVERS.values() for o in s.options):
-        if given(args, dest) and dest not in MESH_SOLVERS[solver].options:
+        if given(args, dest) and solver != ALL and dest not in MESH_SOLVERS[solver].options:
             owners = [n for n, s in MESH_SOLVERS.items() if dest in s.options]
             raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver "
                                  f"{' or '.join(owners)} only")
@@ -180,6 +183,10 @@ def study_output(study: MeshStudy, solver: str, curve: MeshCurve) -> dict[str, A
 def run_modal_mesh(args: argparse.Namespace) -> int:
     study = mesh_study(args)
     solver = args.solver or "fe"
+    if solver == ALL:
+        from .modalcompare import run_modal_all
+
+        return run_modal_all(study)
     curve = MESH_SOLVERS[solver].run(study)
     out = study_output(study, solver, curve)
     for w in out["warnings"]:
@@ -276,8 +283,12 @@ def _fe(study: MeshStudy) -> MeshCurve:
                "damping_ratio": BASE_COLUMNS["damping_ratio"],
                "slip_fraction": ("slip (-)", "{:9.3f}")}
     values = {k: _nulls(s[k]) for k in (*columns, "dissipated_energy_Nmm")}
+    # the slip pattern: the contact nodes in the contact plane (mm), slipped or not per amplitude
+    xy = study.model.mesh.nodes[study.model.contact_nodes] @ study.model.rotation.T
+    pattern = {"x_mm": xy[:, 0].tolist(), "y_mm": xy[:, 1].tolist(),
+               "slipped": [p.node_slipped.tolist() for p in curve.points]}
     return MeshCurve(label="quasi-static modal analysis of the full FE", columns=columns,
-                     values=values, extra={"modal_force": s["force"]},
+                     values=values, extra={"modal_force": s["force"], "slip_pattern": pattern},
                      warnings=list(s["warnings"]))
 
 

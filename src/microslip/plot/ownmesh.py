@@ -10,9 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from .core import COLOURS, displacement_scale, new_figure, save_figure
+from ..fe.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
+from .core import COLOURS, displacement_scale, new_figure, pyplot, save_figure
 
-__all__ = ["plot_mesh_loops", "plot_qsma"]
+__all__ = ["compare_figure", "plot_compare", "plot_mesh_loops", "plot_qsma", "slip_snapshots"]
+
+#: Slip-pattern panels of the side-by-side figure (at the FE's first, middle and last
+#: amplitudes).
+SLIP_PANELS = 3
 
 
 def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float],
@@ -34,15 +39,17 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
 
 
 def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
-    """Frequency (first harmonic and secant) and damping ratio against the response set's
-    amplitude, from ``modal --mesh``'s JSON object ``curve``."""
+    """Frequency (first harmonic, and the secant one of the full FE) and damping ratio
+    against the response set's amplitude, from ``modal --mesh``'s JSON object ``curve`` (of
+    any one solver)."""
     fig, axes = new_figure(ncols=2, width_mm=80.0)
     a = np.asarray(curve["amplitude_mm"], dtype=float)
     ax = axes[0][0]
     ax.semilogx(a, curve["frequency_Hz"], color=COLOURS[0], marker=".",
                 label="first harmonic (as EPMC)")
-    ax.semilogx(a, curve["secant_frequency_Hz"], color=COLOURS[1], marker=".",
-                linestyle="--", label="secant (Lacayo and Allen)")
+    if "secant_frequency_Hz" in curve:  # the full FE's QSMA only
+        ax.semilogx(a, curve["secant_frequency_Hz"], color=COLOURS[1], marker=".",
+                    linestyle="--", label="secant (Lacayo and Allen)")
     ax.set_xlabel("amplitude of the response set (mm)")
     ax.set_ylabel("natural frequency f (Hz)")
     ax.legend(fontsize="small")
@@ -50,6 +57,81 @@ def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
     ax.semilogx(a, curve["damping_ratio"], color=COLOURS[0], marker=".")
     ax.set_xlabel("amplitude of the response set (mm)")
     ax.set_ylabel("damping ratio zeta (-)")
-    fig.suptitle(f"mode {curve['mode']} ({curve['label']}), full-FE quasi-static modal "
-                 "analysis")
+    how = {"fe": "full-FE quasi-static modal analysis", "rom": "EPMC on the contact-node ROM"}
+    solver = curve.get("solver", "fe")
+    fig.suptitle(f"mode {curve['mode']} ({curve['label']}), {how.get(solver, solver)}")
     save_figure(fig, path)
+
+
+def slip_snapshots(amplitudes: Sequence[float | None], count: int = SLIP_PANELS) -> list[int]:
+    """Indices of ``count`` amplitudes spread over those that computed (None or NaN: failed),
+    the first and the last among them.
+
+    >>> slip_snapshots([0.1, None, 0.3, 0.4, 0.5, 0.6])
+    [0, 3, 5]
+    """
+    ok = [i for i, a in enumerate(amplitudes) if a is not None and np.isfinite(a)]
+    if len(ok) <= count:
+        return ok
+    picks = np.round(np.linspace(0, len(ok) - 1, count)).astype(int)
+    return [ok[int(k)] for k in dict.fromkeys(picks.tolist())]
+
+
+def compare_figure(out: Mapping[str, Any]) -> Any:
+    """The figure of ``modal --mesh ... --solver all``'s JSON object ``out``: frequency and
+    damping ratio against amplitude for every solver (top), and the full FE's slip pattern
+    (contact nodes in the contact plane, mm; stick or slip over the settled cycle) at
+    :data:`SLIP_PANELS` of its amplitudes (bottom)."""
+    solvers = out["solvers"]
+    fe = solvers.get("fe")
+    pattern = None if fe is None else fe.get("slip_pattern")
+    picks = [] if pattern is None else slip_snapshots(fe["amplitude_mm"])
+    cols = 2 * max(len(picks), 1)
+    fig = pyplot().figure(figsize=(170.0 / 25.4, (130.0 if picks else 70.0) / 25.4))
+    grid = fig.add_gridspec(2, cols, height_ratios=(1.7, 1.0)) if picks else \
+        fig.add_gridspec(1, cols)
+    half = cols // 2
+    freq, damp = fig.add_subplot(grid[0, :half]), fig.add_subplot(grid[0, half:])
+    styles = ("o", "s", "^", "v", "D")
+    for k, (name, curve) in enumerate(solvers.items()):
+        a = np.array([np.nan if v is None else v for v in curve["amplitude_mm"]], dtype=float)
+        c = COLOURS[k % len(COLOURS)]
+        for ax, key in ((freq, "frequency_Hz"), (damp, "damping_ratio")):
+            y = np.array([np.nan if v is None else v for v in curve[key]], dtype=float)
+            draw = ax.loglog if key == "damping_ratio" else ax.semilogx
+            draw(a, y, color=c, marker=styles[k % len(styles)], ms=3, label=name)
+    stuck = out["linear_frequencies_Hz"][out["mode"] - 1]
+    freq.axhline(stuck, color="0.5", lw=0.6, ls=":", label=f"stuck {stuck:.5g} Hz")
+    damp.axhline(MICROSLIP_CEILING, color="0.5", lw=0.6, ls=":",
+                 label=f"ζ = {MICROSLIP_CEILING:g} (end of the verdicts' range)")
+    freq.set_ylabel("natural frequency f (Hz)")
+    damp.set_ylabel("damping ratio ζ (dimensionless)")
+    for ax in (freq, damp):
+        ax.set_xlabel("amplitude of the response set a (mm)")
+        ax.legend(fontsize="small", frameon=False)
+    if pattern is not None and picks:
+        x, y = np.asarray(pattern["x_mm"]), np.asarray(pattern["y_mm"])
+        for j, i in enumerate(picks):
+            ax = fig.add_subplot(grid[1, 2 * j:2 * j + 2])
+            slipped = np.asarray(pattern["slipped"][i], dtype=bool)
+            ax.scatter(x[~slipped], y[~slipped], s=10, color=COLOURS[0], label="stick")
+            ax.scatter(x[slipped], y[slipped], s=10, color=COLOURS[1], label="slip")
+            ax.set_aspect("equal", adjustable="box")
+            share = fe.get("slip_fraction", [None] * len(picks))[i]
+            share = slipped.mean() if share is None else share
+            ax.set_title(f"a = {fe['amplitude_mm'][i]:.3g} mm\n{100 * share:.0f} % of the "
+                         "area slips", fontsize=7)
+            ax.set_xlabel("contact plane e1 (mm)")
+            if j == 0:
+                ax.set_ylabel("contact plane e2 (mm)")
+                fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center",
+                           ncol=2, fontsize="small", frameon=False)
+    fig.suptitle(f"mode {out['mode']} ({out['label']}): every solver on one amplitude grid"
+                 + ("\nbelow: the full FE's contact slip pattern over the settled cycle"
+                    if picks else ""), fontsize=8)
+    return fig
+
+
+def plot_compare(out: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
+    """:func:`compare_figure` saved to ``path`` (atomically)."""
+    save_figure(compare_figure(out), path)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import io
 import os
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,7 +22,7 @@ from .core import COLOURS, new_figure, plot_loops, pyplot
 if TYPE_CHECKING:
     from ..planar import PlanarResult
 
-__all__ = ["damping_svg", "loops_svg", "planar_svg", "svg_text"]
+__all__ = ["damping_svg", "loops_svg", "planar_svg", "structure_svg", "svg_text"]
 
 
 def svg_text(fig: Any) -> str:
@@ -83,3 +83,11 @@ def planar_svg(result: PlanarResult) -> str:
         with open(path, encoding="utf-8") as fh:
             text = fh.read()
     return text[text.index("<svg"):]
+
+
+def structure_svg(out: Mapping[str, Any]) -> str:
+    """The side-by-side figure of ``modal --mesh ... --solver all``'s JSON object ``out``
+    (:func:`microslip.plot.ownmesh.compare_figure`)."""
+    from .ownmesh import compare_figure
+
+    return svg_text(compare_figure(out))

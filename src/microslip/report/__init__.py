@@ -11,6 +11,8 @@ Distinct from :mod:`microslip.reproduce`, which reproduces the paper's figures.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
+from typing import Any
 
 from ..case.model import Case
 from ..io import atomic_write
@@ -22,10 +24,12 @@ __all__ = ["ReportData", "ReportSettings", "compute_report", "render", "report_j
 
 
 def write_report(case: Case, path: str | os.PathLike[str],
-                 settings: ReportSettings | None = None, *, progress: bool = True
+                 settings: ReportSettings | None = None, *, progress: bool = True,
+                 structure: Callable[[], dict[str, Any] | None] | None = None
                  ) -> ReportData:
-    """Compute the report of ``case`` and write it to ``path`` (never half-written)."""
-    data = compute_report(case, settings, progress=progress)
+    """Compute the report of ``case`` and write it to ``path`` (never half-written);
+    ``structure``: :func:`~microslip.report.compute.compute_report`'s."""
+    data = compute_report(case, settings, progress=progress, structure=structure)
     page = render(data)
     with atomic_write(path) as fh:
         fh.write(page)

@@ -12,6 +12,7 @@ one JSON object (``microslip report --json``).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -76,7 +77,10 @@ class ReportData:
 
     ``one_d`` is the 1-D loop at the case amplitude (``loops[-1]`` is its result), ``fe`` the
     FE run there (None without FE points), ``planar`` the planar case (None if the case gives
-    no planar load, or ``planar_error`` says why it could not be computed).
+    no planar load, or ``planar_error`` says why it could not be computed). ``structure`` is
+    the damping of the structure's mode on the case's own mesh, every solver side by side with
+    the verdicts (the JSON object of ``modal --mesh ... --solver all``; None without a
+    [mesh] file and density).
     """
 
     case: Case
@@ -97,6 +101,7 @@ class ReportData:
     stick_slope: float
     planar_run: PlanarRun | None
     planar_error: str | None
+    structure: dict[str, Any] | None = None
 
     @property
     def planar(self) -> Any:
@@ -135,8 +140,12 @@ def _planar(case: Case, increments: int) -> tuple[PlanarRun | None, str | None]:
 
 
 def compute_report(case: Case, settings: ReportSettings | None = None, *,
-                   progress: bool = True) -> ReportData:
-    """Compute every number of the report of ``case``."""
+                   progress: bool = True,
+                   structure: Callable[[], dict[str, Any] | None] | None = None
+                   ) -> ReportData:
+    """Compute every number of the report of ``case``; ``structure`` computes the section of
+    the structure's mode, last (the command line gives it:
+    :func:`microslip.cli.modalcompare.case_comparison` of the case)."""
     s = settings or ReportSettings()
     inputs = _loop(case, s)
     model, amplitude, limit = inputs.model, inputs.amplitude, inputs.macroslip
@@ -173,7 +182,8 @@ def compute_report(case: Case, settings: ReportSettings | None = None, *,
         fe=fe_case, fe_curve=np.array(fe_curve, dtype=float).reshape(-1, 4),
         validity_rigid=validity(model, inputs.params, amplitude),
         validity_layer=validity(model, inputs.params, amplitude, stick_slope=stick),
-        stick_slope=stick, planar_run=planar, planar_error=planar_error)
+        stick_slope=stick, planar_run=planar, planar_error=planar_error,
+        structure=None if structure is None else structure())
 
 
 def comparison(data: ReportData) -> list[tuple[str, float, float | None, float | None]]:
@@ -211,7 +221,9 @@ def report_json(data: ReportData) -> dict[str, Any]:
     ``one_d`` is the object of ``microslip loop --case --json`` and ``fe`` that of
     ``microslip fe --case --json`` (None without FE runs), ``planar`` that of
     ``microslip planar --case --json`` (None without a planar load, ``planar_error`` when it
-    could not be computed), each at the case amplitude and on the case's clamp and contact.
+    could not be computed), each at the case amplitude and on the case's clamp and contact;
+    ``structure`` that of ``microslip modal --mesh ... --solver all --json`` on the case's
+    mesh (None without a [mesh] file and density).
     """
     s = data.settings
     keys = ("peak_displacement_mm", "dissipated_energy_Nmm", "strain_energy_Nmm",
@@ -244,5 +256,6 @@ def report_json(data: ReportData) -> dict[str, Any]:
                       "converged": bool(c)} for a, e, w, c in data.fe_curve],
         "planar": None if data.planar_run is None else planar_json(data.planar_run),
         "planar_error": data.planar_error,
+        "structure": data.structure,
     }
 

@@ -6,10 +6,10 @@ This module picks each figure's data from :class:`~microslip.report.compute.Repo
 
 from __future__ import annotations
 
-from ..plot.report import damping_svg, loops_svg, planar_svg
+from ..plot.report import damping_svg, loops_svg, planar_svg, structure_svg
 from .compute import LOOP_FRACTIONS, ReportData
 
-__all__ = ["damping_figure", "loops_figure", "planar_figure"]
+__all__ = ["damping_figure", "loops_figure", "planar_figure", "structure_figure"]
 
 
 def loops_figure(data: ReportData) -> str:
@@ -28,3 +28,10 @@ def damping_figure(data: ReportData) -> str:
 def planar_figure(data: ReportData) -> str:
     """The planar case's loops and load path."""
     return planar_svg(data.planar)
+
+
+def structure_figure(data: ReportData) -> str:
+    """Every solver's frequency and damping ratio against amplitude on the case's mesh, and
+    the full FE's contact slip pattern."""
+    assert data.structure is not None
+    return structure_svg(data.structure)

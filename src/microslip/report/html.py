@@ -18,7 +18,7 @@ from ..case.run import MODEL_PORTION, portion_text, tip_portion
 from ..case.schema import KEYS
 from ..models import MODELS
 from .compute import ReportData, comparison
-from .figures import damping_figure, loops_figure, planar_figure
+from .figures import damping_figure, loops_figure, planar_figure, structure_figure
 
 __all__ = ["render"]
 
@@ -136,6 +136,31 @@ def _planar(data: ReportData) -> str:
                       "resultant models; load path in the force plane (N)."))
 
 
+def _structure(data: ReportData) -> str:
+    """The damping of the structure's mode on the case's mesh: every solver side by side, the
+    verdicts, the figure; or what the case lacks for it."""
+    out = data.structure
+    if out is None:
+        return ('<p class="note">The case gives no mesh of the structure with its density '
+                "([mesh] file, density; mode and response_set optional): no structure to "
+                "report.</p>")
+    n = out["mode"]
+    intro = (f"<p>Mesh {_e(out['mesh'])}, mode {n} ({_e(out['label'])}): stuck "
+             f"{_num(out['linear_frequencies_Hz'][n - 1])} Hz, free "
+             f"{_num(out['free_frequencies_Hz'][n - 1])} Hz, density "
+             f"{_num(float(out['density_kg_m3']))} kg/m^3; every solver on one amplitude grid, "
+             "as <code>microslip modal --mesh FILE --solver all</code>.</p>")
+    rows = [(name, v["verdict"]) for name, v in out["verdicts"].items()]
+    table = _table(("model", "against the full FE at equal amplitude (microslip range)"),
+                   rows) if rows else ""
+    warnings = "".join(f'<li class="warn">{_e(w)}</li>' for w in out["warnings"])
+    return (intro + table + (f"<ul>{warnings}</ul>" if warnings else "")
+            + _figure(structure_figure(data), "Natural frequency (Hz) and damping ratio "
+                      "(dimensionless) against the response set's amplitude (mm) for every "
+                      "solver; below, the full FE's contact nodes in the contact plane (mm), "
+                      "stick or slip over the settled cycle, at three amplitudes."))
+
+
 def render(data: ReportData) -> str:
     """The whole page of a report."""
     case = data.case
@@ -160,6 +185,7 @@ def render(data: ReportData) -> str:
         _figure(damping_figure(data), "Loss factor (dimensionless) and dissipated energy per "
                 "cycle (N·mm) against the force amplitude (N); dotted: the case amplitude."),
         "<h2>Planar coupling</h2>", _planar(data),
+        "<h2>Damping of the structure's mode</h2>", _structure(data),
         "</body></html>",
     ]
     return "\n".join(p for p in parts if p) + "\n"

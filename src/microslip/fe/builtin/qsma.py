@@ -115,6 +115,10 @@ class QSMAPoint:
     cycles : int
     wall_s : float
     message : str
+    node_slipped : ndarray of bool, shape (n_c,)
+        Per contact node (:attr:`~.meshmodel.MeshModel.contact_nodes` order): it slipped at
+        some state of the settled cycle (the slip pattern; all False for a failed run). Not
+        in :meth:`QSMACurve.summary`.
     """
 
     force: float
@@ -129,6 +133,8 @@ class QSMAPoint:
     cycles: int
     wall_s: float
     message: str
+    node_slipped: NDArray[np.bool_] = field(repr=False, compare=False,
+                                            default_factory=lambda: np.zeros(0, dtype=bool))
 
 
 @dataclass(frozen=True, eq=False)
@@ -244,9 +250,9 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
     # a node slipped in the cycle if its slip moved by more than 1e-6 of its slip
     # displacement mu N_i / k_i (a node left at its limit by the clamping step is flagged
     # ``slip`` without moving)
-    slip = r.contact.slip[k0:] if r.contact.slip is not None else np.zeros((1, 1, 2))
     scale = model.friction_limit / model.contact_stiffness
-    slipped = np.max(np.ptp(slip, axis=0), axis=1) > 1e-6 * scale
+    slipped = (np.max(np.ptp(r.contact.slip[k0:], axis=0), axis=1) > 1e-6 * scale
+               if r.contact.slip is not None else np.zeros(scale.size, dtype=bool))
     if w == 0.0:
         slipped[:] = False
     area = model.contact_area
@@ -257,15 +263,16 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
                      damping_ratio=float(zeta), dissipated_energy_Nmm=float(w),
                      slip_fraction=float(area[slipped].sum() / area.sum()),
                      settled=settled, cycles=r.cycles, wall_s=r.wall_s,
-                     message=r.message)
+                     message=r.message, node_slipped=np.asarray(slipped, dtype=bool))
 
 
-def _failed(force: float, why: str) -> QSMAPoint:
+def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
     nan = math.nan
     return QSMAPoint(force=force, modal_amplitude=nan, amplitude_mm=nan, frequency_Hz=nan,
                      secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
                      slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
-                     message=f"failed: {why}")
+                     message=f"failed: {why}",
+                     node_slipped=np.zeros(contact_nodes, dtype=bool))
 
 
 def _point(model: MeshModel, mode: Mode, force: float,
@@ -275,7 +282,7 @@ def _point(model: MeshModel, mode: Mode, force: float,
     try:
         return qsma_point(model, mode, force, history)
     except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError) as exc:
-        return _failed(force, str(exc))
+        return _failed(force, str(exc), int(model.contact_nodes.size))
 
 
 def first_slip_force(model: MeshModel, mode: Mode) -> float:

@@ -1,0 +1,102 @@
+"""``microslip report --case FILE``: a case with a mesh of the structure ([mesh] file, sets,
+density, mode, response_set) gets the section "Damping of the structure's mode": every solver
+of ``modal --mesh`` side by side with the verdicts, the same numbers in ``--json``
+(issue 23, item 5)."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from microslip.case.model import parse_case
+from microslip.cli.main import main
+from microslip.cli.modalcompare import case_argv
+from microslip.fe.examples import cantilever_mesh
+from microslip.fe.meshfile import write_inp
+
+CASE = """name = "cantilever on its clamp"
+preset = "table1"
+[material]
+modulus = 70000
+poisson_ratio = 0.33
+[contact]
+friction = 0.5
+stick_slope = 1e4
+[clamping]
+normal_force = 2000
+[mesh]
+file = "cantilever.inp"
+contact_set = "contact"
+clamp_set = "clamp"
+density = 2700
+mode = 2
+response_set = "response"
+"""
+
+
+def test_the_case_gives_the_command_line_of_modal_mesh() -> None:
+    argv = case_argv(parse_case(_toml(CASE), "dir/case.toml"), 4)
+    assert argv is not None
+    flags = {a: b for a, b in itertools.pairwise(argv)
+             if a.startswith("--") and not b.startswith("--")}
+    assert argv[:2] == ["modal", "--mesh"] and argv[2].endswith("dir/cantilever.inp")
+    assert flags["--solver"] == "all" and "--json" in argv
+    assert {k: flags[k] for k in ("--amplitudes", "--mode", "--density", "--contact-set",
+                                  "--clamp-set", "--response-set", "--modulus",
+                                  "--poisson-ratio", "--friction", "--stick-slope",
+                                  "--normal-force")} == {
+        "--amplitudes": "4", "--mode": "2", "--density": "2700.0", "--contact-set": "contact",
+        "--clamp-set": "clamp", "--response-set": "response", "--modulus": "70000.0",
+        "--poisson-ratio": "0.33", "--friction": "0.5", "--stick-slope": "10000.0",
+        "--normal-force": "2000.0"}
+    # no density: no structure section
+    assert case_argv(parse_case(_toml(CASE.replace("density = 2700\n", "")))) is None
+
+
+def _toml(text: str) -> dict:
+    import tomllib
+
+    return tomllib.loads(text)
+
+
+@pytest.mark.parametrize(("value", "message"), [("mode = 0", "mesh.mode must be a whole "
+                                                  "number in [1, 50]"),
+                                                 ("density = -2", "mesh.density must be > 0")])
+def test_bad_structure_keys_are_refused(value: str, message: str) -> None:
+    text = re.sub(r"^" + value.split(" ")[0] + " = .*$", value, CASE, flags=re.M)
+    with pytest.raises(Exception, match=re.escape(message)):
+        parse_case(_toml(text))
+
+
+@pytest.mark.slow
+def test_report_shows_the_structure_section(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.chdir(tmp_path)
+    write_inp(cantilever_mesh(12, 3, 1), tmp_path / "cantilever.inp")
+    (tmp_path / "case.toml").write_text(CASE)
+    assert main(["report", "--case", "case.toml", "--out", "report.html", "--json",
+                 "--no-fe", "--no-progress"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    s = out["structure"]
+    assert s["mode"] == 2 and s["label"] == "bending in the contact plane"
+    assert set(s["solvers"]) >= {"fe", "rom"} and "rom" in s["verdicts"]
+    assert len(s["solvers"]["fe"]["amplitude_mm"]) == 6
+    verdict = s["verdicts"]["rom"]["verdict"]
+    page = (tmp_path / "report.html").read_text()
+    section = page[page.index("<h2>Damping of the structure's mode</h2>"):]
+    assert verdict.replace("'", "&#x27;") in section
+    assert section.count('<img src="data:image/svg+xml;base64,') == 1
+
+
+def test_a_case_without_a_structure_says_so(tmp_path: Path,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    case = tmp_path / "case.toml"
+    case.write_text('preset = "table1"\n')
+    assert main(["report", "--case", str(case), "--out", str(tmp_path / "r.html"), "--json",
+                 "--no-fe", "--no-progress"]) == 0
+    assert json.loads(capsys.readouterr().out)["structure"] is None
+    assert "no structure to report" in (tmp_path / "r.html").read_text()
