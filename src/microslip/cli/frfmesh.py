@@ -78,7 +78,8 @@ def add_frf_mesh_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--solver", choices=list(FRF_MESH_SOLVERS), default=None,
                    help="--mesh: " + "; ".join(f"{k}: {v.help}"
                                                for k, v in FRF_MESH_SOLVERS.items())
-                   + " (default rom)")
+                   + f" (default rom; --harmonics defaults to {DEFAULT_MESH_HARMONICS} "
+                   "with --mesh)")
     g.add_argument("--rom-modes", type=int, default=None, metavar="N",
                    help=f"rom: fixed-interface modes kept (default {DEFAULT_ROM_MODES}; the "
                         "ROM's stuck frequencies then equal the full FE's to about 1e-6)")
