@@ -175,6 +175,8 @@ def test_text_output(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
     (["--rom-modes", "0"], "--rom-modes must be >= 1"),
     (["--frequency-range", "1600", "1400"], "--frequency-range must satisfy 0 < MIN < MAX"),
     (["--force", "-1"], "--force must be finite and > 0 N"),
+    (["--plot", "frf.foo"], "plot file must end in .png"),
+    (["--mode", "51"], "--mode must be in [1, 50]"),
 ])
 def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
                                extra: list[str], message: str) -> None:

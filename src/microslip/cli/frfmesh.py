@@ -318,10 +318,10 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     from ..progress import progress
     from .structure import balance_from_args
 
-    study = frf_study(args)
     check_plot(args.plot)
     if args.csv:
         check_writable(args.csv)
+    study = frf_study(args)
     if args.harmonics is None:
         args.harmonics = DEFAULT_MESH_HARMONICS
     harmonics, samples = balance_from_args(args)
