@@ -49,17 +49,17 @@ def _json(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
     return json.loads(out)
 
 
-def _model(mesh: str):  # type: ignore[no-untyped-def]
+def _model(mesh: str, contact: str = "fixed"):  # type: ignore[no-untyped-def]
     return build_mesh_model(read_mesh(mesh), contact_set="contact", clamp_set="clamp",
                             normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
-                            friction=0.5, stick_slope=1e4)
+                            friction=0.5, stick_slope=1e4, normal_contact=contact)
 
 
 def _full_fe(mesh: str, load_set: str, direction: np.ndarray, force: float,
-             frequencies: np.ndarray) -> np.ndarray:
+             frequencies: np.ndarray, contact: str = "fixed") -> np.ndarray:
     """The full FE's stuck linear response (mm): F spread equally over the load set's nodes
     along ``direction``, the response set's mean displacement along mode 2's direction."""
-    model = _model(mesh)
+    model = _model(mesh, contact)
     k = modal_stiffness(model, "stuck").toarray()
     m = modal_mass(model, 2700.0).toarray()
     along = linear_modes(model, 2700.0, 6, "stuck", "response").select(2).direction
@@ -80,21 +80,24 @@ def _full_fe(mesh: str, load_set: str, direction: np.ndarray, force: float,
 
 
 @pytest.mark.slow
-def test_linear_limit_is_the_stuck_rom(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
+@pytest.mark.parametrize("contact", ["fixed", "penalty"])
+def test_linear_limit_is_the_stuck_rom(capsys: pytest.CaptureFixture[str], mesh: str,
+                                       contact: str) -> None:
     """At 0.01 N below the peak no node slips: the harmonic balance equals the stuck ROM's
-    linear solve to 1e-9, and the full FE's to the ROM's truncation (1e-4)."""
-    out = _json(capsys, "--mesh", mesh, *BASE, *LOW)
+    linear solve to 1e-9, and the full FE's to the ROM's truncation (1e-4); with either
+    normal contact (2-D circular elements, or 3-D elements on their preload)."""
+    out = _json(capsys, "--mesh", mesh, *BASE, *LOW, "--normal-contact", contact)
     (curve,) = out["curves"]
     f = np.asarray(curve["frequency_Hz"])
     a = np.asarray(curve["amplitude_mm"])
     assert [f[0], f[-1]] == pytest.approx([1400.0, 1600.0], rel=1e-12)
-    model = _model(mesh)
+    model = _model(mesh, contact)
     mode = linear_modes(model, 2700.0, 6, "stuck", "response").select(2)
     rom = build_rom(model, 2700.0, modes=60, response_set="response")
     output = mode.direction @ rom.output
     exact = stuck_response(rom_structure(rom, output), output, 0.01, f)
     assert np.max(np.abs(a - exact) / exact) < 1e-9
-    full = _full_fe(mesh, "response", np.asarray(mode.direction), 0.01, f)
+    full = _full_fe(mesh, "response", np.asarray(mode.direction), 0.01, f, contact)
     assert np.max(np.abs(a - full) / full) < 1e-4
     assert curve["damping_ratio"] is None  # the largest amplitude is the range's end
     assert any("not a peak" in w for w in out["warnings"])
