@@ -77,6 +77,7 @@ def test_mesh_is_checked_the_same_on_every_command_that_takes_it():
     # fe's --mesh takes a mesh file of the user's own too; every other command a level
     assert found.pop("fe").type is mesh_or_file
     assert found.pop("modal").type is mesh_file  # the structure's own mesh
+    assert found.pop("frf").type is mesh_file  # the structure's own mesh (frf --mesh)
     assert found.pop("validate").type is mesh_or_file  # its own mesh against CalculiX
     assert {a.type for a in found.values()} == {mesh_level}
     assert actions("--fe-mesh")["modal"].type is mesh_level

@@ -1,4 +1,5 @@
-"""``microslip frf``: frequency-response curves of a mode with a joint, several force levels."""
+"""``microslip frf``: frequency-response curves of a mode with a joint, several force levels;
+with ``--mesh FILE`` the structure of the user's own mesh with its clamp (:mod:`.frfmesh`)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,13 @@ from ..errors import ParameterError
 from ..progress import progress
 from .common import number
 from .contact import report_warnings
+from .frfmesh import (
+    MESH_RANGE,
+    add_frf_mesh_options,
+    check_range,
+    refuse_frf_mesh_options,
+    run_frf_mesh,
+)
 from .structure import (
     across_warnings,
     add_balance_options,
@@ -46,16 +54,20 @@ def add_parser(sub: Any) -> None:
         "amplitudes of the modal coordinate.")
     add_structure_options(p)
     add_balance_options(p)
+    add_frf_mesh_options(p)
     g = p.add_argument_group("excitation and output")
     g.add_argument("--force", type=number, action="append", required=True, metavar="N",
                    help="excitation amplitude, N (repeat for several curves): a modal force "
-                        "on --mode, or a force on each --excitation DOF")
+                        "on --mode, or a force on each --excitation DOF; with --mesh the "
+                        "total force on --load-set")
     g.add_argument("--excitation", type=int, nargs="+", metavar="I",
                    help="--structure: forced DOFs (0-based), each by F cos(2 pi f t) "
                         "(default: the modal force of --mode)")
     g.add_argument("--frequency-range", nargs=2, type=number, metavar=("MIN", "MAX"),
                    help=f"excitation frequencies, Hz (default {RANGE_MARGIN:g} x the "
-                        f"joint-removed to {1 / RANGE_MARGIN:g} x the stuck frequency)")
+                        f"joint-removed to {1 / RANGE_MARGIN:g} x the stuck frequency; with "
+                        f"--mesh {MESH_RANGE[0]:g} to {MESH_RANGE[1]:g} x the mode's stuck "
+                        "frequency)")
     g.add_argument("--step", type=number, default=DEFAULT_STEP, metavar="S",
                    help="largest continuation step, relative to the frequency range and "
                         f"the peak amplitude (default {DEFAULT_STEP:g})")
@@ -96,6 +108,10 @@ def run(args: argparse.Namespace) -> int:
     from ..io import check_writable, write_csv
     from .common import check_plot, print_json
 
+    if args.mesh is not None:
+        _check_levels(args)
+        return run_frf_mesh(args, [float(f) for f in args.force])
+    refuse_frf_mesh_options(args)
     check_plot(args.plot)
     if args.csv:
         check_writable(args.csv)
@@ -103,11 +119,7 @@ def run(args: argparse.Namespace) -> int:
     warnings = across_warnings(args)
     report_warnings(warnings)
     harmonics, samples = balance_from_args(args)
-    for f in args.force:
-        if not (math.isfinite(f) and f > 0.0):
-            raise ParameterError(f"--force must be finite and > 0 N, got {f!r}")
-    if not (math.isfinite(args.step) and 0.0 < args.step <= 1.0):
-        raise ParameterError(f"--step must be in (0, 1], got {args.step!r}")
+    _check_levels(args)
     mode = mode_from_args(args)
     frange = _range(args, structure, mode)
     shape = excitation_from_args(args, structure)
@@ -140,6 +152,15 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_levels(args: argparse.Namespace) -> None:
+    """Every --force finite and > 0 N, --step in (0, 1]."""
+    for f in args.force:
+        if not (math.isfinite(f) and f > 0.0):
+            raise ParameterError(f"--force must be finite and > 0 N, got {f!r}")
+    if not (math.isfinite(args.step) and 0.0 < args.step <= 1.0):
+        raise ParameterError(f"--step must be in (0, 1], got {args.step!r}")
+
+
 def _connectivity(args: argparse.Namespace) -> np.ndarray | list[np.ndarray]:
     if args.structure is None:
         return np.zeros((0, 1, 2), dtype=np.int64)
@@ -161,11 +182,7 @@ def _range(args: argparse.Namespace, structure: Structure, mode: int
            ) -> tuple[float, float]:
     if args.frequency_range is None:
         return default_range(structure, mode)
-    lo, hi = args.frequency_range
-    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
-        raise ParameterError(f"--frequency-range must satisfy 0 < MIN < MAX (Hz), got "
-                             f"{lo:g} {hi:g}")
-    return float(lo), float(hi)
+    return check_range(*args.frequency_range)
 
 
 def _plot(structure: Structure, curves: list[FrequencyResponse], path: str, mode: int,

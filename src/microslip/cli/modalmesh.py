@@ -16,47 +16,30 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ..case.table import add_option, mesh_file, number
 from ..errors import ParameterError
 from .common import check_plot, print_json
-from .ownmesh import REQUIRED as MESH_REQUIRED
+from .meshstructure import (
+    add_mesh_structure_options,
+    check_mesh_structure,
+    mesh_model,
+    mesh_modes,
+)
 from .ownmesh import given, verb
 
 __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 
-#: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
-NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
-                 "participation", "structure", "joint_dof", "coupling", "joint",
-                 "joint_stiffness", "slip_force", "chi", "beta", "elements", "preset",
-                 "length", "width", "thickness", "method", "transverse", "pairing",
-                 "fe_mesh")
+# The mesh structure's options, checks, model and modes: cli.meshstructure (shared with
+# frf --mesh).
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
              "response_set", "solver", "workers", "rom_modes", "backbone")
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
-#: Highest mode number ``--mode`` takes with --mesh (the eigen-solve computes that many).
-MAX_MODE = 50
-REQUIRED = {**MESH_REQUIRED, "density": "--density KG/M3"}
 
 
 def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("the structure of your own mesh (--mesh FILE; docs/ownmesh.md)")
-    g.add_argument("--mesh", metavar="FILE", type=mesh_file,
-                   help="a hexahedral mesh of your structure with its clamp (.inp, .msh, "
-                        ".vtu, ...): its modes and the damping its clamp gives them")
-    add_option(g, "contact_set")
-    add_option(g, "clamp_set")
-    g.add_argument("--normal-contact", choices=["fixed", "penalty"], default=None,
-                   help="fixed: the clamping step's normal forces; penalty: --normal-slope, "
-                        "lift-off allowed (default fixed)")
-    g.add_argument("--normal-slope", type=number, default=None, metavar="N/MM3",
-                   help="penalty normal stiffness per area, N/mm^3 (default 1e5)")
-    g.add_argument("--density", type=number, default=None, metavar="KG/M3",
-                   help="density of the body, kg/m^3 (aluminium 2700, steel 7850)")
-    g.add_argument("--response-set", metavar="NAME", default=None,
-                   help="set whose mean displacement along the mode is the amplitude "
-                        "(amplitude_mm)")
+    add_mesh_structure_options(g)
     g.add_argument("--solver", choices=[*MESH_SOLVERS, ALL], default=None,
                    help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
                    + f"; {ALL}: every one of them side by side, with a verdict on each "
@@ -91,18 +74,7 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
 
 
 def _check(args: argparse.Namespace) -> None:
-    bad = [f"--{d.replace('_', '-')}" for d in NOT_WITH_MESH if given(args, d)]
-    if bad:
-        raise ParameterError(f"{', '.join(bad)} not used with --mesh (the mesh gives the "
-                             "structure, its contact the joint)")
-    missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
-    for dest in ("contact_set", "clamp_set"):
-        if getattr(args, dest, None) is None:
-            missing.insert(0, f"--{dest.replace('_', '-')} NAME")
-    if missing:
-        raise ParameterError(f"--mesh {args.mesh} needs {', '.join(missing)}")
-    if args.normal_contact != "penalty" and args.normal_slope is not None:
-        raise ParameterError("--normal-slope needs --normal-contact penalty")
+    check_mesh_structure(args)
     solver = args.solver or "fe"
     for dest in dict.fromkeys(o for s in MESH_SOLVERS.values() for o in s.options):
         if given(args, dest) and solver != ALL and dest not in MESH_SOLVERS[solver].options:
@@ -140,30 +112,10 @@ def _grid(args: argparse.Namespace, model: Any, modes: Any, number: int) -> tupl
 def mesh_study(args: argparse.Namespace) -> MeshStudy:
     """Check the command line, read the mesh, clamp it, compute the stuck and free modes and
     the amplitude grid: everything the solvers share."""
-    from ..fe.builtin.meshmodel import build_mesh_model
-    from ..fe.builtin.modes import linear_modes
-    from ..fe.constants import DEFAULT_NORMAL_SLOPE
-    from ..fe.meshcheck import check_roles
-    from ..fe.meshfile import read_mesh
-
     _check(args)
     check_plot(args.plot)
-    mesh = read_mesh(args.mesh)
-    check_roles(mesh, args.contact_set, args.clamp_set,
-                [args.response_set] if args.response_set else [])
-    model = build_mesh_model(
-        mesh, contact_set=args.contact_set, clamp_set=args.clamp_set,
-        normal_force=float(args.normal_force), modulus=float(args.modulus),
-        poisson_ratio=float(args.poisson_ratio), friction=float(args.friction),
-        stick_slope=float(args.stick_slope),
-        normal_contact=args.normal_contact or "fixed",
-        normal_slope=DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope)
-    number = 1 if args.mode is None else args.mode
-    if not 1 <= number <= MAX_MODE:
-        raise ParameterError(f"--mode must be in [1, {MAX_MODE}] with --mesh, got {number}")
-    n = max(6, number)
-    stuck = linear_modes(model, args.density, n, "stuck", args.response_set)
-    free = linear_modes(model, args.density, n, "free", args.response_set)
+    model = mesh_model(args)
+    number, stuck, free = mesh_modes(args, model)
     forces, amplitudes = _grid(args, model, stuck, number)
     return MeshStudy(args=args, model=model, stuck=stuck, free=free, number=number,
                      forces=forces, amplitudes=amplitudes)
