@@ -207,7 +207,32 @@ def test_solver_options_follow_the_registry(capsys: pytest.CaptureFixture[str], 
     assert main(["frf", "--mesh", mesh, *BASE, "--force", "1", "--solver", "other",
                  "--rom-modes", "10"]) == 1
     _, err = capsys.readouterr()
-    assert "--rom-modes applies to --solver rom only" in err
+    assert "--rom-modes applies to --solver rom or joint only" in err
+    assert main(["frf", "--mesh", mesh, *BASE, "--force", "1", "--backbone", "work"]) == 1
+    _, err = capsys.readouterr()
+    assert "--backbone applies to --solver joint only" in err
+
+
+@pytest.mark.slow
+def test_whole_joint_linear_limit(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
+    """--solver joint at 0.01 N: no joint slips, so the harmonic balance equals the stuck
+    whole-joint model's own linear solve to 1e-9 (the load carried through the interface
+    reduction, T^T f), and its stuck frequency is the one the model reports."""
+    from microslip.fe.builtin.wholejoint import build_whole_joint
+
+    out = _json(capsys, "--mesh", mesh, *BASE, *LOW, "--solver", "joint")
+    (curve,) = out["curves"]
+    f = np.asarray(curve["frequency_Hz"])
+    a = np.asarray(curve["amplitude_mm"])
+    model = _model(mesh)
+    mode = linear_modes(model, 2700.0, 6, "stuck", "response").select(2)
+    rom = build_rom(model, 2700.0, modes=60, response_set="response")
+    joint = build_whole_joint(rom, model, mode, mode.direction @ rom.output)
+    load = mode.direction @ rom.output @ joint.transform
+    exact = stuck_response(joint.structure, load, 0.01, f)
+    assert np.max(np.abs(a - exact) / exact) < 1e-9
+    assert out["joint"]["stuck_frequency_Hz"] == pytest.approx(
+        float(joint.stuck_frequencies()[joint.mode_index(mode.frequency_Hz)]), rel=1e-9)
 
 
 def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[str]) -> None:

@@ -213,3 +213,12 @@ def test_work_backbone_does_the_interface_s_whole_work(model, modes) -> None:  #
     assert total == pytest.approx(loading.work[-1], rel=0.02)
     # out-of-plane bending: nothing to stretch, the pull test's joint
     assert work_backbone(model, modes.select(1)).source == "pull"
+
+
+def test_command_line_names_every_backbone() -> None:
+    """The parser's --backbone choices are the library's backbones (named twice so that the
+    command line starts without importing the FE)."""
+    from microslip.cli.meshstructure import BACKBONE_NAMES
+    from microslip.fe.builtin.wholejoint import BACKBONES
+
+    assert tuple(BACKBONES) == BACKBONE_NAMES

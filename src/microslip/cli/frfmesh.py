@@ -32,7 +32,9 @@ import numpy as np
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
+    DEFAULT_ROM_MODES,
     add_mesh_structure_options,
+    add_reduced_model_options,
     check_mesh_structure,
     mesh_model,
     mesh_modes,
@@ -53,11 +55,10 @@ DEFAULT_MESH_HARMONICS = 3
 MESH_RANGE = (0.8, 1.05)
 #: Options of frf --mesh only (destinations).
 FRF_MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-                 "response_set", "solver", "rom_modes", "load_set", "load_direction")
+                 "response_set", "solver", "rom_modes", "backbone", "load_set",
+                 "load_direction")
 #: Options of frf's structure file that do nothing with a mesh.
 NOT_WITH_FRF_MESH = ("excitation",)
-#: Fixed-interface modes of the ROM unless --rom-modes says (as modal --mesh).
-DEFAULT_ROM_MODES = 60
 DAMPING_DEFINITION = ("zeta = F_modal / (2 m omega^2 a_peak): the linear single-mode peak "
                       "a_peak = F_modal / (2 zeta m omega^2) solved for zeta, with the stuck "
                       "mode's modal force F_modal and mass m (mass-normalised: m = 1) "
@@ -80,9 +81,7 @@ def add_frf_mesh_options(p: argparse.ArgumentParser) -> None:
                                                for k, v in FRF_MESH_SOLVERS.items())
                    + f" (default rom; --harmonics defaults to {DEFAULT_MESH_HARMONICS} "
                    "with --mesh)")
-    g.add_argument("--rom-modes", type=int, default=None, metavar="N",
-                   help=f"rom: fixed-interface modes kept (default {DEFAULT_ROM_MODES}; the "
-                        "ROM's stuck frequencies then equal the full FE's to about 1e-6)")
+    add_reduced_model_options(g)
 
 
 def refuse_frf_mesh_options(args: argparse.Namespace) -> None:
@@ -294,10 +293,38 @@ def _load_rows(study: FrfStudy, rom: Any, modes: int) -> np.ndarray:
 #: per N (the load set's force on its coordinates), the mode's index in it and odd=True for
 #: an Iwan joint, e.g. ``"joint": FrfMeshSolver("harmonic balance on the whole-joint model
 #: ...", (), _joint)``.
+def _joint(study: FrfStudy) -> ForcedModel:
+    """The whole-joint model (:func:`microslip.fe.builtin.wholejoint.build_whole_joint`) on
+    the contact-node ROM: its load is the ROM's carried through the interface reduction T
+    (T^T f), its mode the stuck one nearest the full FE's."""
+    from ..fe.builtin.reduce import build_rom
+    from ..fe.builtin.wholejoint import build_whole_joint
+
+    args, mode = study.args, study.mode
+    modes = args.rom_modes or DEFAULT_ROM_MODES
+    rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
+    rows = rom.output if study.load_set == args.response_set else _load_rows(study, rom, modes)
+    joint = build_whole_joint(rom, study.model, mode, mode.direction @ rom.output,
+                              backbone=args.backbone or "fe")
+    index = joint.mode_index(mode.frequency_Hz)
+    stuck = float(joint.stuck_frequencies()[index])
+    return ForcedModel(
+        structure=joint.structure,
+        load=np.asarray(study.load_direction @ rows @ joint.transform), mode=index, odd=True,
+        label=f"harmonic balance on the whole-joint model ({joint.structure.dofs} DOF; stuck "
+              f"{stuck:.6g} Hz, {100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the "
+              "full FE)",
+        extra={"joint": {**joint.backbone.summary(), "torsion": joint.torsion,
+                         "stuck_frequency_Hz": stuck}})
+
+
 FRF_MESH_SOLVERS: dict[str, FrfMeshSolver] = {
     "rom": FrfMeshSolver("harmonic balance on the Craig-Bampton model that keeps every "
                          "contact node with the FE's own contact law (--rom-modes "
                          "fixed-interface modes)", ("rom_modes",), _rom),
+    "joint": FrfMeshSolver("harmonic balance on the whole-joint model: the interface rigid "
+                           "in its plane, one joint whose backbone is the FE's first loading "
+                           "by the mode (--backbone)", ("rom_modes", "backbone"), _joint),
 }
 
 

@@ -17,7 +17,8 @@ from ..errors import ParameterError
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
 from .ownmesh import given
 
-__all__ = ["MAX_MODE", "NOT_WITH_MESH", "REQUIRED", "add_mesh_structure_options",
+__all__ = ["DEFAULT_ROM_MODES", "MAX_MODE", "NOT_WITH_MESH", "REQUIRED",
+           "add_mesh_structure_options", "add_reduced_model_options",
            "check_mesh_structure", "mesh_model", "mesh_modes"]
 
 #: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
@@ -30,6 +31,12 @@ NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
 MAX_MODE = 50
 #: The clamp's values and the density a mesh structure needs: destination -> flag.
 REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
+#: Fixed-interface modes of the ROM unless --rom-modes says (the cantilever's stuck
+#: frequencies then equal the full FE's to about 1e-6).
+DEFAULT_ROM_MODES = 60
+#: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
+#: named here so that the parser does not import the FE; a test holds the two equal).
+BACKBONE_NAMES = ("fe", "work", "tip", "centre")
 
 
 def add_mesh_structure_options(g: Any) -> None:
@@ -50,6 +57,20 @@ def add_mesh_structure_options(g: Any) -> None:
     g.add_argument("--response-set", metavar="NAME", default=None,
                    help="set whose mean displacement along the mode is the amplitude "
                         "(amplitude_mm)")
+
+
+def add_reduced_model_options(g: Any) -> None:
+    """``--rom-modes`` and ``--backbone``: the reduced models of ``modal --mesh`` and ``frf
+    --mesh`` (the contact-node ROM, ``rom``, and the whole joint built on it, ``joint``)."""
+    g.add_argument("--rom-modes", type=int, default=None, metavar="N",
+                   help=f"rom, joint: fixed-interface modes kept (default {DEFAULT_ROM_MODES}"
+                        "; the ROM's stuck frequencies then equal the full FE's to about "
+                        "1e-6)")
+    g.add_argument("--backbone", choices=list(BACKBONE_NAMES), default=None,
+                   help="joint: the whole joint's backbone, the FE's own first loading by "
+                        "the mode (fe, default), the same with work-equivalent "
+                        "displacements (work), or the paper's 1-D clamp model on the "
+                        "contact patch (tip, centre)")
 
 
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:

@@ -19,7 +19,9 @@ from typing import Any
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
+    DEFAULT_ROM_MODES,
     add_mesh_structure_options,
+    add_reduced_model_options,
     check_mesh_structure,
     mesh_model,
     mesh_modes,
@@ -44,14 +46,7 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                    help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
                    + f"; {ALL}: every one of them side by side, with a verdict on each "
                    "against the full FE (default fe)")
-    g.add_argument("--rom-modes", type=int, default=None, metavar="N",
-                   help="rom, joint: fixed-interface modes kept (default 60; the ROM's stuck "
-                        "frequencies then equal the full FE's to about 1e-6)")
-    g.add_argument("--backbone", choices=["fe", "work", "tip", "centre"], default=None,
-                   help="joint: the whole joint's backbone, the FE's own first loading by "
-                        "the mode (fe, default), the same with work-equivalent "
-                        "displacements (work), or the paper's 1-D clamp model on the "
-                        "contact patch (tip, centre)")
+    add_reduced_model_options(g)
     g.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes for the amplitudes (independent runs; default 1)")
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
@@ -335,6 +330,3 @@ MESH_SOLVERS: dict[str, MeshSolver] = {
                         "is the FE's first loading by the mode (or --backbone tip|centre)",
                         ("harmonics", "rom_modes", "backbone"), _joint),
 }
-#: Fixed-interface modes of the ROM unless --rom-modes says (its stuck frequencies then
-#: equal the full FE's to about 1e-6 on the cantilever).
-DEFAULT_ROM_MODES = 60
