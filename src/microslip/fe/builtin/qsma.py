@@ -50,6 +50,7 @@ __all__ = [
     "GROSS_STICK",
     "QSMACurve",
     "QSMAPoint",
+    "cyclic_ok",
     "first_harmonic",
     "first_slip_force",
     "loop_stiffness",
@@ -115,6 +116,10 @@ class QSMAPoint:
     cycles : int
     wall_s : float
     message : str
+    node_slipped : ndarray of bool, shape (n_c,)
+        Per contact node (:attr:`~.meshmodel.MeshModel.contact_nodes` order): it slipped at
+        some state of the settled cycle (the slip pattern; all False for a failed run). Not
+        in :meth:`QSMACurve.summary`.
     """
 
     force: float
@@ -129,6 +134,8 @@ class QSMAPoint:
     cycles: int
     wall_s: float
     message: str
+    node_slipped: NDArray[np.bool_] = field(repr=False, compare=False,
+                                            default_factory=lambda: np.zeros(0, dtype=bool))
 
 
 @dataclass(frozen=True, eq=False)
@@ -244,9 +251,9 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
     # a node slipped in the cycle if its slip moved by more than 1e-6 of its slip
     # displacement mu N_i / k_i (a node left at its limit by the clamping step is flagged
     # ``slip`` without moving)
-    slip = r.contact.slip[k0:] if r.contact.slip is not None else np.zeros((1, 1, 2))
     scale = model.friction_limit / model.contact_stiffness
-    slipped = np.max(np.ptp(slip, axis=0), axis=1) > 1e-6 * scale
+    slipped = (np.max(np.ptp(r.contact.slip[k0:], axis=0), axis=1) > 1e-6 * scale
+               if r.contact.slip is not None else np.zeros(scale.size, dtype=bool))
     if w == 0.0:
         slipped[:] = False
     area = model.contact_area
@@ -257,15 +264,16 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
                      damping_ratio=float(zeta), dissipated_energy_Nmm=float(w),
                      slip_fraction=float(area[slipped].sum() / area.sum()),
                      settled=settled, cycles=r.cycles, wall_s=r.wall_s,
-                     message=r.message)
+                     message=r.message, node_slipped=np.asarray(slipped, dtype=bool))
 
 
-def _failed(force: float, why: str) -> QSMAPoint:
+def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
     nan = math.nan
     return QSMAPoint(force=force, modal_amplitude=nan, amplitude_mm=nan, frequency_Hz=nan,
                      secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
                      slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
-                     message=f"failed: {why}")
+                     message=f"failed: {why}",
+                     node_slipped=np.zeros(contact_nodes, dtype=bool))
 
 
 def _point(model: MeshModel, mode: Mode, force: float,
@@ -275,7 +283,7 @@ def _point(model: MeshModel, mode: Mode, force: float,
     try:
         return qsma_point(model, mode, force, history)
     except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError) as exc:
-        return _failed(force, str(exc))
+        return _failed(force, str(exc), int(model.contact_nodes.size))
 
 
 def first_slip_force(model: MeshModel, mode: Mode) -> float:
@@ -305,20 +313,35 @@ def first_slip_force(model: MeshModel, mode: Mode) -> float:
 
 
 def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1.25,
-                    max_steps: int = 80) -> FloatArray:
+                    max_steps: int = 80, history: SineCycles | None = None) -> FloatArray:
     """Modal forces q from first slip to near gross sliding, log-uniform, ``count`` of them.
 
-    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`; the last is the
-    largest level of a first loading (q raised from the first-slip force by factors ``step``
-    on the full FE) at which at least :data:`GROSS_STICK` of the contact area still sticks
-    (or the last that converges), and below 0.99 of the level whose in-plane resultant
-    reaches mu F_N (macroslip)."""
+    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`. The last is found
+    in two passes: a first loading (q raised from the first-slip force by factors ``step`` on
+    the full FE) gives the largest level that converges with at least :data:`GROSS_STICK`
+    of the contact area still stuck, below 0.99 of the level whose in-plane resultant reaches
+    mu F_N (macroslip); then, because a cycle reverses the load (a force range of 2 q, more
+    slip than the first loading), that level is lowered until its cyclic run
+    (:func:`qsma_point` with ``history``) converges and keeps :data:`GROSS_STICK` of the
+    area stuck over the settled cycle (:attr:`QSMAPoint.slip_fraction` at most
+    1 - GROSS_STICK; :func:`_cyclic_top`). The grid's top is thus a level whose cyclic run
+    converged, not one that only a first loading carries (past it the cycle fails: NaN)."""
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
         raise ParameterError(f"count must be a whole number in [1, 1000], got {count!r}")
     q1 = first_slip_force(model, mode)
+    lo = FIRST_SLIP_MARGIN * q1
+    top = max(_first_loading_top(model, mode, q1, step, max_steps), lo)
+    if count == 1:
+        return np.array([lo])
+    top = _cyclic_top(model, mode, lo, top, step, history)
+    return np.geomspace(lo, top, count)
+
+
+def _first_loading_top(model: MeshModel, mode: Mode, q1: float, step: float,
+                       max_steps: int) -> float:
     run = _Run(model, [_load(mode, 1.0)], record=False)
     area = model.contact_area
-    q, top = q1, q1
+    top = q1
     for i in range(max_steps):
         q = q1 * step ** (i + 1)
         try:
@@ -332,9 +355,31 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
     resultant = float(np.linalg.norm(_plane_resultant(model, _load(mode, 1.0))))
     if resultant > 0:  # solve_mesh refuses an in-plane resultant of mu F_N or more
         top = min(top, 0.99 * model.force_scale / resultant)
-    lo = FIRST_SLIP_MARGIN * q1
-    hi = max(top, lo)
-    return np.geomspace(lo, hi, count) if count > 1 else np.array([lo])
+    return top
+
+
+def cyclic_ok(point: QSMAPoint) -> bool:
+    """The cyclic run converged (finite figures) and kept :data:`GROSS_STICK` of the contact
+    area stuck over its settled cycle."""
+    return bool(math.isfinite(point.damping_ratio)
+                and point.slip_fraction <= 1.0 - GROSS_STICK)
+
+
+def _cyclic_top(model: MeshModel, mode: Mode, lo: float, top: float, step: float,
+                history: SineCycles | None) -> float:
+    """The largest level in [lo, top] whose cyclic run is :func:`cyclic_ok`, to within a
+    factor ``step``: top itself, or a bisection in log q between lo (the grid's first,
+    taken as good) and the first failing level (a level above one that fails also fails)."""
+    if top <= lo or cyclic_ok(_point(model, mode, top, history)):
+        return top
+    good, bad = lo, top
+    while bad / good > step:
+        mid = math.sqrt(good * bad)
+        if cyclic_ok(_point(model, mode, mid, history)):
+            good = mid
+        else:
+            bad = mid
+    return good
 
 
 # ---------------------------------------------------------------- independent runs
@@ -420,7 +465,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
         its reason in :attr:`QSMACurve.warnings`.
     """
     t0 = time.perf_counter()
-    q = (qsma_amplitudes(model, mode, count) if forces is None
+    q = (qsma_amplitudes(model, mode, count, history=history) if forces is None
          else np.asarray(forces, dtype=float))
     if q.ndim != 1 or q.size == 0 or not np.all(np.isfinite(q) & (q > 0)):
         raise ParameterError("forces must be one or more modal forces > 0")
