@@ -25,14 +25,15 @@ from __future__ import annotations
 import argparse
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
-from microslip.dynamics.modal import epmc, quasi_static
+from microslip.dynamics.modal import ModalCurve, epmc, quasi_static
 from microslip.dynamics.modal_odd import epmc_odd
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
+from microslip.fe.builtin.modes import Mode, linear_modes
+from microslip.fe.builtin.qsma import QSMACurve, qsma, qsma_amplitudes
 from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
 
@@ -47,8 +48,21 @@ MICROSLIP_TOP = 0.05
 QSMA_HARMONICS = 15
 
 
+@dataclass(frozen=True)
+class Comparison:
+    """One mode: the FE's QSMA, the ROM's EPMC and QSMA on its converged points, seconds."""
+
+    mode: Mode
+    fe: QSMACurve
+    ok: np.ndarray
+    epmc: ModalCurve
+    rom_qsma: ModalCurve
+    rom_dofs: int
+    times: tuple[float, float, float]
+
+
 def compare(mesh: tuple[int, int, int], number: int, count: int, harmonics: int,
-            rom_modes: int, normal: str) -> dict[str, object]:
+            rom_modes: int, normal: str) -> Comparison:
     model = build_mesh_model(cantilever_mesh(*mesh), contact_set="contact",
                              clamp_set="clamp", normal_force=FN, modulus=E,
                              poisson_ratio=NU, friction=MU, stick_slope=LAM,
@@ -69,29 +83,28 @@ def compare(mesh: tuple[int, int, int], number: int, count: int, harmonics: int,
     t0 = time.perf_counter()
     rq = quasi_static(s, forces[ok], QSMA_HARMONICS, samples=256, mode=number - 1)
     t_rq = time.perf_counter() - t0
-    return {"mode": mode, "fe": fe, "ok": ok, "epmc": ep, "rom_qsma": rq, "forces": forces,
-            "times": (t_fe, t_ep, t_rq), "rom": rom}
+    return Comparison(mode=mode, fe=fe, ok=ok, epmc=ep, rom_qsma=rq, rom_dofs=rom.dofs,
+                      times=(t_fe, t_ep, t_rq))
 
 
-def report(r: dict[str, object], harmonics: int) -> bool:
-    mode, fe, ok = r["mode"], r["fe"], r["ok"]
-    ep, rq = r["epmc"], r["rom_qsma"]
-    t_fe, t_ep, t_rq = r["times"]  # type: ignore[misc]
-    print(f"\nmode {mode.number} ({mode.label}), stuck {mode.frequency_Hz:.2f} Hz; "  # type: ignore[attr-defined]
-          f"FE QSMA {t_fe:.1f} s, ROM ({r['rom'].dofs} DOF) EPMC {harmonics} harmonics "  # type: ignore[attr-defined]
+def report(r: Comparison, harmonics: int) -> bool:
+    mode, fe, ok, ep, rq = r.mode, r.fe, r.ok, r.epmc, r.rom_qsma
+    t_fe, t_ep, t_rq = r.times
+    print(f"\nmode {mode.number} ({mode.label}), stuck {mode.frequency_Hz:.2f} Hz; "
+          f"FE QSMA {t_fe:.1f} s, ROM ({r.rom_dofs} DOF) EPMC {harmonics} harmonics "
           f"{t_ep:.1f} s, ROM-QSMA {t_rq:.1f} s")
     print(f"{'a mm':>10} {'FE f Hz':>10} {'FE zeta':>9} {'EPMC f Hz':>10} {'EPMC zeta':>9} "
           f"{'df %':>7} {'dzeta %':>8} {'RQ f Hz':>10} {'RQ zeta':>9} {'df %':>7} "
           f"{'dzeta %':>8}  range")
     good = True
     j = 0
-    for i, a in enumerate(fe.amplitude_mm):  # type: ignore[attr-defined]
-        if not ok[i]:  # type: ignore[index]
-            print(f"{'nan':>10}  FE failed: {fe.points[i].message}")  # type: ignore[attr-defined]
+    for i, a in enumerate(fe.amplitude_mm):
+        if not ok[i]:
+            print(f"{'nan':>10}  FE failed: {fe.points[i].message}")
             continue
-        f, z = fe.frequency_Hz[i], fe.damping_ratio[i]  # type: ignore[attr-defined]
-        ef, ez = ep.frequency[j], ep.damping_ratio[j]  # type: ignore[attr-defined]
-        qf, qz = rq.frequency[j], rq.damping_ratio[j]  # type: ignore[attr-defined]
+        f, z = fe.frequency_Hz[i], fe.damping_ratio[i]
+        ef, ez = ep.frequency[j], ep.damping_ratio[j]
+        qf, qz = rq.frequency[j], rq.damping_ratio[j]
         j += 1
         inside = MICROSLIP_BOTTOM <= z <= MICROSLIP_TOP
         dz = (ez / z - 1) * 100 if z > 0 else math.nan
@@ -124,8 +137,8 @@ def main() -> None:
     print(f"cantilever {mesh[0]}x{mesh[1]}x{mesh[2]}, {args.normal_contact} normal contact, "
           f"{count} amplitudes, ROM {args.rom_modes} fixed-interface modes")
     for number in args.modes:
-        report(compare(mesh, number, count, args.harmonics, args.rom_modes,  # type: ignore[arg-type]
-                       args.normal_contact), args.harmonics)
+        report(compare((mesh[0], mesh[1], mesh[2]), number, count, args.harmonics,
+                       args.rom_modes, args.normal_contact), args.harmonics)
 
 
 if __name__ == "__main__":
