@@ -322,7 +322,7 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
     of the contact area still stuck, below 0.99 of the level whose in-plane resultant reaches
     mu F_N (macroslip); then, because a cycle reverses the load (a force range of 2 q, more
     slip than the first loading), that level is lowered until its cyclic run
-    (:func:`qsma_point` with ``history``) converges and keeps :data:`GROSS_STICK` of the
+    (:func:`qsma_point`, two cycles of ``history``) converges and keeps :data:`GROSS_STICK` of the
     area stuck over the settled cycle (:attr:`QSMAPoint.slip_fraction` at most
     1 - GROSS_STICK; :func:`_cyclic_top`). The grid's top is thus a level whose cyclic run
     converged, not one that only a first loading carries (past it the cycle fails: NaN)."""
@@ -367,15 +367,19 @@ def cyclic_ok(point: QSMAPoint) -> bool:
 
 def _cyclic_top(model: MeshModel, mode: Mode, lo: float, top: float, step: float,
                 history: SineCycles | None) -> float:
-    """The largest level in [lo, top] whose cyclic run is :func:`cyclic_ok`, to within a
-    factor ``step``: top itself, or a bisection in log q between lo (the grid's first,
-    taken as good) and the first failing level (a level above one that fails also fails)."""
-    if top <= lo or cyclic_ok(_point(model, mode, top, history)):
+    """The largest level in [lo, top] whose cyclic run (two cycles of ``history``) is
+    :func:`cyclic_ok`, to within a factor ``step``: top itself, or a bisection in log q
+    between lo (the grid's first, taken as good) and the first failing level."""
+    h = SineCycles() if history is None else history
+    # two cycles: a level the cycle cannot carry fails on the first reversal
+    check = SineCycles(increments=h.increments, tol=h.tol, min_cycles=2, max_cycles=2,
+                       startup=h.startup)
+    if top <= lo or cyclic_ok(_point(model, mode, top, check)):
         return top
     good, bad = lo, top
     while bad / good > step:
         mid = math.sqrt(good * bad)
-        if cyclic_ok(_point(model, mode, mid, history)):
+        if cyclic_ok(_point(model, mode, mid, check)):
             good = mid
         else:
             bad = mid
