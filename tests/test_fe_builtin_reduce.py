@@ -208,7 +208,7 @@ def test_epmc_softens_and_damps_from_the_stuck_values(small):
 def _epmc_state(s, a: float, harmonics: int, mode: int):
     """The EPMC solution at amplitude ``a`` (harmonics (dofs, 2H+1), omega, xi), by
     Newton from the continuation's frequency and damping at ``a``."""
-    c = epmc(s, np.geomspace(5e-3, a, 6), harmonics, mode=mode)
+    c = epmc(s, np.geomspace(2e-3, a, 6), harmonics, mode=mode)
     hb = HarmonicBalance(s, harmonics, 128)
     h, n = 2 * harmonics + 1, hb.size
     phi = mode_shape(s, mode)
@@ -230,36 +230,95 @@ def _epmc_state(s, a: float, harmonics: int, mode: int):
     return y[:n].reshape(s.dofs, h), float(y[n]), float(y[n + 1])
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("amplitude", [1.2e-2, 1.5e-2, 2e-2])
-def test_epmc_against_time_integration(small, amplitude):
-    """Phase resonance: the EPMC's self-excitation xi M q' (first harmonic) at amplitude a
-    loads the ROM, integrated in time (central differences) at the EPMC frequency until
-    settled. From the last period: the response amplitude a', its phase to the load (-90
-    degrees at resonance), and the damping ratio the load's work W per cycle gives,
-    ``zeta = W / (2 pi w^2 sum_k k^2 X_k^H M X_k)`` (every harmonic of the motion, as the
-    EPMC's xi M q' balances). Against the EPMC at a': frequency within 1 %, damping ratio
-    within 5 % (7 harmonics; the gap is the harmonic truncation of stick-slip: 15 harmonics
-    halve it)."""
-    _rom, s = small
-    harmonics = 7
-    x, w, xi = _epmc_state(s, amplitude, harmonics, 1)
-    load = SI_PER_MM * xi * w * (s.mass @ x[:, 1])
-    run = transient(s, load, w / (2 * np.pi), 80, steps=64)
+def _self_excitation(s, x, w: float, xi: float) -> np.ndarray:
+    """The EPMC's self-excitation xi M q'(t) of the orbit ``x`` (dofs, 2H + 1) as harmonic
+    coefficients (N): q' has c_k' = k w s_k, s_k' = -k w c_k."""
+    k = np.arange(1, x.shape[1] // 2 + 1)
+    dq = np.zeros_like(x)
+    dq[:, 1::2] = w * k * x[:, 2::2]
+    dq[:, 2::2] = -w * k * x[:, 1::2]
+    return SI_PER_MM * xi * (s.mass @ dq)
+
+
+def _forced_orbit(s, x, w: float, xi: float, periods: int = 20) -> tuple[float, float, float]:
+    """The ROM under the EPMC's whole self-excitation xi M q'(t) (no negative damping),
+    integrated in time from the EPMC orbit's state at t = 0 (the sliders at zero) at the
+    EPMC's frequency; from the settled last period (15 harmonics of every dof, X_k):
+    the first-harmonic natural frequency (Hz), the damping ratio from the load's work
+    W per cycle and the output's first-harmonic amplitude (mm)."""
+    load = _self_excitation(s, x, w, xi)
+    k = np.arange(1, x.shape[1] // 2 + 1)
+    x0 = x[:, 0] + x[:, 1::2].sum(axis=1)
+    v0 = w * (x[:, 2::2] @ k)
+    run = transient(s, load, w / (2 * np.pi), periods, initial=(x0, v0))
     assert run.change < 1e-3
     n = run.steps
-    k = np.arange(1, 16)
-    basis = (2.0 / n) * np.exp(-2j * np.pi * np.outer(k, np.arange(1, n + 1)) / n)
+    kk = np.arange(1, 16)
+    basis = (2.0 / n) * np.exp(-2j * np.pi * np.outer(kk, np.arange(1, n + 1)) / n)
     xk = basis @ run.displacement  # (15, dofs): x(t) = Re sum X_k e^{i k w t}
-    work = -np.pi * float(load @ xk[0].imag)  # N mm per cycle
-    kinetic = float(np.sum(k**2 * np.real(np.einsum("ki,ij,kj->k", xk.conj(), s.mass, xk))))
-    zeta = work / (2 * np.pi * w**2 * SI_PER_MM * kinetic)
-    reached = abs(s.output @ xk[0])
-    assert abs(reached / amplitude - 1.0) < 0.03
-    assert abs(np.degrees(np.angle(s.output @ xk[0])) + 90.0) < 3.0
-    curve = epmc(s, np.geomspace(5e-3, reached, 6), harmonics, mode=1)
-    assert abs(curve.frequency[-1] / (w / (2 * np.pi)) - 1.0) < 0.01
-    assert abs(zeta / curve.damping_ratio[-1] - 1.0) < 0.05
+    pk = load[:, 1::2] - 1j * load[:, 2::2]  # (dofs, H): p(t) = Re sum P_k e^{i k w t}
+    x1 = xk[0]
+    mass = SI_PER_MM * float(np.real(x1.conj() @ s.mass @ x1))
+    w_ti = np.sqrt(w**2 + float(np.real(x1.conj() @ pk[:, 0])) / mass)
+    work = np.pi / w * sum(float(np.real(pk[:, j].conj() @ (1j * (j + 1) * w * xk[j])))
+                           for j in range(pk.shape[1]))  # N mm per cycle
+    kinetic = SI_PER_MM * float(np.sum(kk**2 * np.real(
+        np.einsum("ki,ij,kj->k", xk.conj(), s.mass, xk))))
+    return w_ti / (2 * np.pi), work / (2 * np.pi * w**2 * kinetic), abs(s.output @ x1)
+
+
+def _gaps(s, amplitude: float, harmonics: int) -> tuple[float, float, float]:
+    """Relative gaps time integration / EPMC: frequency, damping ratio, amplitude."""
+    x, w, xi = _epmc_state(s, amplitude, harmonics, 1)
+    f, zeta, a = _forced_orbit(s, x, w, xi)
+    return f / (w / (2 * np.pi)) - 1.0, zeta / (xi / (2 * w)) - 1.0, a / amplitude - 1.0
+
+
+@pytest.mark.slow  # about 20 s
+def test_epmc_against_time_integration(small):
+    """The EPMC orbit q(t) (H harmonics, frequency w, negative damping xi) solves
+    ``M q'' + K q + f(q) = xi M q'(t)`` once the right-hand side is taken as a given periodic
+    load: the same equation with the artificial damping moved to the load. So the ROM
+    loaded by the EPMC's whole self-excitation p(t) = xi M q'(t) (every harmonic kept) and
+    integrated in time at w until settled reproduces the orbit, exactly as H grows and the
+    time step shrinks. From the settled period (X_k, P_k the k-th harmonics of q and p):
+
+    * frequency: ``w_t^2 = w^2 + Re(X_1^H P_1) / (X_1^H M X_1)``, the first-harmonic
+      natural frequency (the first harmonic's balance with the in-phase part of the load
+      moved to the stiffness side); w_t = w exactly when the load is in quadrature with the
+      response (phase resonance), as it is on the EPMC orbit;
+    * damping ratio: ``zeta_t = W / (2 pi w^2 sum_k k^2 X_k^H M X_k)``, W the load's work
+      per cycle; on the EPMC orbit W = xi pi w sum_k k^2 X_k^H M X_k, so zeta_t = xi / (2 w),
+      the EPMC's;
+    * amplitude: the output's first harmonic, against the EPMC's a.
+
+    The residual is the harmonic truncation: stick-slip has kinks, its harmonics fall as
+    k^-2, and the harmonics above H that the balance drops are in the time integration.
+    Measured on this ROM (the time step below 2e-4 of each gap: halving it moved the damping
+    gap at a = 1.2e-2 mm from +1.69 % to +1.67 %):
+
+    ==========  =================  =================  =================
+    a (mm)      H = 3              H = 7              H = 15
+    ==========  =================  =================  =================
+    9e-3                           f +0.01 %, z +0.4  f +0.02 %, z +0.8
+    1.2e-2      f -0.16 %, z -4.4  f +0.03 %, z +1.7  f +0.01 %, z +0.9
+    2e-2        f +0.04 %, z +2.9  f +0.10 %, z +2.5  f +0.06 %, z +1.6
+    ==========  =================  =================  =================
+
+    (z: the damping ratio's gap, %; damping ratios 1.2 %, 2.3 % and 4.7 %). The frequency
+    holds the issue's 1 % with 7 harmonics (within 0.2 % here); the damping ratio is within
+    1 % at low slip and within 3 % with 7 harmonics at 2.3 % to 4.7 % damping, where the gap
+    shrinks as H grows (about 1/H; below 1 %, at 9e-3, the two gaps are within the settling
+    of the EPMC's own curve, which moves 3.6 % from H = 7 to 15): the 1 % at the top of the
+    microslip range needs more than 15 harmonics."""
+    _rom, s = small
+    for amplitude in (9e-3, 1.2e-2, 2e-2):
+        df, dz, da = _gaps(s, amplitude, 7)
+        assert abs(df) < 2e-3
+        assert abs(dz) < 0.03
+        assert abs(da) < 0.03
+    # convergence: 15 harmonics halve the gap
+    assert abs(_gaps(s, 1.2e-2, 15)[1]) < 0.6 * abs(_gaps(s, 1.2e-2, 7)[1])
 
 
 def test_modal_and_frf_read_the_rom(small, tmp_path, capsys):

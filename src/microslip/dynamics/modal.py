@@ -28,7 +28,7 @@ from .operators2d import CircularIwan
 from .operators3d import Contact3D
 from .structure import SI_PER_MM, Structure
 
-__all__ = ["METHODS", "ModalCurve", "energy_method", "epmc"]
+__all__ = ["METHODS", "ModalCurve", "energy_method", "epmc", "quasi_static"]
 
 Array = NDArray[np.float64]
 
@@ -47,7 +47,7 @@ class ModalCurve:
     Attributes
     ----------
     method : str
-        ``energy`` or ``epmc``.
+        ``energy``, ``epmc`` or ``qsma`` (:func:`quasi_static`).
     amplitude : ndarray, shape (n,)
         First-harmonic amplitude of the output coordinate, mm.
     frequency : ndarray, shape (n,)
@@ -200,6 +200,83 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
         zeta[i] = y[m_k + 1] / (2.0 * y[m_k])
         guess, previous = y, ai
     return ModalCurve(method="epmc", amplitude=a, frequency=freq, damping_ratio=zeta,
+                      harmonics=harmonics, samples=samples)
+
+
+def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
+                 samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
+    """Frequency and damping ratio by quasi-static modal analysis (Lacayo and Allen 2019) on
+    the structure, the method :mod:`microslip.fe.builtin.qsma` applies to the full FE.
+
+    Notes
+    -----
+    The stuck mode phi (mass-normalised in t: phi^T M phi = 1, output . phi > 0) gives the
+    load ``q sin(theta) M phi`` (modal force q, sqrt(t)·mm/s^2, as the full FE's); the
+    periodic response without inertia, ``K x + joints(x) = q sin(theta) M phi``, is solved
+    by harmonic balance at w = 0 (H harmonics, the AFT's ``samples``; the odd harmonics only
+    when every joint force is odd: no 3-D contact element). With eta = phi^T M x, eta_1 its
+    first harmonic: a = |eta_1|, w^2 = Re(q_1 conj(eta_1)) / a^2 (the first-harmonic modal
+    stiffness, as the EPMC defines the frequency), W = -pi q (phi^T M c_1) the load's work
+    per cycle and zeta = W / (2 pi a^2 w^2); ``amplitude`` is the output's first harmonic.
+    Against :func:`epmc` on the same structure it separates the quasi-static method from
+    the dynamics (the EPMC's mode shape and harmonics free to change with amplitude).
+    """
+    q = np.asarray(force, dtype=np.float64).reshape(-1)
+    if not (q.size and np.all(np.isfinite(q)) and np.all(q > 0.0)):
+        raise ParameterError("modal forces must be finite and > 0")
+    with single_threaded_blas():
+        return _quasi_static(structure, q, harmonics, samples, mode)
+
+
+def _quasi_static(structure: Structure, q: Array, harmonics: int, samples: int,
+                  mode: int) -> ModalCurve:
+    hb = HarmonicBalance(structure, harmonics, samples)
+    h = 2 * harmonics + 1
+    n = hb.size
+    if any(isinstance(link.operator, Contact3D) for link in structure.joints):
+        keep = np.arange(n, dtype=np.int64)
+    else:  # odd joint forces: half-wave symmetric response (:mod:`.modal_odd`)
+        odd = np.array([c for k in range(1, harmonics + 1, 2) for c in (2 * k - 1, 2 * k)])
+        keep = (np.arange(structure.dofs)[:, None] * h + odd[None, :]).ravel().astype(np.int64)
+    phi = stuck_mode(structure, mode)[0]
+    mass = SI_PER_MM * np.asarray(structure.mass)  # t
+    phi = phi / np.sqrt(phi @ mass @ phi)
+    pattern = mass @ phi  # N per unit q
+    lin = hb.stuck_guess(0.0, hb.excitation(pattern, 1.0))  # cos load; sin: shift below
+    unit = np.zeros((structure.dofs, h))
+    unit[:, 2] = lin.reshape(structure.dofs, h)[:, 1]
+    y = unit.ravel()[keep]
+    full = np.zeros(n)
+    amp = np.empty(q.size)
+    freq = np.empty(q.size)
+    zeta = np.empty(q.size)
+    previous = 1.0
+    for i, qi in enumerate(q):
+        load = np.zeros((structure.dofs, h))
+        load[:, 2] = qi * pattern
+        flat = load.ravel()
+
+        def fun(y: Array, flat: Array = flat) -> tuple[Array, Array]:
+            full[keep] = y
+            res = hb.residual(full, 0.0, flat)
+            return res.r[keep], res.dx[np.ix_(keep, keep)]
+
+        y = y * (qi / previous)
+        y, ok, _ = newton(fun, y, np.full(y.size, float(np.max(np.abs(y)))), TOLERANCE,
+                          max_iter=50)
+        if not ok:
+            raise ParameterError(f"the quasi-static modal analysis did not converge at "
+                                 f"modal force {qi:.6g}")
+        full[keep] = y
+        x = full.reshape(structure.dofs, h)
+        eta1 = complex(phi @ mass @ x[:, 1], -(phi @ mass @ x[:, 2]))
+        k1 = (complex(0.0, -qi) * eta1.conjugate()).real / abs(eta1) ** 2
+        work = -np.pi * qi * float(pattern @ x[:, 1])
+        amp[i] = abs(complex(structure.output @ x[:, 1], -(structure.output @ x[:, 2])))
+        freq[i] = np.sqrt(max(k1, 0.0)) / (2.0 * np.pi)
+        zeta[i] = work / (2.0 * np.pi * abs(eta1) ** 2 * k1)
+        previous = qi
+    return ModalCurve(method="qsma", amplitude=amp, frequency=freq, damping_ratio=zeta,
                       harmonics=harmonics, samples=samples)
 
 

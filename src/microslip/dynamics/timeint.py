@@ -34,9 +34,10 @@ class SteadyState:
     ----------
     frequency : float
         Excitation frequency, Hz.
-    displacement : ndarray, shape (steps,) or (steps, n_dof)
+    displacement : ndarray, shape (steps,) or (keep steps, n_dof)
         Displacement over the last period, mm (at t = (j + 1) T / steps): of the one mode
-        (:func:`steady_state`) or of every DOF (:func:`transient`).
+        (:func:`steady_state`) or of every DOF over the last ``keep`` periods
+        (:func:`transient`).
     amplitude : float
         First-harmonic amplitude over the last period, mm (for :func:`transient`, of the
         structure's output coordinate).
@@ -190,26 +191,42 @@ def _joint_forces(x: np.ndarray, rows: np.ndarray, first_row: np.ndarray,
 def _central_difference(a_inv: np.ndarray, m2: np.ndarray, c2: np.ndarray, kl: np.ndarray,
                         load: np.ndarray, omega: float, dt: float, rows: np.ndarray,
                         first_row: np.ndarray, first_el: np.ndarray, k: np.ndarray,
-                        ky: np.ndarray, phi: np.ndarray, out: np.ndarray) -> None:
-    """Integrate from rest; ``out`` (steps, n) receives x_1 ... x_steps (mm)."""
-    n = kl.shape[0]
-    x_prev = np.zeros(n)
-    x = np.zeros(n)
+                        ky: np.ndarray, phi: np.ndarray, x0: np.ndarray, x_before: np.ndarray,
+                        out: np.ndarray) -> None:
+    """Integrate from x_0 = ``x0`` and x_-1 = ``x_before`` (the sliders at zero) under
+    the load ``load`` (n, 2H + 1: harmonic coefficients c_0, c_1, s_1, ..., N);
+    ``out`` (steps, n) receives x_1 ... x_steps (mm)."""
+    x_prev = x_before.copy()
+    x = x0.copy()
     z = np.zeros((k.size, 2))
-    g = np.zeros(n)
+    g = np.zeros(x0.size)
+    h = load.shape[1]
+    basis = np.zeros(h)
+    basis[0] = 1.0
     for s in range(out.shape[0]):
         _joint_forces(x, rows, first_row, first_el, k, ky, phi, z, g)
-        rhs = (load * math.cos(omega * s * dt) - kl @ x - g + m2 @ (2.0 * x - x_prev)
-               + c2 @ x_prev)
+        for j in range(1, (h + 1) // 2):
+            basis[2 * j - 1] = math.cos(j * omega * s * dt)
+            basis[2 * j] = math.sin(j * omega * s * dt)
+        rhs = (load @ basis - kl @ x - g + m2 @ (2.0 * x - x_prev) + c2 @ x_prev)
         x_prev = x
         x = a_inv @ rhs
         out[s] = x
 
 
 def transient(structure: Structure, load: np.ndarray, frequency: float, periods: int,
-              steps: int = 1000) -> SteadyState:
+              steps: int = 1000, initial: tuple[np.ndarray, np.ndarray] | None = None,
+              keep: int = 1) -> SteadyState:
     """Integrate ``structure`` (any degrees of freedom, 1-D Iwan and 2-D joints) from
-    rest under ``load cos(2 pi frequency t)`` (N per degree of freedom).
+    rest under ``load cos(2 pi frequency t)`` (N per degree of freedom), or, ``load`` of
+    shape (n_dof, 2H + 1), under the periodic load of those harmonic coefficients (the
+    layout of :mod:`.hb`: c_0, c_1, s_1, ..., c_H, s_H; N).
+
+    ``initial`` = (x_0, v_0) (mm, mm/s) starts it there instead (x_-1 = x_0 - dt v_0, the
+    joints' sliders at zero: a state at rest relative to the sliders, e.g. a turning point
+    of a periodic orbit, which a negative damping ``C = -xi M`` and no load then follow,
+    :func:`~microslip.dynamics.modal.epmc`'s autonomous system); ``displacement`` holds the
+    last ``keep`` periods.
 
     Notes
     -----
@@ -223,6 +240,8 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
     if not (isinstance(periods, int) and periods >= 2 and isinstance(steps, int)
             and steps >= 16):
         raise ParameterError(f"need periods >= 2 and steps >= 16, got {periods}, {steps}")
+    if not (isinstance(keep, int) and 1 <= keep <= periods):
+        raise ParameterError(f"keep must be a whole number in [1, {periods}], got {keep!r}")
     omega = 2.0 * np.pi * frequency
     w_max = 2.0 * np.pi * float(structure.linear_frequencies(stuck=True)[-1])
     steps = max(steps, int(np.ceil(4.0 * np.pi * w_max / omega)))
@@ -231,16 +250,25 @@ def transient(structure: Structure, load: np.ndarray, frequency: float, periods:
     c2 = SI_PER_MM * np.asarray(structure.damping) / (2.0 * dt)
     rows, first_row, first_el, k, ky, phi = _flatten_joints(structure)
     x = np.empty((periods * steps, structure.dofs))
+    p = np.asarray(load, dtype=np.float64)
+    if p.ndim == 1:
+        p = np.column_stack([np.zeros_like(p), p, np.zeros_like(p)])
+    if p.ndim != 2 or p.shape[0] != structure.dofs or p.shape[1] % 2 != 1:
+        raise ParameterError(f"load must have shape ({structure.dofs},) or "
+                             f"({structure.dofs}, 2H + 1), got {np.shape(load)}")
+    x0, v0 = ((np.zeros(structure.dofs), np.zeros(structure.dofs)) if initial is None
+              else (np.asarray(initial[0], dtype=np.float64),
+                    np.asarray(initial[1], dtype=np.float64)))
     _central_difference(np.linalg.inv(m2 + c2), m2, c2,
                         SI_PER_MM * np.asarray(structure.stiffness, dtype=np.float64),
-                        np.asarray(load, dtype=np.float64), omega, dt, rows, first_row,
-                        first_el, k, ky, phi, x)
+                        np.ascontiguousarray(p), omega, dt, rows, first_row,
+                        first_el, k, ky, phi, x0, x0 - dt * v0, x)
     out = x @ structure.output
     last, before = out[-steps:], out[-2 * steps:-steps]
     theta = 2.0 * np.pi * np.arange(1, steps + 1) / steps
     basis = np.exp(-1j * theta) * (2.0 / steps)
     h_last, h_before = last @ basis, before @ basis
-    return SteadyState(frequency=float(frequency), displacement=x[-steps:],
+    return SteadyState(frequency=float(frequency), displacement=x[-keep * steps:],
                      amplitude=float(abs(h_last)),
                      change=float(abs(h_last - h_before) / abs(h_last)), periods=periods,
                      steps=steps)

@@ -50,6 +50,7 @@ __all__ = [
     "GROSS_STICK",
     "QSMACurve",
     "QSMAPoint",
+    "cyclic_ok",
     "first_harmonic",
     "first_slip_force",
     "loop_stiffness",
@@ -312,20 +313,35 @@ def first_slip_force(model: MeshModel, mode: Mode) -> float:
 
 
 def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1.25,
-                    max_steps: int = 80) -> FloatArray:
+                    max_steps: int = 80, history: SineCycles | None = None) -> FloatArray:
     """Modal forces q from first slip to near gross sliding, log-uniform, ``count`` of them.
 
-    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`; the last is the
-    largest level of a first loading (q raised from the first-slip force by factors ``step``
-    on the full FE) at which at least :data:`GROSS_STICK` of the contact area still sticks
-    (or the last that converges), and below 0.99 of the level whose in-plane resultant
-    reaches mu F_N (macroslip)."""
+    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`. The last is found
+    in two passes: a first loading (q raised from the first-slip force by factors ``step`` on
+    the full FE) gives the largest level that converges with at least :data:`GROSS_STICK`
+    of the contact area still stuck, below 0.99 of the level whose in-plane resultant reaches
+    mu F_N (macroslip); then, because a cycle reverses the load (a force range of 2 q, more
+    slip than the first loading), that level is lowered until its cyclic run
+    (:func:`qsma_point`, two cycles of ``history``) converges and keeps :data:`GROSS_STICK` of the
+    area stuck over the settled cycle (:attr:`QSMAPoint.slip_fraction` at most
+    1 - GROSS_STICK; :func:`_cyclic_top`). The grid's top is thus a level whose cyclic run
+    converged, not one that only a first loading carries (past it the cycle fails: NaN)."""
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
         raise ParameterError(f"count must be a whole number in [1, 1000], got {count!r}")
     q1 = first_slip_force(model, mode)
+    lo = FIRST_SLIP_MARGIN * q1
+    top = max(_first_loading_top(model, mode, q1, step, max_steps), lo)
+    if count == 1:
+        return np.array([lo])
+    top = _cyclic_top(model, mode, lo, top, step, history)
+    return np.geomspace(lo, top, count)
+
+
+def _first_loading_top(model: MeshModel, mode: Mode, q1: float, step: float,
+                       max_steps: int) -> float:
     run = _Run(model, [_load(mode, 1.0)], record=False)
     area = model.contact_area
-    q, top = q1, q1
+    top = q1
     for i in range(max_steps):
         q = q1 * step ** (i + 1)
         try:
@@ -339,9 +355,35 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
     resultant = float(np.linalg.norm(_plane_resultant(model, _load(mode, 1.0))))
     if resultant > 0:  # solve_mesh refuses an in-plane resultant of mu F_N or more
         top = min(top, 0.99 * model.force_scale / resultant)
-    lo = FIRST_SLIP_MARGIN * q1
-    hi = max(top, lo)
-    return np.geomspace(lo, hi, count) if count > 1 else np.array([lo])
+    return top
+
+
+def cyclic_ok(point: QSMAPoint) -> bool:
+    """The cyclic run converged (finite figures) and kept :data:`GROSS_STICK` of the contact
+    area stuck over its settled cycle."""
+    return bool(math.isfinite(point.damping_ratio)
+                and point.slip_fraction <= 1.0 - GROSS_STICK)
+
+
+def _cyclic_top(model: MeshModel, mode: Mode, lo: float, top: float, step: float,
+                history: SineCycles | None) -> float:
+    """The largest level in [lo, top] whose cyclic run (two cycles of ``history``) is
+    :func:`cyclic_ok`, to within a factor ``step``: top itself, or a bisection in log q
+    between lo (the grid's first, taken as good) and the first failing level."""
+    h = SineCycles() if history is None else history
+    # two cycles: a level the cycle cannot carry fails on the first reversal
+    check = SineCycles(increments=h.increments, tol=h.tol, min_cycles=2, max_cycles=2,
+                       startup=h.startup)
+    if top <= lo or cyclic_ok(_point(model, mode, top, check)):
+        return top
+    good, bad = lo, top
+    while bad / good > step:
+        mid = math.sqrt(good * bad)
+        if cyclic_ok(_point(model, mode, mid, check)):
+            good = mid
+        else:
+            bad = mid
+    return good
 
 
 # ---------------------------------------------------------------- independent runs
@@ -427,7 +469,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
         its reason in :attr:`QSMACurve.warnings`.
     """
     t0 = time.perf_counter()
-    q = (qsma_amplitudes(model, mode, count) if forces is None
+    q = (qsma_amplitudes(model, mode, count, history=history) if forces is None
          else np.asarray(forces, dtype=float))
     if q.ndim != 1 or q.size == 0 or not np.all(np.isfinite(q) & (q > 0)):
         raise ParameterError("forces must be one or more modal forces > 0")
