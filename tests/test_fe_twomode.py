@@ -17,6 +17,9 @@ from microslip.fe.hexmesh import face_load
 from microslip.fe.meshcheck import check_roles
 
 CASE = tm.TwoModeCase()
+#: One harmonic for the slow tests (the continuation's speed; the physics' tests need not
+#: the converged microslip W_J).
+CASE1 = tm.TwoModeCase(harmonics=1)
 
 
 @pytest.fixture(scope="module")
@@ -164,7 +167,8 @@ def test_forced_response_and_full_fe_check(small) -> None:  # type: ignore[no-un
     ROM's under the same quasi-static load; the decoupled joints differ."""
     model, pair, rom = small
     window = tm.frequency_window(pair)
-    curves = {c: tm.forced_response(model, rom, CASE, 10.0, c, window) for c in tm.COUPLINGS}
+    curves = {c: tm.forced_response(model, rom, CASE1, 10.0, c, window)
+              for c in tm.COUPLINGS}
     circ = curves["circular"]
     assert circ.success
     px, py = circ.peaks
@@ -174,7 +178,7 @@ def test_forced_response_and_full_fe_check(small) -> None:  # type: ignore[no-un
     assert 0.0 < px.joint_energy_Nmm < px.total_energy_Nmm
     assert curves["decoupled"].peaks[0].amplitude_mm != pytest.approx(px.amplitude_mm,
                                                                      rel=1e-3)
-    check = tm.fe_check(model, rom, pair, CASE, circ, px.index, "x peak")
+    check = tm.fe_check(model, rom, pair, CASE1, circ, px.index, "x peak")
     assert check.fe_settled and check.inertia_share > 0.99
     assert check.fe_Nmm == pytest.approx(check.rom_circular_Nmm, rel=2e-3)
     assert abs(check.rom_decoupled_Nmm / check.fe_Nmm - 1.0) > 0.05
@@ -187,7 +191,7 @@ def test_forcing_along_x_puts_the_interface_on_a_line(small) -> None:  # type: i
     from dataclasses import replace
 
     model, pair, rom = small
-    case = replace(CASE, angle_deg=0.0)
+    case = replace(CASE1, angle_deg=0.0)
     window = tm.frequency_window(pair)
     circ = tm.forced_response(model, rom, case, 10.0, "circular", window)
     assert float(np.max(circ.orbit_ratio)) < 1e-6

@@ -121,7 +121,7 @@ class TwoModeCase:
     rom_modes: int = 10
     damping_ratio: float = 0.005
     angle_deg: float = 45.0
-    harmonics: int = 1
+    harmonics: int = 3
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.damping_ratio) and 0.0 < self.damping_ratio < 1.0):
@@ -271,6 +271,9 @@ class Peak:
         W_J (the joints) and W (the force's work, joints plus viscous) per cycle there.
     orbit : Orbit
         The interface's orbit there.
+    complete : bool
+        The curve went on past it (False: the continuation stopped at this point, which is
+        then no peak).
     """
 
     axis: str
@@ -280,6 +283,7 @@ class Peak:
     joint_energy_Nmm: float
     total_energy_Nmm: float
     orbit: Orbit
+    complete: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -366,7 +370,8 @@ def forced_response(model: MeshModel, rom: Rom, case: TwoModeCase, force: float,
         peaks.append(Peak(axis=axis, index=i, frequency_Hz=float(r.frequency[i]),
                           amplitude_mm=float(amp[i]), joint_energy_Nmm=float(w[i, 1]),
                           total_energy_Nmm=float(w[i, 0]),
-                          orbit=orbit(complex(inter[i, 0]), complex(inter[i, 1]))))
+                          orbit=orbit(complex(inter[i, 0]), complex(inter[i, 1])),
+                          complete=bool(r.success or i < r.frequency.size - 1)))
     return ResponseCurve(coupling=coupling, force=float(force),
                          frequency_Hz=np.asarray(r.frequency), top_x_mm=top[:, 0],
                          top_y_mm=top[:, 1], interface_mm=np.asarray(inter),
@@ -652,7 +657,7 @@ def study_rom(model: MeshModel, case: TwoModeCase) -> Rom:
     return build_rom(model, case.density, modes=case.rom_modes, response_set=case.top_set)
 
 
-def frequency_window(pair: BendingPair, margin: float = 0.1) -> tuple[float, float]:
+def frequency_window(pair: BendingPair, margin: float = 0.05) -> tuple[float, float]:
     """The range through both resonances: ``(1 - margin) f1`` to ``(1 + margin) f2``, Hz."""
     f1, f2 = (float(v) for v in pair.frequencies_Hz)
     return (1.0 - margin) * f1, (1.0 + margin) * f2
@@ -685,6 +690,8 @@ class TwoModeStudy:
     curves : tuple of ResponseCurve
         For each force, the circular then the decoupled curve.
     checks : tuple of CheckPoint
+        At :func:`check_points` of each circular curve of the check forces that crossed
+        the whole range.
     """
 
     case: TwoModeCase
@@ -705,13 +712,15 @@ class TwoModeStudy:
         raise ParameterError(f"no {coupling} curve at {force:g} N")
 
     def differences(self) -> list[dict[str, float | str]]:
-        """Decoupled against circular at each force and peak: relative differences of the
-        peak amplitude, the peak frequency and W_J at the peak ((decoupled - circular) /
-        circular)."""
+        """Decoupled against circular at each force and peak that both curves passed:
+        relative differences of the peak amplitude, the peak frequency and W_J at the peak
+        ((decoupled - circular) / circular)."""
         out: list[dict[str, float | str]] = []
         for force in sorted({c.force for c in self.curves}):
             a, b = self.curve(force, "circular"), self.curve(force, "decoupled")
             for pa, pb in zip(a.peaks, b.peaks, strict=True):
+                if not (pa.complete and pb.complete):
+                    continue
                 out.append({"force_N": force, "axis": pa.axis,
                             "amplitude": pb.amplitude_mm / pa.amplitude_mm - 1.0,
                             "frequency": pb.frequency_Hz / pa.frequency_Hz - 1.0,
@@ -739,6 +748,8 @@ def two_mode_study(mesh: HexMesh, case: TwoModeCase, forces: Sequence[float],
     checks = []
     for f in check_forces:
         curve = next(c for c in curves if c.force == f and c.coupling == "circular")
+        if not curve.success:  # its peaks may be where the continuation stopped
+            continue
         for label, i in check_points(curve).items():
             checks.append(fe_check(model, rom, pair, case, curve, i, label, history))
     return TwoModeStudy(case=case, dof=model.dof, contact_nodes=int(model.contact_nodes.size),
