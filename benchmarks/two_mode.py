@@ -73,13 +73,14 @@ def main() -> None:
     print("full FE check: W per cycle under the quasi-static equivalent of the circular "
           "harmonic solution (N·mm)")
     print("F (N)  point      f (Hz)   b/a    modes' share  W_J harmonic  W ROM circ.  "
-          "W ROM decoupl.  W full FE  FE/circ-1  decoupl/FE-1")
+          "W ROM decoupl.  W full FE  FE/circ-1  decoupl/FE-1  nodes: b/a  angle (deg)")
     for k in s.checks:
         print(f"{k.force:5g}  {k.point:9s}  {k.frequency_Hz:7.1f}  {k.orbit_ratio:5.3f}  "
               f"{k.inertia_share:12.4f}  {k.rom_harmonic_Nmm:12.5g}  {k.rom_circular_Nmm:11.5g}  "
               f"{k.rom_decoupled_Nmm:14.5g}  {k.fe_Nmm:9.5g}  "
               f"{100 * (k.fe_Nmm / k.rom_circular_Nmm - 1):+8.3f} %  "
-              f"{100 * (k.rom_decoupled_Nmm / k.fe_Nmm - 1):+8.2f} %"
+              f"{100 * (k.rom_decoupled_Nmm / k.fe_Nmm - 1):+8.2f} %  "
+              f"{k.node_ratio:10.3f}  {k.node_angle_deg:11.1f}"
               + ("" if k.fe_settled else "  (FE not settled)"))
     print(f"\nwall {wall:.1f} s")
     if args.plot:

@@ -197,3 +197,32 @@ def test_forcing_along_x_puts_the_interface_on_a_line(small) -> None:  # type: i
     assert float(np.max(circ.orbit_ratio)) < 1e-6
     assert float(np.max(np.abs(circ.interface_mm[:, 1]))) < 1e-6 * float(
         np.max(np.abs(circ.interface_mm[:, 0])))
+    # ... but the nodes do not move along x: the flange carries the shear and the bending
+    # out to its edges, each node on its own line or thin ellipse at up to tens of degrees
+    # from x, so the decoupled joints are not the circular ones even here
+    i = circ.peaks[0].index
+    _, angle = tm.node_orbits(rom, circ, i)
+    assert float(np.max(angle)) > 20.0
+    load = tm.quadrature_load(model, rom, pair, case, circ, i)
+    w = {c: tm.rom_quasistatic(rom, load.rom, c).energy_Nmm for c in tm.COUPLINGS}
+    assert abs(w["decoupled"] / w["circular"] - 1.0) > 0.1
+
+
+def test_figure_is_written(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    pytest.importorskip("matplotlib")
+    from microslip.plot.twomode import plot_two_mode
+
+    f = np.linspace(4600.0, 5000.0, 9)
+    amp = 1.0 / (1.0 + np.abs(f - 4700.0))
+    inter = np.stack([amp + 0j, -0.3j * amp], axis=1)
+    o = tm.orbit(complex(inter[1, 0]), complex(inter[1, 1]))
+    peak = tm.Peak("x", 1, 4650.0, 0.5, 1.0, 2.0, o)
+    curves = [tm.ResponseCurve(coupling=c, force=10.0, frequency_Hz=f, top_x_mm=amp,
+                               top_y_mm=0.5 * amp, interface_mm=inter,
+                               orbit_ratio=np.full(9, 0.3), joint_energy_Nmm=amp,
+                               coefficients=np.zeros((9, 3)), peaks=(peak, peak),
+                               harmonics=1, success=True, message="")
+              for c in tm.COUPLINGS]
+    out = tmp_path / "two_mode.png"
+    plot_two_mode(curves, out, [("x peak", 1)])
+    assert out.stat().st_size > 1000

@@ -88,6 +88,7 @@ __all__ = [
     "forced_response",
     "forcing_shape",
     "interface_rows",
+    "node_orbits",
     "orbit",
     "quadrature_load",
     "rom_quasistatic",
@@ -600,6 +601,11 @@ class CheckPoint:
     fe_Nmm : float
         W of the full frictional FE under the same g.
     fe_settled : bool
+    node_ratio, node_angle_deg : float
+        The contact nodes' own orbits there (ROM, first harmonic): the median axes ratio and
+        the median angle of their major axes from the nearer contact-plane axis (0 to 45
+        degrees; the decoupled elements act along these axes, so they are the circular
+        element only for nodes at 0 degrees on a line).
     """
 
     force: float
@@ -612,6 +618,8 @@ class CheckPoint:
     rom_decoupled_Nmm: float
     fe_Nmm: float
     fe_settled: bool
+    node_ratio: float = math.nan
+    node_angle_deg: float = math.nan
 
 
 def check_points(curve: ResponseCurve, floor: float = 0.5) -> dict[str, int]:
@@ -641,6 +649,7 @@ def fe_check(model: MeshModel, rom: Rom, pair: BendingPair, case: TwoModeCase,
                                     (load.full.imag, 180.0, "-sin"))]
     fe = solve_mesh(model, loads, history)
     inter = curve.interface_mm[index]
+    ratio, angle = node_orbits(rom, curve, index)
     return CheckPoint(force=curve.force, point=label or f"point {index}",
                       frequency_Hz=float(curve.frequency_Hz[index]),
                       orbit_ratio=orbit(complex(inter[0]), complex(inter[1])).ratio,
@@ -648,7 +657,20 @@ def fe_check(model: MeshModel, rom: Rom, pair: BendingPair, case: TwoModeCase,
                       rom_harmonic_Nmm=float(curve.joint_energy_Nmm[index]),
                       rom_circular_Nmm=qs["circular"].energy_Nmm,
                       rom_decoupled_Nmm=qs["decoupled"].energy_Nmm,
-                      fe_Nmm=float(fe.dissipated_energy), fe_settled=bool(fe.settled))
+                      fe_Nmm=float(fe.dissipated_energy), fe_settled=bool(fe.settled),
+                      node_ratio=float(np.median(ratio)), node_angle_deg=float(np.median(angle)))
+
+
+def node_orbits(rom: Rom, curve: ResponseCurve, index: int) -> tuple[FloatArray, FloatArray]:
+    """Each contact node's first-harmonic orbit at point ``index``: its axes ratio and the
+    angle of its major axis from the nearer of the contact plane's axes e1, e2 (degrees,
+    0 to 45)."""
+    h = 2 * curve.harmonics + 1
+    q = _first(curve.coefficients[index].reshape(rom.dofs, h)[:rom.boundary.size])
+    nodes = [orbit(complex(a), complex(b)) for a, b in q.reshape(-1, rom.per_node)[:, :2]]
+    ratio = np.array([o.ratio for o in nodes])
+    angle = np.array([min(o.angle_deg % 90.0, 90.0 - o.angle_deg % 90.0) for o in nodes])
+    return ratio, angle
 
 
 def study_rom(model: MeshModel, case: TwoModeCase) -> Rom:
