@@ -10,6 +10,9 @@ the repository's ``examples/`` (:func:`write_examples`). Units: mm.
   structure that extends beyond the clamped zone");
 - :func:`bolt_pad_mesh`: a stepped bracket, thick where it is clamped, thin in the arm, its
   clamping pressure on a square washer pad and its contact on part of the bottom face;
+- :func:`post_on_plate_mesh`: a slightly rectangular post standing on a square foot flange,
+  its two lowest bending modes (in x and in y) close, so that a force at 45 degrees puts the
+  interface on an ellipse (issue 23, item 6);
 - :func:`box_hexmesh`: the built-in solver's box (the clamped zone of a
   :class:`~microslip.params.ClampParams`, mesh level or ``"NXxNYxNZ"``), node for node.
 """
@@ -37,12 +40,15 @@ from .meshfile import write_inp
 __all__ = [
     "BOLT_PAD",
     "CANTILEVER",
+    "POST_ON_PLATE",
     "BoltPad",
+    "PostOnPlate",
     "bolt_pad_mesh",
     "box_hexmesh",
     "box_inp",
     "cantilever_mesh",
     "grid_mesh",
+    "post_on_plate_mesh",
     "to_hex20",
     "write_examples",
 ]
@@ -225,6 +231,82 @@ def bolt_pad_mesh(size: float = 4.0, quadratic: bool = False) -> HexMesh:
     return to_hex20(mesh) if quadratic else mesh
 
 
+@dataclass(frozen=True)
+class PostOnPlate:
+    """The post-on-plate example (mm): a square foot flange (side, thickness) centred on the
+    origin of the x-y plane, a post of cross-section ``post_x`` x ``post_y`` and height
+    ``post_height`` standing on its middle. ``post_x`` < ``post_y``: the post bends in x
+    (about y) about 5 % below its bending in y."""
+
+    flange: float = 30.0
+    flange_thickness: float = 4.0
+    post_x: float = 10.0
+    post_y: float = 10.5
+    post_height: float = 40.0
+
+
+POST_ON_PLATE = PostOnPlate()
+
+
+def post_on_plate_mesh(size: float = 2.5, section: float | None = None,
+                       flange_size: float | None = None,
+                       geometry: PostOnPlate = POST_ON_PLATE) -> HexMesh:
+    """A slightly rectangular post standing on a square foot flange: elements of about
+    ``size`` mm along the post's height and through the flange, ``section`` mm (default
+    ``size``) across the post, ``flange_size`` mm (default ``2 size``) across the flange
+    outside the post's footprint.
+
+    The flange ``|x|, |y| <= flange / 2``, ``0 <= z <= flange_thickness`` carries the post
+    ``|x| <= post_x / 2``, ``|y| <= post_y / 2`` up to ``z = flange_thickness +
+    post_height``; node planes pass through the post's faces. Sets (node sets; the first
+    three also surfaces): ``contact`` the flange's bottom face z = 0 (on the rigid base),
+    ``clamp`` the flange's top face around the post (the clamping pressure), ``top`` the
+    post's free end face (the forcing), ``response`` its nodes. The two lowest stuck modes
+    are the post's bending in x and in y, about 5 % apart (10 x 10.5 mm): a force at 45
+    degrees on ``top`` excites both.
+
+    >>> m = post_on_plate_mesh(5.0, 5.0, 10.0)
+    >>> len(m.faces("contact")), len(m.faces("clamp")), len(m.faces("top"))
+    (20, 14, 6)
+    """
+    g = geometry
+    for name, v in (("element size", size), ("section element size", section),
+                    ("flange element size", flange_size)):
+        if v is not None and not (math.isfinite(v) and v > 0):
+            raise ParameterError(f"{name} must be > 0 mm, got {v!r}")
+    if not (0 < g.post_x < g.flange and 0 < g.post_y < g.flange):
+        raise ParameterError(f"the post ({g.post_x:g} x {g.post_y:g} mm) must fit on the "
+                             f"flange ({g.flange:g} mm)")
+    outer = 2.0 * size if flange_size is None else flange_size
+    inner = size if section is None else section
+    hf, hx, hy = 0.5 * g.flange, 0.5 * g.post_x, 0.5 * g.post_y
+
+    def across(half: float) -> FloatArray:
+        side = _planes([half, hf], outer)
+        return np.concatenate([-side[::-1], _planes([-half, half], inner)[1:-1], side])
+
+    xs, ys = across(hx), across(hy)
+    top = g.flange_thickness + g.post_height
+    zs = _planes([0.0, g.flange_thickness, top], size)
+    tol = 1e-9 * g.flange
+
+    def in_post(x: FloatArray, y: FloatArray) -> NDArray[np.bool_]:
+        return np.asarray((np.abs(x) < hx - tol) & (np.abs(y) < hy - tol), dtype=np.bool_)
+
+    def keep(x: FloatArray, y: FloatArray, z: FloatArray) -> NDArray[np.bool_]:
+        return np.asarray((z < g.flange_thickness) | in_post(x, y), dtype=np.bool_)
+
+    sets: dict[str, Where] = {
+        "contact": lambda x, y, z: _near(z, 0.0),
+        "clamp": lambda x, y, z: _near(z, g.flange_thickness) & ~in_post(x, y),
+        "top": lambda x, y, z: _near(z, top),
+        "response": lambda x, y, z: _near(z, top),
+    }
+    return grid_mesh(xs, ys, zs, keep=keep, node_sets=sets,
+                     surfaces=("contact", "clamp", "top"),
+                     source=f"post on plate {size:g}/{inner:g}/{outer:g} mm")
+
+
 #: Corner pairs of the 12 edges of a C3D20, in the order of its nodes 9-20.
 HEX20_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
                (0, 4), (1, 5), (2, 6), (3, 7))
@@ -290,6 +372,7 @@ EXAMPLES: dict[str, Callable[[], HexMesh]] = {
     "cantilever.inp": lambda: cantilever_mesh(24, 6, 2),
     "cantilever_hex20.inp": lambda: cantilever_mesh(24, 6, 2, quadratic=True),
     "bolt_pad.inp": lambda: bolt_pad_mesh(4.0),
+    "post_on_plate.inp": lambda: post_on_plate_mesh(2.5, 5.0, 5.0),
     "box_table1_24x4x1.inp": lambda: box_hexmesh(preset("table1"), "24x4x1"),
 }
 
