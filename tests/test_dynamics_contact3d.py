@@ -80,3 +80,23 @@ def test_bad_parameters_refused():
         Contact3D(KT, KN, 0.0, MU)
     with pytest.raises(ParameterError, match=r"shape \(N, 3\)"):
         element().periodic_force(np.zeros((4, 2)))
+
+
+def test_stick_force_is_counted_from_the_clamped_state() -> None:
+    """The clamping step's stick force t0: below slip the element is the same spring (the
+    force from the clamped state is k_t u whatever t0); with a constant normal force and a
+    cycle that slips both ways the first slip erases t0, so the closed loop is the one from
+    zero, shifted by -t0 (the force is counted from the clamped t0)."""
+    n = 256
+    t = np.arange(n) / n
+    small = np.column_stack([1e-4 * np.sin(2 * np.pi * t), np.zeros(n), np.zeros(n)])
+    big = np.column_stack([0.02 * np.sin(2 * np.pi * t), 0.01 * np.cos(2 * np.pi * t),
+                           np.zeros(n)])
+    plain = Contact3D(1e4, 1e5, 100.0, 0.5)
+    held = Contact3D(1e4, 1e5, 100.0, 0.5, stick_force=(20.0, -30.0))
+    np.testing.assert_allclose(held.periodic_force(small), plain.periodic_force(small),
+                               rtol=0, atol=1e-12)
+    shifted = plain.periodic_force(big) - [20.0, -30.0, 0.0]
+    np.testing.assert_allclose(held.periodic_force(big), shifted, rtol=0, atol=1e-9)
+    with pytest.raises(ParameterError, match="exceeds the friction limit"):
+        Contact3D(1e4, 1e5, 100.0, 0.5, stick_force=(40.0, 40.0))

@@ -20,8 +20,10 @@ slider history after repeating the period until it closes, with the Jacobian of 
 samples with respect to the displacement's harmonic coefficients propagated through the
 same steps (exact for the return map, checked against finite differences).
 
-Not yet wired into :class:`~.structure.Structure` (which takes joints of 1 or 2 directions):
-the ROM with ``penalty`` contact needs it there and in :mod:`.hb`.
+The clamping step leaves a tangential stick force t0 in many nodes (up to half of mu N_0 on
+the cantilever at nu = 0.33); with a constant normal force it shakes down in the first slip,
+but with N(t) varying it does not, so the element starts its cycles from it
+(``stick_force``) and returns the force counted from it.
 
 Units: displacement mm, force N, stiffness N/mm.
 """
@@ -52,11 +54,13 @@ CLOSED = 1e-12
 
 @njit(cache=True, nogil=True)
 def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float,
-              f: Array, jb: Array) -> int:  # pragma: no cover - compiled
-    """Force samples f (N, 3) and d f_t,a / d C_b,c (N, 3, 3, m) of the closed cycle;
-    returns the periods run (-1: the state did not repeat; the last period is given)."""
+              t0: Array, f: Array, jb: Array) -> int:  # pragma: no cover - compiled
+    """Force samples f (N, 3) and d f_t,a / d C_b,c (N, 3, 3, m) of the closed cycle, the
+    tangential force counted from the clamped stick force t0 (2,); returns the periods run
+    (-1: the state did not repeat; the last period is given)."""
     n, m = basis.shape
     w = np.zeros(2)
+    w[0], w[1] = -t0[0] / kt, -t0[1] / kt  # the clamped slider: k_t (0 - w) = t0
     dw = np.zeros((2, 3, m))
     tol = CLOSED * mu * n0 / kt
     for period in range(MAX_PERIODS):
@@ -116,8 +120,19 @@ def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float
             dw[0, 0, :] += basis[t, :]
             dw[1, 1, :] += basis[t, :]
         if period > 0 and abs(w[0] - w_start[0]) <= tol and abs(w[1] - w_start[1]) <= tol:
+            _from_clamped(f, t0)
             return period + 1
+    _from_clamped(f, t0)
     return -1
+
+
+@njit(cache=True, nogil=True)
+def _from_clamped(f: Array, t0: Array) -> None:  # pragma: no cover - compiled
+    """The tangential forces as changes from the clamped stick force (the structure's
+    equations are about the clamped equilibrium, which t0 is part of)."""
+    for t in range(f.shape[0]):
+        f[t, 0] -= t0[0]
+        f[t, 1] -= t0[1]
 
 
 @result
@@ -135,18 +150,33 @@ class Contact3D:
         N_0, N (the clamping step's normal force), > 0.
     friction : float
         mu.
+    stick_force : tuple of 2 floats
+        The tangential force (N, along the node's e1, e2) the clamping step leaves in the
+        slider, |t0| <= mu N_0 (default none). With a varying normal force it does not shake
+        down (the limit mu N(t) moves under it), so the cycles start from it; the force the
+        element returns is counted from it.
     """
 
     tangential_stiffness: float
     normal_stiffness: float
     preload: float
     friction: float
+    stick_force: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
         check_positive("tangential stiffness", self.tangential_stiffness, "N/mm")
         check_positive("normal stiffness", self.normal_stiffness, "N/mm")
         check_positive("preload", self.preload, "N")
         check_positive("friction", self.friction)
+        t0 = np.asarray(self.stick_force, dtype=float)
+        if t0.shape != (2,) or not np.all(np.isfinite(t0)):
+            raise ParameterError(f"stick force must be two finite numbers (N), got "
+                                 f"{self.stick_force!r}")
+        if float(np.hypot(*t0)) > self.friction * self.preload * (1.0 + 1e-9):
+            raise ParameterError(f"stick force {float(np.hypot(*t0)):.6g} N exceeds the "
+                                 f"friction limit mu N_0 = "
+                                 f"{self.friction * self.preload:.6g} N")
+        object.__setattr__(self, "stick_force", (float(t0[0]), float(t0[1])))
 
     #: Relative displacement components the element takes (tangential 1, 2 and normal).
     directions = 3
@@ -171,7 +201,8 @@ class Contact3D:
         f = np.zeros(u.shape)
         jb = np.zeros((u.shape[0], 3, 3, basis.shape[1]))
         _periodic(u, basis, float(self.tangential_stiffness), float(self.normal_stiffness),
-                  float(self.preload), float(self.friction), f, jb)
+                  float(self.preload), float(self.friction),
+                  np.asarray(self.stick_force, dtype=np.float64), f, jb)
         return f, jb
 
     def periodic_force(self, u: Array) -> Array:
