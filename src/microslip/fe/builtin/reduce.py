@@ -22,8 +22,10 @@ Each contact node then carries the full FE's own law (:func:`rom_structure`): wi
 normal contact a 2-D circular Coulomb (Jenkins) element on its two tangential dofs, stiffness
 lambda A_i and slip force mu N_i at the clamping step's normal force, one
 :class:`~microslip.dynamics.operators2d.CircularIwan` of one element per node (its
-circular slip limit, REFERENCES.md 2-D Jenkins). :func:`write_rom` writes it as a structure
-file (:mod:`microslip.dynamics.files`, SI: kg, N/m) with the per-joint laws.
+circular slip limit, REFERENCES.md 2-D Jenkins); with ``penalty`` normal contact the 3-D
+element of :mod:`microslip.dynamics.operators3d` on its three dofs. :func:`write_rom` writes
+either as a structure file (:mod:`microslip.dynamics.files`, SI: kg, N/m) with the
+per-joint laws.
 
 Units: N, mm, s, t (mass in tonnes, N s^2/mm) in the ROM; the structure file is SI.
 """
@@ -49,8 +51,8 @@ if TYPE_CHECKING:
     from ...dynamics.files import MatrixFile
     from ...dynamics.structure import Structure
 
-__all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_matrices", "rom_structure",
-           "stuck_frequencies_full", "write_rom"]
+__all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_arrays", "rom_matrices",
+           "rom_structure", "stuck_frequencies_full", "write_rom"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -295,28 +297,27 @@ def convergence(model: MeshModel, density_kg_m3: float, counts: list[int],
 
 
 def _joints(rom: Rom) -> IntArray:
-    """(n_c, 2, 2): each contact node's joint on its two tangential ROM dofs, to ground."""
+    """(n_c, per_node, 2): each contact node's joint on its boundary ROM dofs (tangential
+    e1, e2, and the normal with ``penalty``), to the ground."""
     first = np.arange(rom.contact_stiffness.size) * rom.per_node
-    rows = np.stack([first, first + 1], axis=1)
+    rows = first[:, None] + np.arange(rom.per_node)[None, :]
     return np.stack([rows, np.full_like(rows, -1)], axis=2).astype(np.int64)
-
-
-def _fixed_only(rom: Rom) -> None:
-    if rom.per_node != 2:
-        raise ParameterError("the structure file holds 1-D and 2-D joints; the ROM of "
-                             "'penalty' normal contact (a 3-D contact element per node) is a "
-                             "library Structure only (rom_structure); reduce the model with "
-                             "'fixed' normal contact to write it")
 
 
 def rom_matrices(rom: Rom) -> MatrixFile:
     """The ROM as the matrices of a structure file (SI: kg, N/m; no damping), its joints
-    one per contact node with their own laws (lambda A_i, mu N_i)."""
+    one per contact node with their own laws: lambda A_i and mu N_i (``fixed``: 2-D
+    Jenkins), or lambda A_i, k_n A_i, N_i and mu (``penalty``: 3-D contact elements)."""
     from ...dynamics.files import MatrixFile, check_matrices
 
-    _fixed_only(rom)
     m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
                              np.zeros_like(rom.mass))
+    if rom.per_node == 3:
+        n = rom.contact_stiffness.size
+        contacts = np.column_stack([rom.contact_stiffness, rom.normal_stiffness,
+                                    rom.slip_force / rom.friction, np.full(n, rom.friction)])
+        return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
+                          contacts=contacts)
     return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
                       laws=np.column_stack([rom.contact_stiffness, rom.slip_force]))
 
@@ -328,52 +329,48 @@ def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
     :mod:`microslip.dynamics.operators3d` on its three dofs (``penalty``: k_n A_i with
     lift-off, preload N_i, limit mu N(t)); the output coordinate ``output`` (n_rom,) or, by
     default, the response set's mean displacement along global y (the contact plane's
-    in-plane bending of the cantilever), else the first coordinate."""
+    in-plane bending of the cantilever), else the first coordinate. The same structure as
+    :func:`write_rom`'s file read back (:func:`~microslip.dynamics.assemble.from_matrices`)."""
     from ...dynamics.assemble import from_matrices, with_output
-    from ...dynamics.operators import jenkins
 
-    if rom.per_node == 3:
-        s = _penalty_structure(rom)
-    else:
-        mats = rom_matrices(rom)
-        unused = jenkins(1.0, 1.0)  # every joint has its own law
-        s = from_matrices(mats, mats.joints, unused, "circular")
+    mats = rom_matrices(rom)
+    s = from_matrices(mats, mats.joints, None, "circular")  # every joint has its own law
     if output is None:
         output = rom.output[1] if rom.output is not None else np.eye(rom.dofs)[0]
     return with_output(s, np.asarray(output, dtype=float))
 
 
-def _penalty_structure(rom: Rom) -> Structure:
-    from ...dynamics.operators3d import Contact3D
-    from ...dynamics.structure import JointLink, Structure
-
-    n = rom.dofs
-    links = []
-    for i, (kt, s, kn) in enumerate(zip(rom.contact_stiffness, rom.slip_force,
-                                        rom.normal_stiffness, strict=True)):
-        w = np.zeros((n, 3))
-        w[3 * i:3 * i + 3] = np.eye(3)
-        links.append(JointLink(Contact3D(float(kt), float(kn), float(s) / rom.friction,
-                                         rom.friction), w))
-    return Structure(mass=rom.mass * SI_FACTOR, damping=np.zeros((n, n)),
-                     stiffness=rom.stiffness * SI_FACTOR, joints=tuple(links),
-                     output=np.eye(n)[0])
+def rom_arrays(rom: Rom) -> dict[str, FloatArray | IntArray]:
+    """The arrays of the ROM's structure file (:mod:`microslip.dynamics.files`): ``M``
+    (kg), ``K`` (N/m), ``joints`` and each joint's ``joint_stiffness`` (N/mm) with
+    ``joint_slip_force`` (N; ``fixed``, joints (n_c, 2, 2)) or with
+    ``joint_normal_stiffness`` (N/mm), ``joint_preload`` (N) and ``joint_friction``
+    (``penalty``, joints (n_c, 3, 2))."""
+    mats = rom_matrices(rom)
+    out: dict[str, FloatArray | IntArray] = {"M": mats.mass, "K": mats.stiffness,
+                                             "joints": mats.joints}
+    if mats.contacts is not None:
+        for j, name in enumerate(("joint_stiffness", "joint_normal_stiffness",
+                                  "joint_preload", "joint_friction")):
+            out[name] = mats.contacts[:, j]
+        return out
+    assert mats.laws is not None
+    out["joint_stiffness"] = mats.laws[:, 0]
+    out["joint_slip_force"] = mats.laws[:, 1]
+    return out
 
 
 def write_rom(path: str, rom: Rom) -> None:
-    """Write the ROM as a structure file (.npz, :mod:`microslip.dynamics.files`): ``M``
-    (kg), ``K`` (N/m), ``joints`` (n_c, 2, 2) and each joint's ``joint_stiffness`` (N/mm)
-    and ``joint_slip_force`` (N). Written to a temporary name and renamed, so a failure
-    leaves no half-written file."""
+    """Write the ROM as a structure file (.npz, :func:`rom_arrays`). Written to a
+    temporary name in the same directory and renamed, so a failure leaves no half-written
+    file (and no temporary one)."""
     import os
 
-    mats = rom_matrices(rom)
-    assert mats.laws is not None
+    arrays = rom_arrays(rom)
     tmp = f"{path}.part"
     try:
         with open(tmp, "wb") as fh:
-            np.savez(fh, M=mats.mass, K=mats.stiffness, joints=mats.joints,
-                     joint_stiffness=mats.laws[:, 0], joint_slip_force=mats.laws[:, 1])
+            np.savez(fh, **arrays)  # type: ignore[arg-type]
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
