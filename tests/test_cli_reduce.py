@@ -139,3 +139,29 @@ def test_failed_write_leaves_no_file(capsys, mesh, tmp_path, monkeypatch):
     assert err.count("\n") == 1 and "No space left on device" in err
     assert out.read_bytes() == b"older"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rom.npz"]
+
+
+def test_case_file_gives_the_clamp_and_the_mesh(capsys, tmp_path, monkeypatch):
+    """``reduce --case`` reads [material], [contact], [clamping] and [mesh] (file relative to
+    the case file); the same ROM as the command line's, and [[load]] noted as not read."""
+    write_inp(cantilever_mesh(12, 3, 1), tmp_path / "beam.inp")
+    (tmp_path / "case.toml").write_text(
+        "[material]\nmodulus = 70000\npoisson_ratio = 0.33\n[contact]\nfriction = 0.5\n"
+        "stick_slope = 1e4\n[clamping]\nnormal_force = 2000\n[mesh]\nfile = \"beam.inp\"\n"
+        "contact_set = \"contact\"\nclamp_set = \"clamp\"\n\n[[load]]\nset = \"tip\"\n"
+        "direction = [1, 0, 0]\namplitude = 300\n")
+    monkeypatch.chdir(tmp_path)
+    rom = ["--density", "2700", "--rom-modes", "6", "--json"]
+    assert main(["reduce", "--case", "case.toml", *rom, "--out", "a.npz"]) == 0
+    out, err = capsys.readouterr()
+    by_case = json.loads(out)
+    assert "[[load]] not read by reduce" in err
+    assert main(["reduce", "--mesh", "beam.inp", *CLAMP, *rom, "--out", "b.npz"]) == 0
+    by_flags = json.loads(capsys.readouterr().out)
+    # the same model (ARPACK's random start vector moves the modes' last digits)
+    assert by_case["full_frequencies_Hz"] == pytest.approx(by_flags["full_frequencies_Hz"],
+                                                           rel=1e-9)
+    assert by_case["rom_frequencies_Hz"] == pytest.approx(by_flags["rom_frequencies_Hz"],
+                                                          rel=1e-9)
+    a, b = read_structure("a.npz"), read_structure("b.npz")
+    assert np.array_equal(a.laws, b.laws) and np.array_equal(a.joints, b.joints)

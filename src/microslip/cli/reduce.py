@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from ..case.options import add_case_option
 from ..case.table import add_option, number
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
@@ -81,6 +82,13 @@ def add_parser(sub: Any) -> None:
                    help="the structure file to write (.npz; written to a temporary name and "
                         "renamed)")
     o.add_argument("--json", action="store_true", help="print one JSON object")
+    add_case_option(p)
+    for action in p._actions:
+        if action.dest == "case":
+            action.help = ("a case file with the clamp ([material], [contact], [clamping]) and "
+                           "[mesh] file, contact_set, clamp_set (docs/casefile.md); the density "
+                           "and the ROM's options come from the command line; options given "
+                           "here win")
     p.set_defaults(func=run)
 
 
