@@ -175,7 +175,8 @@ def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) ->
 
 
 def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None,
-                     cutoff_hz: float | None) -> tuple[FloatArray, FloatArray]:
+                     cutoff_hz: float | None, lu: spla.SuperLU
+                     ) -> tuple[FloatArray, FloatArray]:
     n_i = k_ii.shape[0]
     limit = n_i - 2  # eigsh needs k < n
     if modes is not None:
@@ -184,7 +185,6 @@ def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None
         count = int(modes)
     else:
         count = min(20, limit)
-    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
     op = spla.LinearOperator(k_ii.shape, matvec=lu.solve, dtype=np.float64)
     while True:
         lam, vec = spla.eigsh(k_ii, k=count, M=m_ii, sigma=0.0, which="LM", OPinv=op)
@@ -238,18 +238,17 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     m_ii = m_full[inner][:, inner].tocsc()
     k_ib = k_full[inner][:, b]
     m_ib = m_full[inner][:, b]
-    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz)
+    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
+    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz, lu)
     if freq.size == 0:
         raise ParameterError(f"no fixed-interface mode below {cutoff_hz} Hz (the lowest is "
                              "above it): raise the cut-off")
     phi = phi / np.max(np.abs(phi), axis=0) * np.sign(phi[np.argmax(np.abs(phi), axis=0),
                                                           np.arange(phi.shape[1])])
-    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
-    psi = -lu.solve(k_ib.toarray())  # constraint modes (n_i, n_b)
+    psi, psi_m_psi, m_psi_phi = _constraint_modes(lu, k_ib.tocsc(), m_ii, phi)
     k_bb = k_full[b][:, b].toarray() + (k_ib.T @ psi)
-    m_ii_psi = m_ii @ psi
-    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi.T @ m_ii_psi)
-    m_bm = (m_ib.T + m_ii_psi.T) @ phi
+    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi_m_psi)
+    m_bm = m_ib.T @ phi + m_psi_phi
     mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
     nb, nm = b.size, phi.shape[1]
     m_r = np.zeros((nb + nm, nb + nm))
@@ -268,6 +267,28 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
                build_s=time.perf_counter() - t0)
+
+
+#: Constraint modes solved and multiplied by the mass this many at a time: the full
+#: M_ii Psi (as large as Psi) is never held; on the 50k-DOF cantilever Psi alone is 0.7 GB.
+BLOCK = 256
+
+
+def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ii: sp.csc_matrix,
+                      phi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Psi = -K_ii^-1 K_ib (n_i, n_b), Psi^T M_ii Psi (n_b, n_b) and (M_ii Psi)^T Phi
+    (n_b, n_m), ``BLOCK`` columns of Psi at a time."""
+    n_i, n_b = k_ib.shape
+    psi = np.empty((n_i, n_b), order="F")
+    for j in range(0, n_b, BLOCK):
+        psi[:, j:j + BLOCK] = -lu.solve(k_ib[:, j:j + BLOCK].toarray())
+    psi_m_psi = np.empty((n_b, n_b))
+    m_psi_phi = np.empty((n_b, phi.shape[1]))
+    for j in range(0, n_b, BLOCK):
+        m_psi = m_ii @ psi[:, j:j + BLOCK]
+        psi_m_psi[:, j:j + BLOCK] = psi.T @ m_psi
+        m_psi_phi[j:j + BLOCK] = m_psi.T @ phi
+    return psi, psi_m_psi, m_psi_phi
 
 
 def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: FloatArray,
