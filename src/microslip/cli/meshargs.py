@@ -31,8 +31,9 @@ def add_mesh_file(g: Any, help: str) -> argparse.Action:
     return g.add_argument("--mesh", metavar="FILE", type=mesh_file, help=help)
 
 
-def add_mesh_structure_options(g: Any) -> None:
-    """``--normal-contact``, ``--normal-slope``, ``--density`` and ``--response-set``."""
+def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None:
+    """``--normal-contact``, ``--normal-slope``, ``--density`` and ``--response-set``
+    (``response_help``: what the command does with it, if not the amplitude's set)."""
     g.add_argument("--normal-contact", choices=list(NORMAL_CONTACTS), default=None,
                    help="; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items())
                    + " (default fixed)")
@@ -41,8 +42,8 @@ def add_mesh_structure_options(g: Any) -> None:
     g.add_argument("--density", type=number, default=None, metavar="KG/M3",
                    help="density of the body, kg/m^3 (aluminium 2700, steel 7850)")
     g.add_argument("--response-set", metavar="NAME", default=None,
-                   help="set whose mean displacement along the mode is the amplitude "
-                        "(amplitude_mm)")
+                   help=response_help or "set whose mean displacement along the mode is the "
+                                         "amplitude (amplitude_mm)")
 
 
 def add_rom_modes(g: Any, note: str) -> argparse.Action:

@@ -72,7 +72,8 @@ def add_parser(sub: Any) -> None:
     add_option(g, "stick_slope", default=DEFAULT_STICK_SLOPE)
     add_option(g, "modulus")
     add_option(g, "poisson_ratio")
-    add_mesh_structure_options(g)
+    add_mesh_structure_options(g, "a set of the mesh: each stuck mode is labelled by the "
+                                  "direction (global x, y, z) of its mean displacement")
     r = p.add_argument_group("the reduced model (one of --rom-modes, --cutoff-frequency)")
     add_rom_modes(r, f", the lowest N, in [1, {MAX_ROM_MODES}]")
     r.add_argument("--cutoff-frequency", type=number, default=None, metavar="HZ",
