@@ -5,7 +5,7 @@ Run: ``python3 benchmarks/bench_rom.py`` (``--quick``: one repeat).
 The cantilever example (:func:`microslip.fe.examples.cantilever_mesh` 24x6x2, C3D8I):
 aluminium E 70000 MPa, nu 0.33, density 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope
 1e4 N/mm^3, ``fixed`` normal contact (the 2-D circular element per contact node; the 3-D
-penalty element is not built yet). Rows, beside the targets:
+penalty element's EPMC is a row of ``bench_structure.py``). Rows, beside the targets:
 
 * ROM build: the clamping step's model is given; the consistent mass, 20 fixed-interface
   modes, the constraint modes and the reduced matrices (target under 5 s);

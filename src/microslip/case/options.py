@@ -33,6 +33,10 @@ PLANAR_COMMANDS = ("planar",)
 #: Commands that read a mesh of the user's own ([mesh] and [[load]] tables).
 MESH_COMMANDS = ("fe",)
 
+#: Commands that read the [mesh] section (file and sets) but no [[load]] tables: the
+#: structure of the user's mesh (``reduce``).
+MESH_STRUCTURE_COMMANDS = ("reduce",)
+
 #: Commands of a structure: they read [structure] and [[joint]], and no load case (their
 #: excitation is --force).
 STRUCTURE_COMMANDS = ("modal", "frf")
@@ -127,7 +131,7 @@ def _reads(command: str, scope: str) -> bool:
     if scope == "all":
         return True
     if scope == "mesh":
-        return command in MESH_COMMANDS
+        return command in MESH_COMMANDS or command in MESH_STRUCTURE_COMMANDS
     if scope == "planar":
         return command in PLANAR_COMMANDS
     return command not in PLANAR_COMMANDS and command not in STRUCTURE_COMMANDS

@@ -39,6 +39,7 @@ COMMANDS = MappingProxyType({
     "joint": "describing function of a joint: stiffness, damping, loss factor",
     "modal": "nonlinear modal analysis: frequency and damping ratio vs amplitude",
     "frf": "forced response: frequency-response curves through the resonance",
+    "reduce": "reduced model of your mesh with every contact node, for modal and frf",
     "report": "HTML report of a case: loops, damping, FE comparison, validity",
 })
 

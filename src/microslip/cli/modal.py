@@ -73,6 +73,10 @@ def run(args: argparse.Namespace) -> int:
         check_writable(args.csv)
     structure = structure_from_args(args)
     warnings = across_warnings(args)
+    three_d = any(link.directions == 3 for link in structure.joints)
+    if three_d and args.method == "epmc":  # the energy method refuses 3-D contact elements
+        warnings.append("3-D contact joints: no energy-method curve (it takes 1-D and 2-D "
+                        "joints); energy_method is null")
     report_warnings(warnings)
     if args.method == "energy" and args.harmonics is not None:
         raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
@@ -81,7 +85,8 @@ def run(args: argparse.Namespace) -> int:
     amps = amplitudes_from_args(args)
     mode = mode_from_args(args)
     curve = METHODS[args.method](structure, amps, harmonics, samples, mode)
-    energy = curve if args.method == "energy" else energy_method(structure, amps, mode=mode)
+    energy = curve if args.method == "energy" or three_d else energy_method(structure, amps,
+                                                                            mode=mode)
     if args.csv:
         write_csv(args.csv, {"amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                              "damping_ratio": curve.damping_ratio})
@@ -94,8 +99,9 @@ def run(args: argparse.Namespace) -> int:
                     "harmonics": curve.harmonics, "samples": curve.samples,
                     "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
                     "damping_ratio": curve.damping_ratio,
-                    "energy_method": {"frequency_Hz": energy.frequency,
-                                      "damping_ratio": energy.damping_ratio},
+                    "energy_method": None if three_d else {
+                        "frequency_Hz": energy.frequency,
+                        "damping_ratio": energy.damping_ratio},
                     "warnings": warnings})
         return 0
     print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "

@@ -29,6 +29,7 @@ from ..dynamics.assemble import (
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
 from ..dynamics.hb import DEFAULT_HB_SAMPLES
 from ..dynamics.operators2d import PAIRINGS
+from ..dynamics.operators3d import Contact3D
 from ..dynamics.structure import Structure, free_frequency, one_mode
 from ..errors import ParameterError
 from .across import (
@@ -42,7 +43,7 @@ from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
            "add_structure_options", "balance_from_args", "connectivity_from_args",
-           "describe_structure", "headline", "mode_from_args", "placed_joints",
+           "describe_contacts", "describe_structure", "headline", "mode_from_args", "placed_joints",
            "structure_from_args"]
 
 #: The warning for a two-directional tip or centre joint that is its own 1-D model across
@@ -129,7 +130,10 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
         raise ParameterError("--coupling applies to two-directional joints only (give "
                              "--joint-dof twice or a (n, 2, 2) joints array)")
     across = across_from_args(args, np.asarray(joints))
-    structure = from_matrices(matrices, np.asarray(joints), joint_from_args(args),
+    own = (matrices.laws is not None or matrices.contacts is not None) and \
+        np.array_equal(np.asarray(joints), matrices.joints)
+    given = None if own and args.joint is None else joint_from_args(args)
+    structure = from_matrices(matrices, np.asarray(joints), given,
                               args.coupling or "circular", across, args.pairing)
     return with_output(structure, modal_output(structure, mode_from_args(args)))
 
@@ -201,6 +205,8 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
             return {**out, "joint": {**describe_joint(joint_from_args(args)), **describe_across(
                 args.transverse, args.pairing, args.coupling or "circular",
                 across_joint(args), args.fe_mesh)}}
+        if not specs and isinstance(structure.joints[0].operator, Contact3D):
+            return {**out, "joint": describe_contacts(structure)}
         if not specs:
             return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
         from ..dynamics.spec import joint_operator, transverse_operator
@@ -223,6 +229,15 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
             "participation": float(link.participation[0]),
             "stuck_frequency_Hz": float(structure.linear_frequencies(stuck=True)[0]),
             "joint": describe_joint(link.operator)}  # type: ignore[arg-type]
+
+
+def describe_contacts(structure: Structure) -> dict[str, Any]:
+    """JSON description of a structure file's 3-D contact joints (each its own law)."""
+    ops = [link.operator for link in structure.joints if isinstance(link.operator, Contact3D)]
+    return {"name": "contact3d", "elements": len(ops),
+            "tangential_stiffness_N_per_mm": [op.tangential_stiffness for op in ops],
+            "normal_stiffness_N_per_mm": [op.normal_stiffness for op in ops],
+            "preload_N": [op.preload for op in ops], "friction": [op.friction for op in ops]}
 
 
 def add_balance_options(parser: argparse.ArgumentParser) -> None:

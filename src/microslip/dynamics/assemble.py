@@ -24,6 +24,7 @@ from .files import MatrixFile, joint_weights
 from .hb import to_time
 from .operators import IwanOperator, jenkins
 from .operators2d import COUPLINGS
+from .operators3d import Contact3D
 from .response import FrequencyResponse
 from .structure import JointLink, Structure
 
@@ -41,16 +42,18 @@ class PlacedJoint:
     A two-directional joint is ``operator`` along its first direction and ``transverse``
     (None: ``operator``) along its second, its elements matched by ``pairing``
     (:data:`~.operators2d.PAIRINGS`, None: the default; circular coupling only).
+    A joint of three directions (tangential, tangential, normal) is a contact node's 3-D
+    element, ``operator`` a :class:`~.operators3d.Contact3D` (no coupling applies).
     """
 
     dofs: np.ndarray
-    operator: IwanOperator
+    operator: IwanOperator | Contact3D
     coupling: str = "circular"
     transverse: IwanOperator | None = None
     pairing: str | None = None
 
 
-def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
+def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator | None,
                   coupling: str, transverse: IwanOperator | None = None,
                   pairing: str | None = None) -> Structure:
     """The structure of ``matrices`` with ``joint`` at every connectivity row of ``joints``
@@ -59,12 +62,22 @@ def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator,
     ``joint``) with ``pairing``. The output coordinate is set by :func:`with_output`.
 
     A file whose joints carry their own laws (:attr:`MatrixFile.laws`) places, on its own
-    connectivity, each joint's Jenkins element (circular coupling) instead of ``joint``.
+    connectivity, each joint's Jenkins element (circular coupling) instead of ``joint``;
+    a file of 3-D contact joints (:attr:`MatrixFile.contacts`) each joint's
+    :class:`~.operators3d.Contact3D`. ``joint`` may be None only then.
     """
-    if matrices.laws is not None and np.array_equal(np.asarray(joints), matrices.joints):
+    own = np.array_equal(np.asarray(joints), matrices.joints)
+    if matrices.contacts is not None and own:
+        return from_joints(matrices, [PlacedJoint(row, Contact3D(*map(float, law)))
+                                      for row, law in zip(joints, matrices.contacts,
+                                                          strict=True)])
+    if matrices.laws is not None and own:
         return from_joints(matrices, [PlacedJoint(row, jenkins(float(k), float(s)))
                                       for row, (k, s) in zip(joints, matrices.laws,
                                                              strict=True)])
+    if joint is None:
+        raise ParameterError(f"{matrices.path}: its joints carry no laws of their own; give "
+                             "the joint (--joint and its options)")
     return from_joints(matrices, [PlacedJoint(row, joint, coupling, transverse, pairing)
                                   for row in joints])
 
@@ -79,6 +92,13 @@ def from_joints(matrices: MatrixFile, joints: Sequence[PlacedJoint]) -> Structur
     n = matrices.mass.shape[0]
     for placed in joints:
         (w,) = joint_weights([np.asarray(placed.dofs)], n)
+        if isinstance(placed.operator, Contact3D) or (w.ndim == 2 and w.shape[1] == 3):
+            if not isinstance(placed.operator, Contact3D) or w.ndim != 2 or w.shape[1] != 3:
+                raise ParameterError("a 3-D contact element (tangential, tangential, normal) "
+                                     "takes a joint of three directions, and a joint of three "
+                                     "directions a 3-D contact element")
+            links.append(JointLink(placed.operator, w))
+            continue
         if w.ndim == 1:
             if placed.transverse is not None or placed.pairing is not None:
                 raise ParameterError("a joint across (transverse) and its pairing need a "

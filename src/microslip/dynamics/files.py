@@ -10,7 +10,14 @@ Two formats:
   optional ``joint_stiffness`` (N/mm) and ``joint_slip_force`` (N), shape (n_joints,), both
   or neither: each joint of the file is then its own Jenkins element (circular on a
   two-directional joint), as a reduced model with every contact node writes it
-  (:mod:`microslip.fe.builtin.reduce`), in place of the joint the command line names.
+  (:mod:`microslip.fe.builtin.reduce`), in place of the joint the command line names;
+  or (n_joints, 3, 2) for *3-D contact joints* (a contact node with penalty normal contact,
+  :class:`~.operators3d.Contact3D`: tangential 1, tangential 2, normal, in that order) with
+  their laws ``joint_stiffness`` (tangential k_t, N/mm), ``joint_normal_stiffness`` (k_n,
+  N/mm), ``joint_preload`` (N_0, N) and ``joint_friction`` (mu), shape (n_joints,), all
+  four (``joint_slip_force`` is then mu N_0 and not given). A reader older than these
+  arrays refuses such a file naming them (it never reads it as something else); every
+  file without them reads as before.
 - a directory with Matrix Market files ``M.mtx``, ``K.mtx`` and optional ``C.mtx``
   (:func:`scipy.io.mmread`; joints then come from the command line).
 
@@ -36,7 +43,12 @@ __all__ = ["MatrixFile", "check_matrices", "joint_weights", "read_structure"]
 SYMMETRY_TOLERANCE = 1e-9
 
 #: Arrays an .npz structure file may hold.
-NPZ_ARRAYS = ("M", "K", "C", "joints", "joint_stiffness", "joint_slip_force")
+NPZ_ARRAYS = ("M", "K", "C", "joints", "joint_stiffness", "joint_slip_force",
+              "joint_normal_stiffness", "joint_preload", "joint_friction")
+#: The laws of 3-D contact joints, in the columns of :attr:`MatrixFile.contacts`: name,
+#: unit (for the messages).
+CONTACT_LAWS = (("joint_stiffness", "N/mm"), ("joint_normal_stiffness", "N/mm"),
+                ("joint_preload", "N"), ("joint_friction", ""))
 
 
 @result
@@ -48,12 +60,17 @@ class MatrixFile:
     mass, stiffness, damping : ndarray, shape (n, n)
         M (kg), K (N/m) and C (N·s/m; zeros if the file has none), checked.
     joints : ndarray, int, shape (n_joints, directions, 2)
-        ``[i, j]`` per direction, j = -1 for the ground; (0, 1, 2) if the file has none.
+        ``[i, j]`` per direction, j = -1 for the ground; (0, 1, 2) if the file has none;
+        directions 3 for 3-D contact joints (tangential, tangential, normal).
     path : str
         Where they came from.
     laws : ndarray, shape (n_joints, 2), or None
         Each joint's own Jenkins element: stiffness (N/mm) and slip force (N); None if the
         file gives none.
+    contacts : ndarray, shape (n_joints, 4), or None
+        Each 3-D contact joint's law (:class:`~.operators3d.Contact3D`): tangential
+        stiffness k_t (N/mm), normal stiffness k_n (N/mm), preload N_0 (N), friction mu;
+        None unless the joints have three directions.
     """
 
     mass: np.ndarray
@@ -62,6 +79,7 @@ class MatrixFile:
     joints: np.ndarray
     path: str
     laws: np.ndarray | None = None
+    contacts: np.ndarray | None = None
 
 
 def read_structure(path: str) -> MatrixFile:
@@ -76,10 +94,46 @@ def read_structure(path: str) -> MatrixFile:
     c = arrays.get("C", np.zeros_like(m) if isinstance(m, np.ndarray) else None)
     mass, stiffness, damping = check_matrices(path, m, k, c)
     joints = _joints(path, arrays.get("joints"), mass.shape[0])
+    if joints.shape[1] == 3:
+        return MatrixFile(mass=mass, stiffness=stiffness, damping=damping, joints=joints,
+                          path=path, contacts=_contacts(path, arrays, joints.shape[0]))
+    given = [name for name, _ in CONTACT_LAWS[1:] if name in arrays]
+    if given:
+        raise ParameterError(f"{path}: {', '.join(given)} belong to 3-D contact joints "
+                             "(joints of shape (n, 3, 2)); the file's joints have "
+                             f"{joints.shape[1]} direction(s)")
     laws = _laws(path, arrays.get("joint_stiffness"), arrays.get("joint_slip_force"),
                  joints.shape[0])
     return MatrixFile(mass=mass, stiffness=stiffness, damping=damping, joints=joints,
                       path=path, laws=laws)
+
+
+def _contacts(path: str, arrays: dict[str, object], count: int) -> np.ndarray:
+    """(n_joints, 4): each 3-D contact joint's k_t (N/mm), k_n (N/mm), N_0 (N) and mu,
+    checked (finite and > 0)."""
+    if "joint_slip_force" in arrays:
+        raise ParameterError(f"{path}: 3-D contact joints take joint_preload and "
+                             "joint_friction (their slip force is mu N(t)), not "
+                             "joint_slip_force")
+    missing = [name for name, _ in CONTACT_LAWS if name not in arrays]
+    if missing:
+        raise ParameterError(f"{path}: 3-D contact joints (joints of shape (n, 3, 2)) need "
+                             f"{', '.join(n for n, _ in CONTACT_LAWS)}; missing "
+                             f"{', '.join(missing)}")
+    return np.column_stack([_positive(path, name, unit, arrays[name], count)
+                            for name, unit in CONTACT_LAWS])
+
+
+def _positive(path: str, name: str, unit: str, a: object, count: int) -> np.ndarray:
+    """One number per joint, finite and > 0."""
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "iuf" or arr.shape != (count,):
+        raise ParameterError(f"{path}: {name} must be {count} numbers (one per joint), "
+                             f"got dtype {arr.dtype} shape {arr.shape}")
+    arr = arr.astype(np.float64)
+    if not np.all(np.isfinite(arr) & (arr > 0.0)):
+        raise ParameterError(f"{path}: {name} must be finite and > 0{' ' + unit if unit else ''}")
+    return arr
 
 
 def _laws(path: str, stiffness: object, slip_force: object, count: int) -> np.ndarray | None:
@@ -89,18 +143,8 @@ def _laws(path: str, stiffness: object, slip_force: object, count: int) -> np.nd
     if stiffness is None or slip_force is None:
         raise ParameterError(f"{path}: joint_stiffness and joint_slip_force go together; "
                              "the file has only one of them")
-    out = []
-    for name, unit, a in (("joint_stiffness", "N/mm", stiffness),
-                          ("joint_slip_force", "N", slip_force)):
-        arr = np.asarray(a)
-        if arr.dtype.kind not in "iuf" or arr.shape != (count,):
-            raise ParameterError(f"{path}: {name} must be {count} numbers (one per joint), "
-                                 f"got dtype {arr.dtype} shape {arr.shape}")
-        arr = arr.astype(np.float64)
-        if not np.all(np.isfinite(arr) & (arr > 0.0)):
-            raise ParameterError(f"{path}: {name} must be finite and > 0 {unit}")
-        out.append(arr)
-    return np.column_stack(out)
+    return np.column_stack([_positive(path, name, unit, a, count) for name, unit, a in (
+        ("joint_stiffness", "N/mm", stiffness), ("joint_slip_force", "N", slip_force))])
 
 
 def check_matrices(path: str, m: object, k: object, c: object
@@ -161,9 +205,9 @@ def _joints(path: str, joints: object, dofs: int) -> np.ndarray:
                              f"{arr.dtype}")
     if arr.ndim == 2 and arr.shape[1:] == (2,):
         arr = arr[:, None, :]
-    if arr.ndim != 3 or arr.shape[1] not in (1, 2) or arr.shape[2] != 2:
-        raise ParameterError(f"{path}: joints must have shape (n, 2) or (n, 2, 2) ([i, j] "
-                             f"per direction), got {arr.shape}")
+    if arr.ndim != 3 or arr.shape[1] not in (1, 2, 3) or arr.shape[2] != 2:
+        raise ParameterError(f"{path}: joints must have shape (n, 2), (n, 2, 2) or (n, 3, 2) "
+                             f"([i, j] per direction), got {arr.shape}")
     return check_joint_dofs(path, arr.astype(np.int64), dofs)
 
 

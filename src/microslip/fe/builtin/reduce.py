@@ -22,8 +22,10 @@ Each contact node then carries the full FE's own law (:func:`rom_structure`): wi
 normal contact a 2-D circular Coulomb (Jenkins) element on its two tangential dofs, stiffness
 lambda A_i and slip force mu N_i at the clamping step's normal force, one
 :class:`~microslip.dynamics.operators2d.CircularIwan` of one element per node (its
-circular slip limit, REFERENCES.md 2-D Jenkins). :func:`write_rom` writes it as a structure
-file (:mod:`microslip.dynamics.files`, SI: kg, N/m) with the per-joint laws.
+circular slip limit, REFERENCES.md 2-D Jenkins); with ``penalty`` normal contact the 3-D
+element of :mod:`microslip.dynamics.operators3d` on its three dofs. :func:`write_rom` writes
+either as a structure file (:mod:`microslip.dynamics.files`, SI: kg, N/m) with the
+per-joint laws.
 
 Units: N, mm, s, t (mass in tonnes, N s^2/mm) in the ROM; the structure file is SI.
 """
@@ -49,8 +51,8 @@ if TYPE_CHECKING:
     from ...dynamics.files import MatrixFile
     from ...dynamics.structure import Structure
 
-__all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_matrices", "rom_structure",
-           "stuck_frequencies_full", "write_rom"]
+__all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_arrays", "rom_matrices",
+           "rom_structure", "stuck_frequencies_full", "write_rom"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -119,6 +121,18 @@ class Rom:
             d[:nb].reshape(-1, 3)[:, 2] = self.normal_stiffness
         return d
 
+    def response_motion(self, count: int) -> FloatArray:
+        """(count, 3): the response set's mean displacement along global x, y, z in each of
+        the lowest ``count`` stuck modes, per unit length (the direction it moves);
+        needs :attr:`output`."""
+        if self.output is None:
+            raise ParameterError("the ROM has no response set (build it with one)")
+        k = self.stiffness + np.diag(self.contact_springs())
+        _, vec = eigh(k, self.mass, subset_by_index=[0, min(count, self.dofs) - 1])
+        motion = (self.output @ vec).T
+        size = np.linalg.norm(motion, axis=1, keepdims=True)
+        return np.asarray(motion / np.where(size > 0.0, size, 1.0))
+
     def stuck_frequencies(self, count: int | None = None) -> FloatArray:
         """The ROM's linear natural frequencies with the contact stuck, Hz, ascending."""
         k = self.stiffness + np.diag(self.contact_springs())
@@ -161,7 +175,8 @@ def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) ->
 
 
 def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None,
-                     cutoff_hz: float | None) -> tuple[FloatArray, FloatArray]:
+                     cutoff_hz: float | None, lu: spla.SuperLU
+                     ) -> tuple[FloatArray, FloatArray]:
     n_i = k_ii.shape[0]
     limit = n_i - 2  # eigsh needs k < n
     if modes is not None:
@@ -170,7 +185,6 @@ def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None
         count = int(modes)
     else:
         count = min(20, limit)
-    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
     op = spla.LinearOperator(k_ii.shape, matvec=lu.solve, dtype=np.float64)
     while True:
         lam, vec = spla.eigsh(k_ii, k=count, M=m_ii, sigma=0.0, which="LM", OPinv=op)
@@ -224,18 +238,17 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     m_ii = m_full[inner][:, inner].tocsc()
     k_ib = k_full[inner][:, b]
     m_ib = m_full[inner][:, b]
-    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz)
+    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
+    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz, lu)
     if freq.size == 0:
         raise ParameterError(f"no fixed-interface mode below {cutoff_hz} Hz (the lowest is "
                              "above it): raise the cut-off")
     phi = phi / np.max(np.abs(phi), axis=0) * np.sign(phi[np.argmax(np.abs(phi), axis=0),
                                                           np.arange(phi.shape[1])])
-    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
-    psi = -lu.solve(k_ib.toarray())  # constraint modes (n_i, n_b)
+    psi, psi_m_psi, m_psi_phi = _constraint_modes(lu, k_ib.tocsc(), m_ii, phi)
     k_bb = k_full[b][:, b].toarray() + (k_ib.T @ psi)
-    m_ii_psi = m_ii @ psi
-    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi.T @ m_ii_psi)
-    m_bm = (m_ib.T + m_ii_psi.T) @ phi
+    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi_m_psi)
+    m_bm = m_ib.T @ phi + m_psi_phi
     mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
     nb, nm = b.size, phi.shape[1]
     m_r = np.zeros((nb + nm, nb + nm))
@@ -254,6 +267,28 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
                build_s=time.perf_counter() - t0)
+
+
+#: Constraint modes solved and multiplied by the mass this many at a time: the full
+#: M_ii Psi (as large as Psi) is never held; on the 50k-DOF cantilever Psi alone is 0.7 GB.
+BLOCK = 256
+
+
+def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ii: sp.csc_matrix,
+                      phi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Psi = -K_ii^-1 K_ib (n_i, n_b), Psi^T M_ii Psi (n_b, n_b) and (M_ii Psi)^T Phi
+    (n_b, n_m), ``BLOCK`` columns of Psi at a time."""
+    n_i, n_b = k_ib.shape
+    psi = np.empty((n_i, n_b), order="F")
+    for j in range(0, n_b, BLOCK):
+        psi[:, j:j + BLOCK] = -lu.solve(k_ib[:, j:j + BLOCK].toarray())
+    psi_m_psi = np.empty((n_b, n_b))
+    m_psi_phi = np.empty((n_b, phi.shape[1]))
+    for j in range(0, n_b, BLOCK):
+        m_psi = m_ii @ psi[:, j:j + BLOCK]
+        psi_m_psi[:, j:j + BLOCK] = psi.T @ m_psi
+        m_psi_phi[j:j + BLOCK] = m_psi.T @ phi
+    return psi, psi_m_psi, m_psi_phi
 
 
 def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: FloatArray,
@@ -281,42 +316,43 @@ def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: Floa
 
 
 def convergence(model: MeshModel, density_kg_m3: float, counts: list[int],
-                compare: int = 6, mass: sp.csr_matrix | None = None
+                compare: int = 6, mass: sp.csr_matrix | None = None, rom: Rom | None = None
                 ) -> dict[str, list[float] | list[int] | list[list[float]]]:
     """Relative error of the ROM's lowest ``compare`` stuck frequencies against the full FE,
-    for each number of fixed-interface modes in ``counts``."""
+    for each number of fixed-interface modes in ``counts``; ``rom``, if given, is the ROM
+    of its own mode count (not built again)."""
     m = full_mass(model, density_kg_m3) if mass is None else mass
     full = stuck_frequencies_full(model, m, compare)
     errors = []
     for n in counts:
-        rom = build_rom(model, density_kg_m3, modes=n, mass=m)
-        errors.append(list((rom.stuck_frequencies(compare) - full) / full))
+        r = rom if rom is not None and rom.modes == n else build_rom(
+            model, density_kg_m3, modes=n, mass=m)
+        errors.append(list((r.stuck_frequencies(compare) - full) / full))
     return {"modes": list(counts), "full_Hz": list(full), "relative_error": errors}
 
 
 def _joints(rom: Rom) -> IntArray:
-    """(n_c, 2, 2): each contact node's joint on its two tangential ROM dofs, to ground."""
+    """(n_c, per_node, 2): each contact node's joint on its boundary ROM dofs (tangential
+    e1, e2, and the normal with ``penalty``), to the ground."""
     first = np.arange(rom.contact_stiffness.size) * rom.per_node
-    rows = np.stack([first, first + 1], axis=1)
+    rows = first[:, None] + np.arange(rom.per_node)[None, :]
     return np.stack([rows, np.full_like(rows, -1)], axis=2).astype(np.int64)
-
-
-def _fixed_only(rom: Rom) -> None:
-    if rom.per_node != 2:
-        raise ParameterError("the structure file holds 1-D and 2-D joints; the ROM of "
-                             "'penalty' normal contact (a 3-D contact element per node) is a "
-                             "library Structure only (rom_structure); reduce the model with "
-                             "'fixed' normal contact to write it")
 
 
 def rom_matrices(rom: Rom) -> MatrixFile:
     """The ROM as the matrices of a structure file (SI: kg, N/m; no damping), its joints
-    one per contact node with their own laws (lambda A_i, mu N_i)."""
+    one per contact node with their own laws: lambda A_i and mu N_i (``fixed``: 2-D
+    Jenkins), or lambda A_i, k_n A_i, N_i and mu (``penalty``: 3-D contact elements)."""
     from ...dynamics.files import MatrixFile, check_matrices
 
-    _fixed_only(rom)
     m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
                              np.zeros_like(rom.mass))
+    if rom.per_node == 3:
+        n = rom.contact_stiffness.size
+        contacts = np.column_stack([rom.contact_stiffness, rom.normal_stiffness,
+                                    rom.slip_force / rom.friction, np.full(n, rom.friction)])
+        return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
+                          contacts=contacts)
     return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
                       laws=np.column_stack([rom.contact_stiffness, rom.slip_force]))
 
@@ -328,52 +364,48 @@ def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
     :mod:`microslip.dynamics.operators3d` on its three dofs (``penalty``: k_n A_i with
     lift-off, preload N_i, limit mu N(t)); the output coordinate ``output`` (n_rom,) or, by
     default, the response set's mean displacement along global y (the contact plane's
-    in-plane bending of the cantilever), else the first coordinate."""
+    in-plane bending of the cantilever), else the first coordinate. The same structure as
+    :func:`write_rom`'s file read back (:func:`~microslip.dynamics.assemble.from_matrices`)."""
     from ...dynamics.assemble import from_matrices, with_output
-    from ...dynamics.operators import jenkins
 
-    if rom.per_node == 3:
-        s = _penalty_structure(rom)
-    else:
-        mats = rom_matrices(rom)
-        unused = jenkins(1.0, 1.0)  # every joint has its own law
-        s = from_matrices(mats, mats.joints, unused, "circular")
+    mats = rom_matrices(rom)
+    s = from_matrices(mats, mats.joints, None, "circular")  # every joint has its own law
     if output is None:
         output = rom.output[1] if rom.output is not None else np.eye(rom.dofs)[0]
     return with_output(s, np.asarray(output, dtype=float))
 
 
-def _penalty_structure(rom: Rom) -> Structure:
-    from ...dynamics.operators3d import Contact3D
-    from ...dynamics.structure import JointLink, Structure
-
-    n = rom.dofs
-    links = []
-    for i, (kt, s, kn) in enumerate(zip(rom.contact_stiffness, rom.slip_force,
-                                        rom.normal_stiffness, strict=True)):
-        w = np.zeros((n, 3))
-        w[3 * i:3 * i + 3] = np.eye(3)
-        links.append(JointLink(Contact3D(float(kt), float(kn), float(s) / rom.friction,
-                                         rom.friction), w))
-    return Structure(mass=rom.mass * SI_FACTOR, damping=np.zeros((n, n)),
-                     stiffness=rom.stiffness * SI_FACTOR, joints=tuple(links),
-                     output=np.eye(n)[0])
+def rom_arrays(rom: Rom) -> dict[str, FloatArray | IntArray]:
+    """The arrays of the ROM's structure file (:mod:`microslip.dynamics.files`): ``M``
+    (kg), ``K`` (N/m), ``joints`` and each joint's ``joint_stiffness`` (N/mm) with
+    ``joint_slip_force`` (N; ``fixed``, joints (n_c, 2, 2)) or with
+    ``joint_normal_stiffness`` (N/mm), ``joint_preload`` (N) and ``joint_friction``
+    (``penalty``, joints (n_c, 3, 2))."""
+    mats = rom_matrices(rom)
+    out: dict[str, FloatArray | IntArray] = {"M": mats.mass, "K": mats.stiffness,
+                                             "joints": mats.joints}
+    if mats.contacts is not None:
+        for j, name in enumerate(("joint_stiffness", "joint_normal_stiffness",
+                                  "joint_preload", "joint_friction")):
+            out[name] = mats.contacts[:, j]
+        return out
+    assert mats.laws is not None
+    out["joint_stiffness"] = mats.laws[:, 0]
+    out["joint_slip_force"] = mats.laws[:, 1]
+    return out
 
 
 def write_rom(path: str, rom: Rom) -> None:
-    """Write the ROM as a structure file (.npz, :mod:`microslip.dynamics.files`): ``M``
-    (kg), ``K`` (N/m), ``joints`` (n_c, 2, 2) and each joint's ``joint_stiffness`` (N/mm)
-    and ``joint_slip_force`` (N). Written to a temporary name and renamed, so a failure
-    leaves no half-written file."""
+    """Write the ROM as a structure file (.npz, :func:`rom_arrays`). Written to a
+    temporary name in the same directory and renamed, so a failure leaves no half-written
+    file (and no temporary one)."""
     import os
 
-    mats = rom_matrices(rom)
-    assert mats.laws is not None
+    arrays = rom_arrays(rom)
     tmp = f"{path}.part"
     try:
         with open(tmp, "wb") as fh:
-            np.savez(fh, M=mats.mass, K=mats.stiffness, joints=mats.joints,
-                     joint_stiffness=mats.laws[:, 0], joint_slip_force=mats.laws[:, 1])
+            np.savez(fh, **arrays)  # type: ignore[arg-type]
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
