@@ -78,6 +78,7 @@ def test_mesh_is_checked_the_same_on_every_command_that_takes_it():
     assert found.pop("fe").type is mesh_or_file
     assert found.pop("modal").type is mesh_file  # the structure's own mesh
     assert found.pop("frf").type is mesh_file  # the structure's own mesh (frf --mesh)
+    assert found.pop("reduce").type is mesh_file  # the structure's own mesh (reduce)
     assert found.pop("validate").type is mesh_or_file  # its own mesh against CalculiX
     assert {a.type for a in found.values()} == {mesh_level}
     assert actions("--fe-mesh")["modal"].type is mesh_level

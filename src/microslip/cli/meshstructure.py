@@ -18,7 +18,7 @@ from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
 from .ownmesh import given
 
 __all__ = ["DEFAULT_ROM_MODES", "MAX_MODE", "NOT_WITH_MESH", "REQUIRED",
-           "add_mesh_structure_options", "add_reduced_model_options",
+           "add_mesh_structure_options", "add_reduced_model_options", "check_density",
            "check_mesh_structure", "mesh_model", "mesh_modes"]
 
 #: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
@@ -39,9 +39,11 @@ DEFAULT_ROM_MODES = 60
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")
 
 
-def add_mesh_structure_options(g: Any) -> None:
+def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None:
     """``--mesh``, ``--contact-set``, ``--clamp-set``, ``--normal-contact``,
-    ``--normal-slope``, ``--density`` and ``--response-set`` on the argument group ``g``."""
+    ``--normal-slope``, ``--density`` and ``--response-set`` on the argument group ``g``
+    (``response_help``: what the command does with the response set, if not the
+    amplitude's set)."""
     g.add_argument("--mesh", metavar="FILE", type=mesh_file,
                    help="a hexahedral mesh of your structure with its clamp (.inp, .msh, "
                         ".vtu, ...): its modes and the damping its clamp gives them")
@@ -55,8 +57,8 @@ def add_mesh_structure_options(g: Any) -> None:
     g.add_argument("--density", type=number, default=None, metavar="KG/M3",
                    help="density of the body, kg/m^3 (aluminium 2700, steel 7850)")
     g.add_argument("--response-set", metavar="NAME", default=None,
-                   help="set whose mean displacement along the mode is the amplitude "
-                        "(amplitude_mm)")
+                   help=response_help or "set whose mean displacement along the mode is the "
+                                         "amplitude (amplitude_mm)")
 
 
 def add_reduced_model_options(g: Any) -> None:
@@ -71,6 +73,13 @@ def add_reduced_model_options(g: Any) -> None:
                         "the mode (fe, default), the same with work-equivalent "
                         "displacements (work), or the paper's 1-D clamp model on the "
                         "contact patch (tip, centre)")
+
+
+def check_density(density: float) -> float:
+    """The density, kg/m^3, finite and > 0 (one line otherwise)."""
+    if not (isinstance(density, float) and 0.0 < density < float("inf")):
+        raise ParameterError(f"--density must be finite and > 0 kg/m^3, got {density!r}")
+    return density
 
 
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:

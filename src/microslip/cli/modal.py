@@ -16,7 +16,13 @@ from ..dynamics.modal import METHODS, energy_method
 from ..errors import ParameterError
 from .common import number
 from .contact import report_warnings
-from .modalmesh import add_modal_mesh_options, refuse_mesh_options, run_modal_mesh
+from .modalmesh import (
+    ALL,
+    add_modal_mesh_options,
+    mesh_study,
+    refuse_mesh_options,
+    run_modal_mesh,
+)
 from .structure import (
     across_warnings,
     add_balance_options,
@@ -63,6 +69,10 @@ def run(args: argparse.Namespace) -> int:
     if args.mesh is not None:
         if args.csv:
             raise ParameterError("--csv is not used with --mesh; use --json")
+        if args.solver == ALL:
+            from .modalcompare import run_modal_all
+
+            return run_modal_all(mesh_study(args))
         return run_modal_mesh(args)
     refuse_mesh_options(args)
     if args.amplitude_range is None:

@@ -128,12 +128,10 @@ def study_output(study: MeshStudy, solver: str, curve: MeshCurve) -> dict[str, A
 
 
 def run_modal_mesh(args: argparse.Namespace) -> int:
+    """One solver's curve (``--solver all``: :func:`.modalcompare.run_modal_all`, which
+    :mod:`.modal` dispatches to)."""
     study = mesh_study(args)
     solver = args.solver or "fe"
-    if solver == ALL:
-        from .modalcompare import run_modal_all
-
-        return run_modal_all(study)
     curve = MESH_SOLVERS[solver].run(study)
     out = study_output(study, solver, curve)
     for w in out["warnings"]:

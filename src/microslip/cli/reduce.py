@@ -25,13 +25,7 @@ from ..case.table import add_option, number
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
 from .common import print_json
-from .meshargs import (
-    add_mesh_file,
-    add_mesh_structure_options,
-    add_rom_modes,
-    check_density,
-    mesh_model_from_args,
-)
+from .meshstructure import add_mesh_structure_options, check_density, mesh_model
 from .ownmesh import REQUIRED as MESH_REQUIRED
 
 __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts", "run"]
@@ -63,10 +57,6 @@ def add_parser(sub: Any) -> None:
         "frequencies against the full FE and writes it as a structure file (.npz) that "
         "microslip modal --structure and frf --structure read. Units: N, mm, MPa, kg/m^3, Hz.")
     g = p.add_argument_group("the structure (docs/ownmesh.md)")
-    add_mesh_file(g, "a hexahedral mesh of your structure with its clamp (.inp, .msh, .vtu, "
-                     "...)")
-    add_option(g, "contact_set")
-    add_option(g, "clamp_set")
     add_option(g, "normal_force")
     add_option(g, "friction")
     add_option(g, "stick_slope", default=DEFAULT_STICK_SLOPE)
@@ -75,7 +65,9 @@ def add_parser(sub: Any) -> None:
     add_mesh_structure_options(g, "a set of the mesh: each stuck mode is labelled by the "
                                   "direction (global x, y, z) of its mean displacement")
     r = p.add_argument_group("the reduced model (one of --rom-modes, --cutoff-frequency)")
-    add_rom_modes(r, f", the lowest N, in [1, {MAX_ROM_MODES}]")
+    r.add_argument("--rom-modes", type=int, default=None, metavar="N",
+                   help=f"fixed-interface modes kept in the reduced model, the lowest N, in "
+                        f"[1, {MAX_ROM_MODES}]")
     r.add_argument("--cutoff-frequency", type=number, default=None, metavar="HZ",
                    help="keep every fixed-interface mode below HZ, Hz, > 0")
     o = p.add_argument_group("output")
@@ -126,8 +118,7 @@ def run(args: argparse.Namespace) -> int:
 
     _check(args)
     check_writable(args.out, (".npz",), "--out")
-    sets = [args.response_set] if args.response_set else []
-    model = mesh_model_from_args(args, sets)
+    model = mesh_model(args)
     t0 = time.perf_counter()
     mass = full_mass(model, args.density)
     rom = build_rom(model, args.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,

@@ -68,7 +68,8 @@ def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator 
     """
     own = np.array_equal(np.asarray(joints), matrices.joints)
     if matrices.contacts is not None and own:
-        return from_joints(matrices, [PlacedJoint(row, Contact3D(*map(float, law)))
+        return from_joints(matrices, [PlacedJoint(row, Contact3D(float(law[0]), float(law[1]),
+                                                                 float(law[2]), float(law[3])))
                                       for row, law in zip(joints, matrices.contacts,
                                                           strict=True)])
     if matrices.laws is not None and own:
