@@ -68,10 +68,12 @@ def from_matrices(matrices: MatrixFile, joints: np.ndarray, joint: IwanOperator 
     """
     own = np.array_equal(np.asarray(joints), matrices.joints)
     if matrices.contacts is not None and own:
-        return from_joints(matrices, [PlacedJoint(row, Contact3D(float(law[0]), float(law[1]),
-                                                                 float(law[2]), float(law[3])))
-                                      for row, law in zip(joints, matrices.contacts,
-                                                          strict=True)])
+        stick = (np.zeros((len(joints), 2)) if matrices.stick_forces is None
+                 else matrices.stick_forces)
+        return from_joints(matrices, [
+            PlacedJoint(row, Contact3D(float(law[0]), float(law[1]), float(law[2]),
+                                       float(law[3]), (float(t[0]), float(t[1]))))
+            for row, law, t in zip(joints, matrices.contacts, stick, strict=True)])
     if matrices.laws is not None and own:
         return from_joints(matrices, [PlacedJoint(row, jenkins(float(k), float(s)))
                                       for row, (k, s) in zip(joints, matrices.laws,

@@ -15,7 +15,9 @@ Two formats:
   :class:`~.operators3d.Contact3D`: tangential 1, tangential 2, normal, in that order) with
   their laws ``joint_stiffness`` (tangential k_t, N/mm), ``joint_normal_stiffness`` (k_n,
   N/mm), ``joint_preload`` (N_0, N) and ``joint_friction`` (mu), shape (n_joints,), all
-  four (``joint_slip_force`` is then mu N_0 and not given). A reader older than these
+  four (``joint_slip_force`` is then mu N_0 and not given), and optionally
+  ``joint_stick_force`` (N, shape (n_joints, 2): the tangential force the clamping step
+  left in each, |t| <= mu N_0; zero if absent). A reader older than these
   arrays refuses such a file naming them (it never reads it as something else); every
   file without them reads as before.
 - a directory with Matrix Market files ``M.mtx``, ``K.mtx`` and optional ``C.mtx``
@@ -44,7 +46,8 @@ SYMMETRY_TOLERANCE = 1e-9
 
 #: Arrays an .npz structure file may hold.
 NPZ_ARRAYS = ("M", "K", "C", "joints", "joint_stiffness", "joint_slip_force",
-              "joint_normal_stiffness", "joint_preload", "joint_friction")
+              "joint_normal_stiffness", "joint_preload", "joint_friction",
+              "joint_stick_force")
 #: The laws of 3-D contact joints, in the columns of :attr:`MatrixFile.contacts`: name,
 #: unit (for the messages).
 CONTACT_LAWS = (("joint_stiffness", "N/mm"), ("joint_normal_stiffness", "N/mm"),
@@ -71,6 +74,9 @@ class MatrixFile:
         Each 3-D contact joint's law (:class:`~.operators3d.Contact3D`): tangential
         stiffness k_t (N/mm), normal stiffness k_n (N/mm), preload N_0 (N), friction mu;
         None unless the joints have three directions.
+    stick_forces : ndarray, shape (n_joints, 2), or None
+        Each 3-D contact joint's tangential stick force after clamping (N); None unless
+        the joints have three directions.
     """
 
     mass: np.ndarray
@@ -80,6 +86,7 @@ class MatrixFile:
     path: str
     laws: np.ndarray | None = None
     contacts: np.ndarray | None = None
+    stick_forces: np.ndarray | None = None
 
 
 def read_structure(path: str) -> MatrixFile:
@@ -96,8 +103,11 @@ def read_structure(path: str) -> MatrixFile:
     joints = _joints(path, arrays.get("joints"), mass.shape[0])
     if joints.shape[1] == 3:
         return MatrixFile(mass=mass, stiffness=stiffness, damping=damping, joints=joints,
-                          path=path, contacts=_contacts(path, arrays, joints.shape[0]))
-    given = [name for name, _ in CONTACT_LAWS[1:] if name in arrays]
+                          path=path, contacts=_contacts(path, arrays, joints.shape[0]),
+                          stick_forces=_stick(path, arrays.get("joint_stick_force"),
+                                              joints.shape[0]))
+    given = [name for name, _ in (*CONTACT_LAWS[1:], ("joint_stick_force", "N"))
+             if name in arrays]
     if given:
         raise ParameterError(f"{path}: {', '.join(given)} belong to 3-D contact joints "
                              "(joints of shape (n, 3, 2)); the file's joints have "
@@ -122,6 +132,18 @@ def _contacts(path: str, arrays: dict[str, object], count: int) -> np.ndarray:
                              f"{', '.join(missing)}")
     return np.column_stack([_positive(path, name, unit, arrays[name], count)
                             for name, unit in CONTACT_LAWS])
+
+
+def _stick(path: str, a: object, count: int) -> np.ndarray:
+    """(n_joints, 2): the 3-D contact joints' stick forces after clamping, N (zeros if the
+    file has none); finite (each checked against its mu N_0 by the element)."""
+    if a is None:
+        return np.zeros((count, 2))
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "iuf" or arr.shape != (count, 2) or not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{path}: joint_stick_force must be finite numbers of shape "
+                             f"({count}, 2) (N), got shape {arr.shape}")
+    return arr.astype(float)
 
 
 def _positive(path: str, name: str, unit: str, a: object, count: int) -> np.ndarray:

@@ -87,6 +87,11 @@ class Rom:
         coordinate (-); None if no response set was named.
     build_s : float
         Seconds to build.
+    stick_force : ndarray, shape (n_c, 2)
+        The tangential force the clamping step leaves at each contact node, along e1, e2
+        (N; |t_i| <= mu N_i). With ``penalty`` normal contact the 3-D elements start their
+        cycles from it (it does not shake down when N varies); with ``fixed`` it shakes down
+        and is not used.
     """
 
     mass: FloatArray = field(repr=False)
@@ -100,6 +105,7 @@ class Rom:
     friction: float
     output: FloatArray | None = field(repr=False)
     build_s: float
+    stick_force: FloatArray | None = field(default=None, repr=False)
 
     @property
     def dofs(self) -> int:
@@ -266,7 +272,14 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                interface_frequencies=freq, contact_stiffness=model.contact_stiffness.copy(),
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
-               build_s=time.perf_counter() - t0)
+               build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model))
+
+
+def clamped_stick_force(model: MeshModel) -> FloatArray:
+    """(n_c, 2): each contact node's tangential force after the clamping step,
+    lambda A_i (u0 - slip0) along e1, e2, N."""
+    u = np.asarray(model.u0, dtype=float)[model.contact_dofs]
+    return np.asarray(model.contact_stiffness[:, None] * (u - model.slip0))
 
 
 #: Constraint modes solved and multiplied by the mass this many at a time: the full
@@ -351,8 +364,9 @@ def rom_matrices(rom: Rom) -> MatrixFile:
         n = rom.contact_stiffness.size
         contacts = np.column_stack([rom.contact_stiffness, rom.normal_stiffness,
                                     rom.slip_force / rom.friction, np.full(n, rom.friction)])
+        stick = np.zeros((n, 2)) if rom.stick_force is None else rom.stick_force
         return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
-                          contacts=contacts)
+                          contacts=contacts, stick_forces=np.asarray(stick, dtype=float))
     return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
                       laws=np.column_stack([rom.contact_stiffness, rom.slip_force]))
 
@@ -379,8 +393,9 @@ def rom_arrays(rom: Rom) -> dict[str, FloatArray | IntArray]:
     """The arrays of the ROM's structure file (:mod:`microslip.dynamics.files`): ``M``
     (kg), ``K`` (N/m), ``joints`` and each joint's ``joint_stiffness`` (N/mm) with
     ``joint_slip_force`` (N; ``fixed``, joints (n_c, 2, 2)) or with
-    ``joint_normal_stiffness`` (N/mm), ``joint_preload`` (N) and ``joint_friction``
-    (``penalty``, joints (n_c, 3, 2))."""
+    ``joint_normal_stiffness`` (N/mm), ``joint_preload`` (N), ``joint_friction`` and
+    ``joint_stick_force`` (N, (n_c, 2): the clamping step's tangential force) (``penalty``,
+    joints (n_c, 3, 2))."""
     mats = rom_matrices(rom)
     out: dict[str, FloatArray | IntArray] = {"M": mats.mass, "K": mats.stiffness,
                                              "joints": mats.joints}
@@ -388,6 +403,8 @@ def rom_arrays(rom: Rom) -> dict[str, FloatArray | IntArray]:
         for j, name in enumerate(("joint_stiffness", "joint_normal_stiffness",
                                   "joint_preload", "joint_friction")):
             out[name] = mats.contacts[:, j]
+        if mats.stick_forces is not None:
+            out["joint_stick_force"] = mats.stick_forces
         return out
     assert mats.laws is not None
     out["joint_stiffness"] = mats.laws[:, 0]
