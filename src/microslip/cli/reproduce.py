@@ -53,6 +53,10 @@ def add_parser(sub: Any) -> None:
                         f"(default {DEFAULT_WORK_STRAIN_ENERGY})")
     add_model_options(p, "paper", " here, because the paper's top centre level 16000 N equals "
                                   "mu F_N")
+    p.add_argument("--structure", action=argparse.BooleanOptionalAction, default=True,
+                   help="the damping of the cantilever example's two bending modes from its "
+                        "mesh: full FE, contact-node ROM and whole joint side by side "
+                        "(structure/; about a minute; --no-structure skips it)")
     p.add_argument("--quiet", action="store_true", help="no progress display")
     p.set_defaults(func=run)
 
@@ -71,9 +75,18 @@ def run(args: argparse.Namespace) -> int:
                         options=model_options(args), strain_energy=args.strain_energy,
                         levels=args.levels, work_energy=args.work_energy, fe=args.fe,
                         fe_mesh=args.fe_mesh, progress=not args.quiet, echo=echo)
+        structure: list[Path] = []
+        if args.structure:
+            from .structurejob import structure_study
+
+            structure, lines = structure_study(stage, None if args.quiet else echo)
+            with open(stage / "report.md", "a", encoding="utf-8") as fh:
+                fh.write("\n" + "\n".join(lines))
     out = Path(args.out)
-    print(f"microslip reproduce: {len(res.files)} files in {out} ({res.elapsed_s:.1f} s)")
-    for f in res.files:
+    files = [*res.files, *structure]
+    print(f"microslip reproduce: {len(files)} files in {out} ({res.elapsed_s:.1f} s for the "
+          "paper)")
+    for f in files:
         print(f"  {out / f.relative_to(stage)}")
     t = res.table
     print(f"  {'R':>6s} {'eps':>6s} {'paper eta':>11s} {'norm.':>9s} {'work eta':>11s} "
