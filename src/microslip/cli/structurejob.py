@@ -24,12 +24,12 @@ STRUCTURE_ARGV = ("--contact-set", "contact", "--clamp-set", "clamp", "--respons
 STRUCTURE_MODES = (1, 2)
 #: Amplitudes per mode, first slip to near gross sliding.
 STRUCTURE_AMPLITUDES = 5
-MESH_NAME = "cantilever_24x6x2.inp"
 
 
-def structure_study(stage: Path, echo: Any = None) -> tuple[list[Path], list[str]]:
-    """Write ``structure/`` in ``stage``: the mesh, ``mode<N>.json`` and ``mode<N>.png`` per
-    mode; return the files and the report's lines (Markdown)."""
+def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] = (24, 6, 2),
+                    amplitudes: int = STRUCTURE_AMPLITUDES) -> tuple[list[Path], list[str]]:
+    """Write ``structure/`` in ``stage``: the mesh (``counts`` elements), ``mode<N>.json`` and
+    ``mode<N>.png`` per mode; return the files and the report's lines (Markdown)."""
     from ..fe.examples import cantilever_mesh
     from ..fe.meshfile import write_inp
     from ..io import write_json
@@ -40,10 +40,11 @@ def structure_study(stage: Path, echo: Any = None) -> tuple[list[Path], list[str
 
     folder = stage / "structure"
     folder.mkdir(parents=True, exist_ok=True)
-    mesh = Path(write_inp(cantilever_mesh(24, 6, 2), folder / MESH_NAME))
+    name = "cantilever_{}x{}x{}.inp".format(*counts)
+    mesh = Path(write_inp(cantilever_mesh(*counts), folder / name))
     files = [mesh]
     lines = ["## The damping of the cantilever's modes (issue 23)", "",
-             f"`microslip modal --mesh structure/{MESH_NAME} ... --solver all` "
+             f"`microslip modal --mesh structure/{name} ... --solver all` "
              "(aluminium, F_N 2000 N, mu 0.5, stick slope 1e4 N/mm^3): the full FE's "
              "quasi-static modal analysis (the truth), the contact-node ROM and the whole-joint "
              "model on one amplitude grid.", ""]
@@ -51,9 +52,9 @@ def structure_study(stage: Path, echo: Any = None) -> tuple[list[Path], list[str
         if echo is not None:
             echo(f"structure: mode {number} of the cantilever, every model")
         argv = ["modal", "--mesh", str(mesh), *STRUCTURE_ARGV, "--mode", str(number),
-                "--amplitudes", str(STRUCTURE_AMPLITUDES), "--solver", "all", "--json"]
+                "--amplitudes", str(amplitudes), "--solver", "all", "--json"]
         out = run_all(mesh_study(build_parser(argv).parse_args(argv)))[1]
-        out["mesh"] = MESH_NAME  # the staged path is gone once the results are in place
+        out["mesh"] = name  # the staged path is gone once the results are in place
         data, figure = folder / f"mode{number}.json", folder / f"mode{number}.png"
         write_json(data, out)
         plot_compare(out, figure)
