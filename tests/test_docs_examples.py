@@ -116,11 +116,14 @@ def test_the_documents_show_commands():
 
 
 def _slow(line: str) -> bool:
-    """Examples that run CalculiX, the FE solver in a sweep or on a planar path, or the whole
-    reproduction: seconds to minutes each (``pytest -m "not slow"`` leaves them out)."""
+    """Examples that run CalculiX, the FE solver in a sweep or on a planar path, a structure
+    of its own mesh, or the whole reproduction: seconds to minutes each (``pytest -m "not
+    slow"`` leaves them out)."""
     argv = _shrink(shlex.split(line, comments=True)[1:])
     solver = argv[argv.index("--solver") + 1] if "--solver" in argv[:-1] else None
-    return argv[0] in ("validate", "reproduce") or "calculix" in argv or solver == "fe"
+    structure = argv[0] in ("modal", "frf", "reduce") and "--mesh" in argv
+    return (argv[0] in ("validate", "reproduce") or "calculix" in argv or solver == "fe"
+            or structure)
 
 
 @pytest.mark.parametrize(("doc", "line"), [
