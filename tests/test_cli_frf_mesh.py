@@ -241,3 +241,41 @@ def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[s
                  "--load-set", "tip"]) == 1
     _, err = capsys.readouterr()
     assert "--load-set applies to frf --mesh FILE only" in err
+
+
+def test_peak_comparison_is_relative_to_the_reference() -> None:
+    from microslip.cli.frfmesh import peak_comparison
+
+    ref = {"force_N": 3.0, "peak_amplitude_mm": 0.02, "peak_frequency_Hz": 1600.0,
+           "damping_ratio": 0.05}
+    other = {"force_N": 3.0, "peak_amplitude_mm": 0.03, "peak_frequency_Hz": 1680.0,
+             "damping_ratio": None}
+    c = peak_comparison(ref, other)
+    assert c["force_N"] == 3.0
+    assert c["peak_amplitude_difference"] == pytest.approx(0.5, rel=1e-14)
+    assert c["peak_frequency_difference"] == pytest.approx(0.05, rel=1e-12)
+    assert c["damping_ratio_difference"] is None
+
+
+def test_all_refuses_plot_and_csv(capsys: pytest.CaptureFixture[str], mesh: str) -> None:
+    assert main(["frf", "--mesh", mesh, *BASE, "--force", "1", "--solver", "all",
+                 "--plot", "x.png"]) == 1
+    _, err = capsys.readouterr()
+    assert "--plot and --csv draw and write one solver's curves" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+def test_all_runs_both_on_the_same_forces(capsys: pytest.CaptureFixture[str],
+                                          mesh: str) -> None:
+    """--solver all: the ROM and the whole joint on the same force and range, one harmonic,
+    and the joint's peaks against the ROM's computed from the two curves."""
+    out = _json(capsys, "--mesh", mesh, *BASE, "--force", "1", "--harmonics", "1",
+                "--solver", "all")
+    assert set(out["solvers"]) == {"rom", "joint"} and out["reference"] == "rom"
+    (rom,), (joint,) = out["solvers"]["rom"]["curves"], out["solvers"]["joint"]["curves"]
+    (row,) = out["comparison"]["joint"]
+    assert row["peak_amplitude_difference"] == pytest.approx(
+        joint["peak_amplitude_mm"] / rom["peak_amplitude_mm"] - 1, rel=1e-12)
+    assert rom["frequency_Hz"][0] == joint["frequency_Hz"][0]
+    assert "stuck_frequency_Hz" in out["solvers"]["joint"]["joint"]

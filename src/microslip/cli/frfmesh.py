@@ -76,9 +76,11 @@ def add_frf_mesh_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--load-direction", metavar="DX,DY,DZ", default=None,
                    help="--mesh: direction of the force, global axes (default: the "
                         "response set's motion in the mode)")
-    g.add_argument("--solver", choices=list(FRF_MESH_SOLVERS), default=None,
+    g.add_argument("--solver", choices=[*FRF_MESH_SOLVERS, ALL], default=None,
                    help="--mesh: " + "; ".join(f"{k}: {v.help}"
                                                for k, v in FRF_MESH_SOLVERS.items())
+                   + f"; {ALL}: both on the same forces and frequencies, the whole joint's "
+                   "peaks against the ROM's"
                    + f" (default rom; --harmonics defaults to {DEFAULT_MESH_HARMONICS} "
                    "with --mesh)")
     add_reduced_model_options(g)
@@ -206,10 +208,14 @@ def _check(args: argparse.Namespace) -> None:
                              "its mean displacement along the mode)")
     solver = args.solver or "rom"
     for dest in dict.fromkeys(o for s in FRF_MESH_SOLVERS.values() for o in s.options):
-        if given(args, dest) and dest not in FRF_MESH_SOLVERS[solver].options:
+        if given(args, dest) and solver != ALL and dest not in FRF_MESH_SOLVERS[solver].options:
             owners = [n for n, s in FRF_MESH_SOLVERS.items() if dest in s.options]
             raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver "
                                  f"{' or '.join(owners)} only")
+    if solver == ALL and (args.plot or args.csv):
+        raise ParameterError("--plot and --csv draw and write one solver's curves; give "
+                             "--solver rom or joint with them (--solver all compares the "
+                             "peaks)")
     if args.rom_modes is not None and args.rom_modes < 1:
         raise ParameterError(f"--rom-modes must be >= 1, got {args.rom_modes}")
 
@@ -356,6 +362,15 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     frange = (check_range(*args.frequency_range) if args.frequency_range is not None
               else (MESH_RANGE[0] * stuck_hz, MESH_RANGE[1] * stuck_hz))
     solver = args.solver or "rom"
+    if solver == ALL:
+        runs = {}
+        for name, each in FRF_MESH_SOLVERS.items():
+            forced = each.build(study)
+            runs[name] = (forced, [
+                frequency_response(forced.structure, f, forced.load, frange, harmonics,
+                                   samples, args.step)
+                for f in progress(levels, desc=f"frf {name}", total=len(levels))])
+        return _print_all(args, study, runs, harmonics, samples, frange)
     forced = FRF_MESH_SOLVERS[solver].build(study)
     curves = [frequency_response(forced.structure, f, forced.load, frange, harmonics, samples,
                                  args.step)
@@ -393,6 +408,75 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
         zeta = "n/a" if c["damping_ratio"] is None else f"{c['damping_ratio']:.5g}"
         print(f"{c['force_N']:12.6g} {c['peak_amplitude_mm']:14.7g} "
               f"{c['peak_frequency_Hz']:14.8g} {zeta:>12} {c['points']:7d}")
+    return 0
+
+
+#: ``--solver`` that runs every solver of :data:`FRF_MESH_SOLVERS` on the same forces.
+ALL = "all"
+#: The solver the others are judged against in ``--solver all`` (no dynamic full FE exists:
+#: the contact-node ROM is the reference, modal --mesh --solver all checks it against the
+#: full FE's QSMA).
+REFERENCE = "rom"
+
+
+def peak_comparison(reference: dict[str, Any], other: dict[str, Any]) -> dict[str, Any]:
+    """One force level's peak of ``other`` against ``reference`` (their curve JSON): the
+    relative differences of peak amplitude, peak frequency and equivalent damping ratio
+    (None where either has none)."""
+    def rel(key: str) -> float | None:
+        a, b = other[key], reference[key]
+        return None if a is None or b is None else float(a / b - 1.0)
+
+    return {"force_N": reference["force_N"],
+            "peak_amplitude_difference": rel("peak_amplitude_mm"),
+            "peak_frequency_difference": rel("peak_frequency_Hz"),
+            "damping_ratio_difference": rel("damping_ratio")}
+
+
+def _print_all(args: argparse.Namespace, study: FrfStudy,
+               runs: dict[str, tuple[ForcedModel, list[Any]]], harmonics: int, samples: int,
+               frange: tuple[float, float]) -> int:
+    """``frf --mesh --solver all``: every solver's curves on the same forces and range, and
+    each one's peaks against the ROM's."""
+    solvers = {name: {**forced.extra, "label": forced.label,
+                      "curves": [_curve_json(c, study) for c in curves],
+                      "warnings": _warnings(curves)}
+               for name, (forced, curves) in runs.items()}
+    ref = solvers[REFERENCE]["curves"]
+    comparison = {name: [peak_comparison(r, o) for r, o in zip(ref, s["curves"], strict=True)]
+                  for name, s in solvers.items() if name != REFERENCE}
+    out = {"mesh": args.mesh, "solver": ALL, "mode": study.number, "label": study.mode.label,
+           "density_kg_m3": args.density,
+           "linear_frequencies_Hz": [float(f) for f in study.stuck.frequencies_Hz],
+           "free_frequencies_Hz": [float(f) for f in study.free.frequencies_Hz],
+           "response_set": args.response_set,
+           "load": {"set": study.load_set, "nodes": int(study.load_nodes.size),
+                    "direction": [float(v) for v in study.load_direction]},
+           "harmonics": harmonics, "samples": samples, "frequency_range_Hz": list(frange),
+           "solvers": solvers, "reference": REFERENCE, "comparison": comparison,
+           "damping_ratio_definition": DAMPING_DEFINITION,
+           "warnings": [f"{n}: {w}" for n, s in solvers.items() for w in s["warnings"]]}
+    for w in out["warnings"]:
+        print(f"warning: {w}", file=sys.stderr)
+    if args.json:
+        print_json(out)
+        return 0
+    print(f"mesh {args.mesh}: mode {study.number} ({out['label']}); load on "
+          f"{study.load_set!r}, {frange[0]:.6g} to {frange[1]:.6g} Hz, {harmonics} harmonic(s)")
+    print(f"{'solver':>8} {'force (N)':>10} {'peak a (mm)':>13} {'peak f (Hz)':>13} "
+          f"{'zeta (-)':>10}")
+    for name, s in solvers.items():
+        for c in s["curves"]:
+            zeta = "n/a" if c["damping_ratio"] is None else f"{c['damping_ratio']:.5g}"
+            print(f"{name:>8} {c['force_N']:10.6g} {c['peak_amplitude_mm']:13.6g} "
+                  f"{c['peak_frequency_Hz']:13.7g} {zeta:>10}")
+    for name, rows in comparison.items():
+        for r in rows:
+            parts = [f"{label} {100 * r[key]:+.2g} %" for key, label in (
+                ("peak_amplitude_difference", "peak amplitude"),
+                ("peak_frequency_difference", "peak frequency"),
+                ("damping_ratio_difference", "damping ratio")) if r[key] is not None]
+            print(f"  {name} against {REFERENCE} at {r['force_N']:g} N: {', '.join(parts)}")
     return 0
 
 
