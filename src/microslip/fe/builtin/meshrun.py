@@ -46,7 +46,7 @@ from ..result import (
     join_message,
 )
 from .meshmodel import MeshModel
-from .solve import _Stepper, load_increment, runaway_reason
+from .stepper import _Stepper, load_increment, runaway_reason
 
 __all__ = ["LoadFactors", "MeshLoadResult", "MeshRunResult", "SineCycles", "VectorLoad",
            "solve_mesh"]
