@@ -26,6 +26,7 @@ from .interface import Interface
 from .meshmodel import MeshModel
 from .meshrun import VectorLoad, _Run
 from .modes import Mode, response_nodes
+from .qsma import GROSS_STICK  # near gross sliding: where the QSMA's grid ends too
 
 __all__ = ["FIRST", "GROSS_STICK", "PULL", "STEP", "FirstLoading", "first_loading"]
 
@@ -36,8 +37,6 @@ STEP = 1.05
 #: The first increment is this fraction of the first-slip force (a stuck point: the joint's
 #: initial slope).
 FIRST = 1e-3
-#: The first loading stops when less than this share of the contact area sticks.
-GROSS_STICK = 0.1
 #: The load pattern of the pull test (:func:`first_loading` ``pattern="pull"``): the
 #: translation backbone when the mode's own gives no joint law.
 PULL = "pull"
