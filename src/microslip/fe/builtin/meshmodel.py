@@ -479,11 +479,11 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     n_keep = contact.size * (3 if penalty else 2)
     if condensed is None:
         condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
+    if condensed:  # the full factor goes before the condensation builds its own
+        backend = _spent(backend)
     with single_threaded_blas():
         reduced = (condense(k_ff, cdofs, springs, clamp, u, AUTO_BAND_LIMIT) if condensed
                    else None)
-    if reduced is not None:
-        backend = _spent(backend)
     return MeshModel(
         mesh=mesh, contact_set=contact_set, clamp_set=clamp_set, element=element,
         modulus=e_mod, poisson_ratio=nu, friction=mu, clamp_force=f_n, stick_slope=lam,
