@@ -63,7 +63,9 @@ class DenseBackend:
         a[cy, cy] += d[:, 2]
         if d.shape[1] > 3 and self.cz is not None:
             a[self.cz, self.cz] += d[:, 3]
-        return _DenseFactor(sla.cho_factor(a, lower=True, check_finite=False))
+        # a is this factorisation's own copy: factorise it in place (one copy of S fewer)
+        return _DenseFactor(sla.cho_factor(a, lower=True, overwrite_a=True,
+                                           check_finite=False))
 
 
 class _Interior:

@@ -43,9 +43,10 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
+from ...blas import single_threaded_blas
 from ...errors import ParameterError
 from .meshmodel import MeshModel
-from .modes import modal_mass, modal_stiffness
+from .modes import modal_mass, modal_stiffness, shift_inverse
 
 if TYPE_CHECKING:
     from ...dynamics.files import MatrixFile
@@ -174,9 +175,10 @@ def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) ->
     """The full FE's lowest ``count`` linear natural frequencies with the contact stuck
     (:func:`.modes.modal_stiffness`: stick slope x area tangentially, the normal held or its
     penalty), Hz."""
-    k = modal_stiffness(model, "stuck").tocsc()
-    lam = spla.eigsh(k, k=count, M=mass.tocsc(), sigma=0.0, which="LM",
-                     return_eigenvectors=False)
+    k = modal_stiffness(model, "stuck")
+    with single_threaded_blas():
+        lam = spla.eigsh(k, k=count, M=mass, sigma=0.0, which="LM", OPinv=shift_inverse(k),
+                         return_eigenvectors=False)
     return np.asarray(np.sort(np.sqrt(np.maximum(lam, 0.0))) / (2.0 * np.pi))
 
 
@@ -240,22 +242,28 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     k_full = model.stiffness.tocsr()
     b, per_node = _boundary(model)
     inner = np.setdiff1d(np.arange(model.dof), b)
+    rows = None if response_set is None else _response_rows(model, response_set, b, inner)
     k_ii = k_full[inner][:, inner].tocsc()
     m_ii = m_full[inner][:, inner].tocsc()
     k_ib = k_full[inner][:, b]
     m_ib = m_full[inner][:, b]
-    lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
-    freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz, lu)
-    if freq.size == 0:
-        raise ParameterError(f"no fixed-interface mode below {cutoff_hz} Hz (the lowest is "
-                             "above it): raise the cut-off")
-    phi = phi / np.max(np.abs(phi), axis=0) * np.sign(phi[np.argmax(np.abs(phi), axis=0),
-                                                          np.arange(phi.shape[1])])
-    psi, psi_m_psi, m_psi_phi = _constraint_modes(lu, k_ib.tocsc(), m_ii, phi)
-    k_bb = k_full[b][:, b].toarray() + (k_ib.T @ psi)
-    m_bb = (m_full[b][:, b].toarray() + m_ib.T @ psi + psi.T @ m_ib + psi_m_psi)
-    m_bm = m_ib.T @ phi + m_psi_phi
+    # SuperLU's solves with many right-hand sides call the BLAS; a threaded BLAS only
+    # fights for the cores there (24x6x2 on a loaded 2-core machine: 2 s a block, not 0.1)
+    with single_threaded_blas():
+        lu = spla.splu(k_ii, permc_spec="MMD_AT_PLUS_A")
+        freq, phi = _interface_modes(k_ii, m_ii, modes, cutoff_hz, lu)
+        if freq.size == 0:
+            raise ParameterError(f"no fixed-interface mode below {cutoff_hz} Hz (the lowest "
+                                 "is above it): raise the cut-off")
+        phi = phi / np.max(np.abs(phi), axis=0) * np.sign(
+            phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])])
+        k_psi, m_psi, psi_m_psi, m_psi_phi, psi_rows = _constraint_modes(
+            lu, k_ib.tocsc(), m_ib.tocsc(), m_ii, phi, rows)
     mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
+    del lu, k_ii, m_ii  # the factor (on the 50k-DOF cantilever 0.8 GB) before the rest
+    k_bb = k_full[b][:, b].toarray() + k_psi
+    m_bb = m_full[b][:, b].toarray() + m_psi + m_psi.T + psi_m_psi
+    m_bm = m_ib.T @ phi + m_psi_phi
     nb, nm = b.size, phi.shape[1]
     m_r = np.zeros((nb + nm, nb + nm))
     k_r = np.zeros_like(m_r)
@@ -265,7 +273,7 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     m_r[nb:, nb:] = np.diag(mu)
     k_r[:nb, :nb] = 0.5 * (k_bb + k_bb.T)
     k_r[nb:, nb:] = np.diag(mu * (2.0 * np.pi * freq) ** 2)
-    out = None if response_set is None else _output(model, response_set, b, inner, psi, phi)
+    out = None if rows is None else _output(model, rows, psi_rows, phi)
     kn = (np.zeros_like(model.contact_stiffness) if model.normal is None
           else np.asarray(model.normal.stiffness, dtype=float))
     return Rom(mass=m_r, stiffness=k_r, boundary=b, per_node=per_node,
@@ -282,31 +290,55 @@ def clamped_stick_force(model: MeshModel) -> FloatArray:
     return np.asarray(model.contact_stiffness[:, None] * (u - model.slip0))
 
 
-#: Constraint modes solved and multiplied by the mass this many at a time: the full
-#: M_ii Psi (as large as Psi) is never held; on the 50k-DOF cantilever Psi alone is 0.7 GB.
+#: Constraint modes solved and multiplied by the mass this many at a time: Psi (n_i x n_b;
+#: on the 50k-DOF cantilever 0.64 GB) is never held whole, only ``BLOCK`` of its columns.
 BLOCK = 256
 
 
-def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ii: sp.csc_matrix,
-                      phi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Psi = -K_ii^-1 K_ib (n_i, n_b), Psi^T M_ii Psi (n_b, n_b) and (M_ii Psi)^T Phi
-    (n_b, n_m), ``BLOCK`` columns of Psi at a time."""
-    n_i, n_b = k_ib.shape
-    psi = np.empty((n_i, n_b), order="F")
-    for j in range(0, n_b, BLOCK):
-        psi[:, j:j + BLOCK] = -lu.solve(k_ib[:, j:j + BLOCK].toarray())
+@dataclass(frozen=True)
+class _Rows:
+    """The response set's dofs (:func:`_response_rows`): per global axis of the model frame
+    c, the count of its nodes on each boundary dof and its interior rows (positions in the
+    interior dofs, one per node that moves along c there); ``nodes`` of them in all."""
+
+    boundary: FloatArray
+    interior: tuple[IntArray, IntArray, IntArray]
+    nodes: int
+
+
+def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix,
+                      m_ii: sp.csc_matrix, phi: FloatArray, rows: _Rows | None
+                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The constraint modes Psi = -K_ii^-1 K_ib (n_i, n_b) in the reduced matrices, ``BLOCK``
+    columns of Psi at a time: K_bi Psi, M_bi Psi, Psi^T M_ii Psi (n_b, n_b), (M_ii Psi)^T
+    Phi (n_b, n_m) and the sums of Psi's rows of the response set (3, n_b; zeros without
+    one). Psi^T M_ii Psi is taken column block by column block as -K_bi K_ii^-1 (M_ii Psi_j)
+    (K_ii symmetric), one more solve per block instead of holding all of Psi."""
+    n_b = k_ib.shape[1]
+    k_bi = k_ib.T.tocsr()
+    m_bi = m_ib.T.tocsr()
+    k_psi = np.empty((n_b, n_b))
+    m_psi = np.empty((n_b, n_b))
     psi_m_psi = np.empty((n_b, n_b))
     m_psi_phi = np.empty((n_b, phi.shape[1]))
+    sums = np.zeros((3, n_b))
     for j in range(0, n_b, BLOCK):
-        m_psi = m_ii @ psi[:, j:j + BLOCK]
-        psi_m_psi[:, j:j + BLOCK] = psi.T @ m_psi
-        m_psi_phi[j:j + BLOCK] = m_psi.T @ phi
-    return psi, psi_m_psi, m_psi_phi
+        cols = slice(j, j + BLOCK)
+        psi = -lu.solve(k_ib[:, cols].toarray())
+        k_psi[:, cols] = k_bi @ psi
+        m_psi[:, cols] = m_bi @ psi
+        if rows is not None:
+            for c in range(3):
+                sums[c, cols] = psi[rows.interior[c]].sum(axis=0)
+        mp = m_ii @ psi
+        del psi
+        m_psi_phi[cols] = mp.T @ phi
+        psi_m_psi[:, cols] = -(k_bi @ lu.solve(mp))
+    return k_psi, m_psi, psi_m_psi, m_psi_phi, sums
 
 
-def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: FloatArray,
-            phi: FloatArray) -> FloatArray:
-    """(3, n_rom): the response set's mean displacement along global x, y, z."""
+def _response_rows(model: MeshModel, name: str, b: IntArray, inner: IntArray) -> _Rows:
+    """The response set's boundary counts and interior rows (:class:`_Rows`), checked."""
     if name not in model.mesh.node_sets:
         raise ParameterError(f"{model.mesh.source}: no node set {name!r} for the response "
                              f"(sets: {', '.join(model.mesh.set_names()) or 'none'})")
@@ -315,16 +347,26 @@ def _output(model: MeshModel, name: str, b: IntArray, inner: IntArray, psi: Floa
     where_b[b] = np.arange(b.size)
     where_i = np.full(model.dof, -1, dtype=np.int64)
     where_i[inner] = np.arange(inner.size)
-    local = np.zeros((3, b.size + phi.shape[1]))
+    counts = np.zeros((3, b.size))
+    interior = []
     for c in range(3):
         pos = model.index[3 * nodes + c]
         pos = pos[pos >= 0]  # held dofs do not move
         ib = where_b[pos]
-        np.add.at(local[c], ib[ib >= 0], 1.0)
-        ii = where_i[pos[ib < 0]]
-        local[c, :b.size] += psi[ii].sum(axis=0)
-        local[c, b.size:] += phi[ii].sum(axis=0)
-    local /= nodes.size
+        np.add.at(counts[c], ib[ib >= 0], 1.0)
+        interior.append(where_i[pos[ib < 0]])
+    return _Rows(counts, (interior[0], interior[1], interior[2]), int(nodes.size))
+
+
+def _output(model: MeshModel, rows: _Rows, psi_rows: FloatArray, phi: FloatArray
+            ) -> FloatArray:
+    """(3, n_rom): the response set's mean displacement along global x, y, z."""
+    local = np.zeros((3, rows.boundary.shape[1] + phi.shape[1]))
+    nb = rows.boundary.shape[1]
+    for c in range(3):
+        local[c, :nb] = rows.boundary[c] + psi_rows[c]
+        local[c, nb:] = phi[rows.interior[c]].sum(axis=0)
+    local /= rows.nodes
     return np.asarray(model.rotation.T @ local)  # u_global = R^T u_model
 
 
