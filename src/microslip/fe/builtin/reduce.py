@@ -178,7 +178,7 @@ def stuck_frequencies_full(model: MeshModel, mass: sp.csr_matrix, count: int) ->
     k = modal_stiffness(model, "stuck")
     with single_threaded_blas():
         lam = spla.eigsh(k, k=count, M=mass, sigma=0.0, which="LM", OPinv=shift_inverse(k),
-                         return_eigenvectors=False)
+                         return_eigenvectors=False, v0=np.ones(k.shape[0]))
     return np.asarray(np.sort(np.sqrt(np.maximum(lam, 0.0))) / (2.0 * np.pi))
 
 
@@ -195,7 +195,9 @@ def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None
         count = min(20, limit)
     op = spla.LinearOperator(k_ii.shape, matvec=lu.solve, dtype=np.float64)
     while True:
-        lam, vec = spla.eigsh(k_ii, k=count, M=m_ii, sigma=0.0, which="LM", OPinv=op)
+        # a fixed start vector: ARPACK's random one makes two builds of one ROM differ
+        lam, vec = spla.eigsh(k_ii, k=count, M=m_ii, sigma=0.0, which="LM", OPinv=op,
+                              v0=np.ones(n_i))
         order = np.argsort(lam)
         lam, vec = lam[order], vec[:, order]
         f = np.sqrt(np.maximum(lam, 0.0)) / (2.0 * np.pi)
