@@ -194,11 +194,11 @@ class HarmonicBalance:
                  out: Array | None = None) -> Residual:
         """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
         (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s);
-        ``out`` (n, n + 1), if given, receives the Jacobian (a view into a larger system
-        saves a copy of it)."""
+        ``out`` (n, n + 1), if given and zero, receives the Jacobian (a view into a larger
+        system saves a copy of it; Fortran-ordered, LAPACK factors it without another)."""
         n = self.size
         r, dxi = np.empty(n), np.empty(n)
-        jac = np.empty((n, n + 1)) if out is None else out
+        jac = np.zeros((n, n + 1)) if out is None else out
         balance_kernel(np.ascontiguousarray(x, dtype=np.float64), float(omega), float(xi),
                        np.ascontiguousarray(load, dtype=np.float64), *self._linear,
                        *self._compiled, self._synth, self._analysis, r, jac, dxi)

@@ -25,7 +25,9 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
                    offsets: np.ndarray, synth: np.ndarray, analysis: np.ndarray,
                    r: np.ndarray, jac: np.ndarray, dxi: np.ndarray) -> None:
     """Residual ``r`` (N, (n,)), ``jac`` = [dr/dx | dr/dw] (N/mm and N·s, (n, n + 1)) and
-    ``dxi`` = dr/dxi (N·s, (n,)) at coefficients ``x`` (mm), written into the given arrays.
+    ``dxi`` = dr/dxi (N·s, (n,)) at coefficients ``x`` (mm), written into the given arrays;
+    ``jac``'s first n columns must be zero on entry (only the harmonic blocks are written,
+    so that ``jac`` may be a Fortran-ordered view that LAPACK factors without a copy).
 
     ``kmat``, ``mmat``, ``cmat``: the structure's (dofs, dofs) K, M, C (SI), ``si`` the
     SI-to-mm factor; a DOF's h coefficients (``synth.shape[1]``) have the orders squared
@@ -68,7 +70,6 @@ def balance_kernel(x: np.ndarray, omega: float, xi: float, load: np.ndarray,
             mi = 0.0
             ci = 0.0
             mci = 0.0
-            jac[i, :n] = 0.0
             for e in range(dofs_all):
                 kde = kmat[d, e]
                 mde = mmat[d, e]
@@ -137,6 +138,7 @@ def _augmented(y: np.ndarray, y_pred: np.ndarray, row: np.ndarray, load: np.ndar
     """``[R(y); row . (y - y_pred)]`` and its Jacobian ``[dR/dy; row]`` into ``r``, ``jac``
     (R the balance at ``y = [x, w]``, without negative damping)."""
     n = y.size - 1
+    jac[:n, :n] = 0.0
     balance_kernel(y[:n], y[n], 0.0, load, kmat, mmat, cmat, si, o2, pair, dc, weights, phi,
                    ck, ckp, offsets, synth, analysis, r[:n], jac[:n], dxi)
     r[n] = row @ (y - y_pred)

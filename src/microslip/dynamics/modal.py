@@ -179,7 +179,8 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
     previous = 1.0
     for i, ai in enumerate(a):
         def fun(y: Array, ai: float = ai) -> tuple[Array, Array]:
-            jac = np.empty((m_k + 2, m_k + 2))  # the balance writes its rows in place
+            # the balance writes its rows in place, column-major: LAPACK factors it as it is
+            jac = np.zeros((m_k + 2, m_k + 2), order="F")
             res = hb.residual(y[:m_k], float(y[m_k]), load, float(y[m_k + 1]),
                               out=jac[:m_k, :m_k + 1])
             jac[:m_k, m_k + 1] = res.dxi
