@@ -51,10 +51,10 @@ __all__ = ["DEFAULT_MESH_HARMONICS", "FRF_MESH_SOLVERS", "MESH_RANGE", "ForcedMo
 #: not condensed onto the contact dofs and costs (dofs x (2H + 1))^3 per step; with odd
 #: joint forces, ``fixed`` normal contact, on the odd harmonics only, (dofs x (H + 1))^3).
 #: On 24x6x2, mode 2 at 3 N (186 ROM DOF, odd harmonics), the whole command with one force
-#: level: 3 harmonics 11 s (31 s on every harmonic), 7 harmonics 43 s; the peak frequency
-#: moves by -0.14 % from 3 to 5 harmonics, and with 7 an internal resonance of the undamped
-#: ROM (a dip near 1590 Hz) shifts the located peak by +0.5 %: 3 stays the default (7
-#: would cost more than the old default did), --harmonics 7 resolves such features.
+#: level: 3 harmonics 8 s (31 s on every harmonic), 5 take 18 s, 7 take 43 s; the peak
+#: frequency moves by -0.14 % from 3 to 5 harmonics, and with 7 an internal resonance of the
+#: undamped ROM (a dip near 1590 Hz) shifts the located peak by +0.5 %: 3 stays the default
+#: (7 would cost more than the old default did), --harmonics 7 resolves such features.
 DEFAULT_MESH_HARMONICS = 3
 #: Default sweep: these fractions of the mode's stuck frequency (the friction softens the
 #: peak below the stuck frequency; the range keeps it inside).

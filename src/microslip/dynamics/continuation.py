@@ -194,7 +194,8 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
                   ) -> tuple[Array, bool, Array]:
         def aug(z: Array) -> tuple[Array, Array]:
             r, j = fun(z)
-            r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1))
+            # column-major: LAPACK factors it without a transposing copy
+            r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1), order="F")
             r_aug[:n] = r
             r_aug[n] = row @ (z - y_pred)
             j_aug[:n] = j

@@ -158,7 +158,8 @@ class _Full:
         self.hb, self.load, self.size = hb, load, hb.size
 
     def residual(self, y: Array) -> tuple[Array, Array]:
-        res = self.hb.residual(y[:-1], float(y[-1]), self.load)
+        jac = np.zeros((self.size, self.size + 1), order="F")  # as LAPACK takes it
+        res = self.hb.residual(y[:-1], float(y[-1]), self.load, out=jac)
         return res.r, res.jac
 
     def joints(self, x: Array) -> Array:
