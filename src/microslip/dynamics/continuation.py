@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg.lapack import dgesv
+from scipy.linalg.lapack import dgetrf, dgetrs
 
 from ..named import result
 
@@ -56,7 +56,8 @@ class Curve:
 
 
 def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
-           tol: float, max_iter: int = MAX_ITERATIONS) -> tuple[Array, bool, Array]:
+           tol: float, max_iter: int = MAX_ITERATIONS,
+           factors: list[tuple[Array, Array]] | None = None) -> tuple[Array, bool, Array]:
     """Solve the square system ``fun(y) = (r, dr/dy) = 0`` from ``y0``.
 
     Converged when the error left after a Newton step, estimated from the contraction
@@ -65,18 +66,22 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
     that last step is taken without evaluating ``fun`` again (Deuflhard's a-posteriori
     estimate for a contracting Newton iteration). A step that increases the residual norm
     is halved (up to ``MAX_HALVINGS`` times). Returns the solution, whether it converged,
-    and the Jacobian at the last iterate evaluated (one step from the solution).
+    and the Jacobian at the last iterate evaluated (one step from the solution); on
+    convergence ``factors``, if given, receives that Jacobian's LU factors (LAPACK's
+    ``dgetrf``), for more solves with it at O(n^2) each (the continuation's tangent).
     """
     y = np.array(y0, dtype=np.float64)
     r, jac = fun(y)
     previous = 0.0  # the size of the last full step, 0 before the first
     for _ in range(max_iter):
-        step, info = _solve(jac, -r)
+        step, info, lu = _factor_solve(jac, -r)
         if info != 0:  # singular
             return y, False, jac
         size = float(np.max(np.abs(step / scale)))
         theta = size / previous if previous > 0.0 else 1.0
         if size < tol or (theta < CONTRACTION and size * theta / (1.0 - theta) < tol):
+            if factors is not None:
+                factors[:] = [lu]
             y = y + step
             return y, bool(np.all(np.isfinite(y))), jac
         previous = size
@@ -95,10 +100,20 @@ def newton(fun: Callable[[Array], tuple[Array, Array]], y0: Array, scale: Array,
 
 
 def _solve(a: Array, b: Array) -> tuple[Array, int]:
-    """``a^-1 b`` by LAPACK's dgesv (a third of np.linalg.solve's overhead on the small
-    systems here) and its ``info`` (> 0: ``a`` is singular)."""
-    _, _, x, info = dgesv(a, b)
-    return x, int(info)
+    """``a^-1 b`` by LAPACK (a third of np.linalg.solve's overhead on the small systems
+    here) and its ``info`` (> 0: ``a`` is singular)."""
+    x, info, _ = _factor_solve(a, b)
+    return x, info
+
+
+def _factor_solve(a: Array, b: Array) -> tuple[Array, int, tuple[Array, Array]]:
+    """``a^-1 b``, its ``info`` (> 0: ``a`` is singular) and the LU factors of ``a``: LAPACK's
+    dgetrf and dgetrs, the two halves of dgesv (the same numbers)."""
+    lu, piv, info = dgetrf(a)
+    if info != 0:
+        return b, int(info), (lu, piv)
+    x, info = dgetrs(lu, piv, b)
+    return x, int(info), (lu, piv)
 
 
 def _tangent(jac: Array, previous: Array, scale: Array) -> Array:
@@ -110,12 +125,16 @@ def _tangent(jac: Array, previous: Array, scale: Array) -> Array:
     return _oriented(aug, scale)
 
 
-def _oriented(aug: Array, scale: Array) -> Array:
+def _oriented(aug: Array, scale: Array, lu: tuple[Array, Array] | None = None) -> Array:
     """The unit tangent (weighted norm) t with ``aug t = [0, ..., 0, 1]``, ``aug`` the
-    Jacobian with the previous tangent's row ``previous / scale^2`` appended."""
+    Jacobian with the previous tangent's row ``previous / scale^2`` appended (``lu``: its
+    LU factors if known, which skips the factorization)."""
     rhs = np.zeros(aug.shape[0])
     rhs[-1] = 1.0
-    t, info = _solve(aug, rhs)
+    if lu is None:
+        t, info = _solve(aug, rhs)
+    else:
+        t, info = dgetrs(*lu, rhs)
     if info != 0:
         raise np.linalg.LinAlgError("Singular matrix")
     return np.asarray(t / np.sqrt(np.sum((t / scale) ** 2)))
@@ -169,26 +188,29 @@ def arclength(fun: Fun, y0: Array, direction: Array, step: float,
     points = [y.copy()]
     h = step
     n = y.size - 1
+    factors: list[tuple[Array, Array]] = []  # the default corrector's last LU factors
 
     def augmented(y_pred: Array, row: Array, scale: Array, tol: float
                   ) -> tuple[Array, bool, Array]:
         def aug(z: Array) -> tuple[Array, Array]:
             r, j = fun(z)
-            r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1))
+            # column-major: LAPACK factors it without a transposing copy
+            r_aug, j_aug = np.empty(n + 1), np.empty((n + 1, n + 1), order="F")
             r_aug[:n] = r
             r_aug[n] = row @ (z - y_pred)
             j_aug[:n] = j
             j_aug[n] = row
             return r_aug, j_aug
-        return newton(aug, y_pred, scale, tol)
+        return newton(aug, y_pred, scale, tol, factors=factors)
 
     correct = augmented if corrector is None else corrector
     while len(points) < max_points:
         y_pred = y + h * t
+        factors.clear()
         y_new, ok, jac = correct(y_pred, t / scale**2, scale, tol)
         t_new = t
-        if ok:
-            t_new = _oriented(jac, scale)  # its last row is t / scale^2
+        if ok:  # its last row is t / scale^2; factored by the corrector's last step
+            t_new = _oriented(jac, scale, factors[0] if factors else None)
             # a kink of the curve (an element starting to slip) turns the tangent at any h
             ok = (float((t_new / scale) @ (t / scale)) > np.cos(np.pi / 6.0)
                   or h <= KINK_STEP * step)

@@ -26,7 +26,8 @@ from .operators2d import CircularIwan
 from .operators3d import Contact3D
 from .structure import SI_PER_MM, JointLink, Structure
 
-__all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "to_time"]
+__all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "harmonic_columns",
+           "to_time"]
 
 #: Time samples per period of the AFT scheme, unless given.
 DEFAULT_HB_SAMPLES = 128
@@ -83,10 +84,20 @@ class HarmonicBalance:
     joint displacement, ``dF/dU = P_N J E_N`` (E_N: coefficients -> samples, P_N: samples
     -> coefficients, J the operator's time-domain Jacobian), and the structure sees
     ``w F`` and ``w w^T dF/dU``.
+
+    With ``odd`` the unknowns are the cos and sin of the odd harmonics 1, 3, ... only (per
+    DOF ``[c_1, s_1, c_3, s_3, ...]``, :attr:`columns` of the full layout): the balance of a
+    half-wave symmetric motion, ``q(theta + pi) = -q(theta)``, whose even harmonics vanish
+    when every joint force is odd, ``f(-u) = -f(u)`` (:mod:`.modal_odd`). Its residual,
+    Jacobian and AFT are those of the full balance restricted to the odd coefficients at an
+    input with zero even ones, computed on the odd ones alone (the linear part never leaves
+    the harmonic's 2 x 2 block, and the even harmonics of an odd force of a half-wave
+    symmetric motion are zero), at about ((H + 1) / (2H + 1))^2 of the memory and a
+    quarter to an eighth of the work of the full balance.
     """
 
     def __init__(self, structure: Structure, harmonics: int,
-                 samples: int = DEFAULT_HB_SAMPLES) -> None:
+                 samples: int = DEFAULT_HB_SAMPLES, odd: bool = False) -> None:
         if not (isinstance(harmonics, int) and 1 <= harmonics <= 256):
             raise ParameterError(f"harmonics must be a whole number in [1, 256], got "
                                  f"{harmonics!r}")
@@ -96,21 +107,34 @@ class HarmonicBalance:
         self.structure = structure
         self.harmonics = harmonics
         self.samples = samples
-        h = 2 * harmonics + 1
-        order = np.zeros(h)
-        order[1::2] = order[2::2] = np.arange(1, harmonics + 1)
-        dc = np.zeros((h, h))  # d/dtheta on the coefficients
-        for k in range(1, harmonics + 1):
-            dc[2 * k - 1, 2 * k] = k
-            dc[2 * k, 2 * k - 1] = -k
-        s = SI_PER_MM
-        self._k = s * np.kron(structure.stiffness, np.eye(h))
-        self._m = s * np.kron(structure.mass, np.diag(order**2))
-        self._c = s * np.kron(structure.damping, dc)
-        self._mc = s * np.kron(structure.mass, dc)
-        # the AFT's two transforms as matrices (small: a product beats an FFT call)
-        self._synth = np.ascontiguousarray(to_time(np.eye(h), samples).T)  # (N, h)
-        self._analysis = np.ascontiguousarray(from_time(np.eye(samples), harmonics).T)
+        self.odd = bool(odd)
+        #: the full layout's columns ``[c_0, c_1, s_1, ..., c_H, s_H]`` this balance keeps per
+        #: DOF, in order: all of them, or (``odd``) the cos/sin of harmonics 1, 3, 5, ...
+        self.columns = harmonic_columns(harmonics, self.odd)
+        h = self.width = int(self.columns.size)
+        #: where c_1 sits in a DOF's coefficients (s_1 follows it)
+        self.first = int(np.flatnonzero(self.columns == 1)[0])
+        order = ((self.columns + 1) // 2).astype(np.float64)
+        # d/dtheta on the coefficients couples c_k (row) to s_k (column) by k, s_k to c_k by -k:
+        # each column's partner and that factor (-1 and 0 for c_0)
+        cos = self.columns % 2 == 1
+        self._pair = np.where(self.columns == 0, -1,
+                              np.where(cos, np.arange(h) + 1, np.arange(h) - 1)).astype(np.int64)
+        self._dc = np.where(cos, order, -order)
+        self._o2 = order**2
+        # the structure's matrices in SI; K, M k^2, C d/dtheta and M d/dtheta on the
+        # coefficients are their Kronecker products, never formed (:mod:`.hbkernel`)
+        self._kmat = np.ascontiguousarray(structure.stiffness, dtype=np.float64)
+        self._mmat = np.ascontiguousarray(structure.mass, dtype=np.float64)
+        self._cmat = np.ascontiguousarray(structure.damping, dtype=np.float64)
+        self._linear = (self._kmat, self._mmat, self._cmat, float(SI_PER_MM), self._o2,
+                        self._pair, self._dc)
+        # the AFT's two transforms as matrices (small: a product beats an FFT call), on the
+        # kept columns
+        full = 2 * harmonics + 1
+        self._synth = np.ascontiguousarray(to_time(np.eye(full), samples).T[:, self.columns])
+        self._analysis = np.ascontiguousarray(
+            from_time(np.eye(samples), harmonics).T[self.columns])
         # the 1-D Iwan joints go into the compiled residual (:mod:`.hbkernel`), any other
         # joint j is added in Python: its harmonics U = B_j^T x (direction-major), its force
         # enters as B_j F (B_j = W_j kron I_h, W_j the (n_dof, directions) participation),
@@ -126,33 +150,58 @@ class HarmonicBalance:
 
     @property
     def size(self) -> int:
-        """Number of unknown coefficients, n_dof (2H + 1)."""
-        return self.structure.dofs * (2 * self.harmonics + 1)
+        """Number of unknown coefficients, n_dof times the kept columns per DOF (2H + 1,
+        or 2 per odd harmonic)."""
+        return self.structure.dofs * self.width
+
+    def expand(self, x: Array) -> Array:
+        """Coefficients ``x`` (last axis, this balance's layout) in the full layout
+        ``[c_0, c_1, s_1, ..., c_H, s_H]`` per DOF, the columns not kept zero."""
+        x = np.asarray(x, dtype=np.float64)
+        dofs = self.structure.dofs
+        out = np.zeros((*x.shape[:-1], dofs, 2 * self.harmonics + 1))
+        out[..., self.columns] = x.reshape(*x.shape[:-1], dofs, self.width)
+        return out.reshape(*x.shape[:-1], -1)
+
+    def restrict(self, x: Array) -> Array:
+        """Full-layout coefficients ``x`` (last axis) on this balance's columns."""
+        x = np.asarray(x, dtype=np.float64)
+        q = x.reshape(*x.shape[:-1], self.structure.dofs, 2 * self.harmonics + 1)
+        return np.ascontiguousarray(q[..., self.columns]).reshape(*x.shape[:-1], -1)
 
     def excitation(self, shape: Array, force: float) -> Array:
         """Coefficient vector of the excitation ``shape * force * cos(w t)`` (N)."""
-        p = np.zeros((self.structure.dofs, 2 * self.harmonics + 1))
-        p[:, 1] = np.asarray(shape, dtype=np.float64) * force
+        p = np.zeros((self.structure.dofs, self.width))
+        p[:, self.first] = np.asarray(shape, dtype=np.float64) * force
         return p.ravel()
 
     def stuck_guess(self, omega: float, load: Array) -> Array:
         """Coefficients (mm) of the linear response with every joint stuck."""
-        extra = np.zeros((self.size, self.size))
-        h = 2 * self.harmonics + 1
+        dofs, h, s = self.structure.dofs, self.width, SI_PER_MM
+        extra = np.zeros((dofs, dofs))
         for link in self.structure.joints:
-            extra += np.kron(link.stuck_stiffness, np.eye(h))
-        lin = self._k - omega**2 * self._m + omega * self._c + extra
-        return np.asarray(np.linalg.solve(lin, load))
+            extra = extra + link.stuck_stiffness
+        lin = np.zeros((dofs, h, dofs, h))
+        for a in range(h):  # the blocks of (K - w^2 M k^2 + w C d/dtheta) kron I + extra
+            lin[:, a, :, a] = (s * self._kmat - omega**2 * (s * (self._mmat * self._o2[a]))
+                               + extra)
+            b = self._pair[a]
+            if b >= 0:
+                lin[:, a, :, b] = omega * (s * (self._cmat * self._dc[a]))
+        return np.asarray(np.linalg.solve(lin.reshape(self.size, self.size), load))
 
-    def residual(self, x: Array, omega: float, load: Array, xi: float = 0.0) -> Residual:
+    def residual(self, x: Array, omega: float, load: Array, xi: float = 0.0,
+                 out: Array | None = None) -> Residual:
         """Residual (N) and derivatives at coefficients ``x`` (mm), frequency ``omega``
-        (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s)."""
+        (rad/s), excitation coefficients ``load`` (N) and negative damping ``xi`` (1/s);
+        ``out`` (n, n + 1), if given and zero, receives the Jacobian (a view into a larger
+        system saves a copy of it; Fortran-ordered, LAPACK factors it without another)."""
         n = self.size
-        r, jac, dxi = np.empty(n), np.empty((n, n + 1)), np.empty(n)
+        r, dxi = np.empty(n), np.empty(n)
+        jac = np.zeros((n, n + 1)) if out is None else out
         balance_kernel(np.ascontiguousarray(x, dtype=np.float64), float(omega), float(xi),
-                       np.ascontiguousarray(load, dtype=np.float64), self._k, self._m,
-                       self._c, self._mc, *self._compiled, self._synth, self._analysis,
-                       r, jac, dxi)
+                       np.ascontiguousarray(load, dtype=np.float64), *self._linear,
+                       *self._compiled, self._synth, self._analysis, r, jac, dxi)
         for operator, idx, b, block in self._links:
             force, dforce = self.joint_harmonics(operator, b.T @ x[idx])
             r[idx] += b @ force
@@ -167,8 +216,7 @@ class HarmonicBalance:
         if self._links:
             return None
         load = np.ascontiguousarray(load, dtype=np.float64)
-        args = (self._k, self._m, self._c, self._mc, *self._compiled, self._synth,
-                self._analysis)
+        args = (*self._linear, *self._compiled, self._synth, self._analysis)
 
         def correct(y_pred: Array, row: Array, scale: Array, tol: float
                     ) -> tuple[Array, bool, Array]:
@@ -189,7 +237,7 @@ class HarmonicBalance:
         compiled = getattr(operator, "periodic_harmonics", None)
         if compiled is not None:  # the 1-D Iwan operators: one compiled AFT call
             return compiled(u, self._synth, self._analysis)
-        h = 2 * self.harmonics + 1
+        h = self.width
         a = self._analysis
         d = getattr(operator, "directions", 1)
         if d >= 2:  # two-directional joints, and the 3-D contact element (operators3d)
@@ -204,22 +252,31 @@ class HarmonicBalance:
     def amplitudes(self, xs: Array) -> Array:
         """First-harmonic amplitudes (mm) of the output coordinate at the coefficient
         vectors ``xs`` (m, n) (:meth:`amplitude` without its gradient, all at once)."""
-        q = xs.reshape(len(xs), self.structure.dofs, 2 * self.harmonics + 1)
-        out = self.structure.output
-        return np.asarray(np.hypot(q[:, :, 1] @ out, q[:, :, 2] @ out))
+        q = xs.reshape(len(xs), self.structure.dofs, self.width)
+        out, c = self.structure.output, self.first
+        return np.asarray(np.hypot(q[:, :, c] @ out, q[:, :, c + 1] @ out))
 
     def amplitude(self, x: Array) -> tuple[float, Array]:
         """First-harmonic amplitude (mm) of the output coordinate and its gradient in x."""
-        h = 2 * self.harmonics + 1
+        h, j = self.width, self.first
         out = self.structure.output
         q = x.reshape(self.structure.dofs, h)
-        c, s = float(out @ q[:, 1]), float(out @ q[:, 2])
+        c, s = float(out @ q[:, j]), float(out @ q[:, j + 1])
         a = float(np.hypot(c, s))
         grad = np.zeros((self.structure.dofs, h))
         if a > 0.0:
-            grad[:, 1] = out * (c / a)
-            grad[:, 2] = out * (s / a)
+            grad[:, j] = out * (c / a)
+            grad[:, j + 1] = out * (s / a)
         return a, grad.ravel()
+
+
+def harmonic_columns(harmonics: int, odd: bool = False) -> NDArray[np.int64]:
+    """The columns of the full layout ``[c_0, c_1, s_1, ..., c_H, s_H]`` a balance keeps:
+    all 2H + 1, or (``odd``) the cos and sin of the odd harmonics 1, 3, ..., <= H."""
+    if not odd:
+        return np.arange(2 * harmonics + 1, dtype=np.int64)
+    return np.array([c for k in range(1, harmonics + 1, 2) for c in (2 * k - 1, 2 * k)],
+                    dtype=np.int64)
 
 
 def _compiled_joints(links: list[JointLink], dofs: int) -> tuple[Array, Array, Array, Array,

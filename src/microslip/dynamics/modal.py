@@ -154,41 +154,38 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
 
 
 def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int,
-          coefficients: NDArray[np.int64] | None = None) -> ModalCurve:
-    """EPMC on the harmonic ``coefficients`` (indices into the balance's unknowns;
-    None: all of them). The others are held at zero (:func:`.modal_odd.epmc_odd` keeps the
-    odd harmonics)."""
-    hb = HarmonicBalance(structure, harmonics, samples)
-    h = 2 * harmonics + 1
-    n = hb.size
-    keep: NDArray[np.int64] = (np.arange(n, dtype=np.int64) if coefficients is None
-                               else coefficients)
-    m_k = keep.size
+          odd: bool = False) -> ModalCurve:
+    """EPMC on every harmonic, or (``odd``) on the odd ones only, the even ones held at zero
+    (:func:`.modal_odd.epmc_odd`; the balance itself is then built on the odd harmonics,
+    :class:`~.hb.HarmonicBalance`)."""
+    hb = HarmonicBalance(structure, harmonics, samples, odd=odd)
+    m_k = hb.size
+    j = hb.first
     phi, m, _, c = stuck_mode(structure, mode)
     omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
-    first = np.zeros((structure.dofs, h))
-    first[:, 1] = phi
+    first = np.zeros((structure.dofs, hb.width))
+    first[:, j] = phi
     guess = np.zeros(m_k + 2)
-    guess[:m_k] = first.ravel()[keep]
+    guess[:m_k] = first.ravel()
     guess[m_k], guess[m_k + 1] = omega0, c / m
-    out = np.zeros((2, structure.dofs, h))
-    out[0, :, 1] = structure.output
-    out[1, :, 2] = structure.output
+    out = np.zeros((2, structure.dofs, hb.width))
+    out[0, :, j] = structure.output
+    out[1, :, j + 1] = structure.output
     rows = np.zeros((2, m_k + 2))
-    rows[:, :m_k] = out.reshape(2, -1)[:, keep]
-    load = np.zeros(n)
-    full = np.zeros(n)
+    rows[:, :m_k] = out.reshape(2, -1)
+    load = np.zeros(m_k)
     freq = np.empty(a.size)
     zeta = np.empty(a.size)
     previous = 1.0
     for i, ai in enumerate(a):
         def fun(y: Array, ai: float = ai) -> tuple[Array, Array]:
-            full[keep] = y[:m_k]
-            res = hb.residual(full, float(y[m_k]), load, float(y[m_k + 1]))
-            r = np.concatenate([res.r[keep], rows @ y - (ai, 0.0)])
-            jac = np.vstack([np.column_stack([res.dx[np.ix_(keep, keep)], res.dw[keep],
-                                              res.dxi[keep]]), rows])
-            return r, jac
+            # the balance writes its rows in place, column-major: LAPACK factors it as it is
+            jac = np.zeros((m_k + 2, m_k + 2), order="F")
+            res = hb.residual(y[:m_k], float(y[m_k]), load, float(y[m_k + 1]),
+                              out=jac[:m_k, :m_k + 1])
+            jac[:m_k, m_k + 1] = res.dxi
+            jac[m_k:] = rows
+            return np.concatenate([res.r, rows @ y - (ai, 0.0)]), jac
 
         guess[:m_k] *= ai / previous
         scale = np.concatenate([np.full(m_k, ai), [omega0, omega0]])
@@ -230,36 +227,31 @@ def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
 
 def _quasi_static(structure: Structure, q: Array, harmonics: int, samples: int,
                   mode: int) -> ModalCurve:
-    hb = HarmonicBalance(structure, harmonics, samples)
-    h = 2 * harmonics + 1
-    n = hb.size
-    if any(isinstance(link.operator, Contact3D) for link in structure.joints):
-        keep = np.arange(n, dtype=np.int64)
-    else:  # odd joint forces: half-wave symmetric response (:mod:`.modal_odd`)
-        odd = np.array([c for k in range(1, harmonics + 1, 2) for c in (2 * k - 1, 2 * k)])
-        keep = (np.arange(structure.dofs)[:, None] * h + odd[None, :]).ravel().astype(np.int64)
+    # odd joint forces (no 3-D contact element): a half-wave symmetric response, the balance
+    # on the odd harmonics (:mod:`.modal_odd`)
+    odd = not any(isinstance(link.operator, Contact3D) for link in structure.joints)
+    hb = HarmonicBalance(structure, harmonics, samples, odd=odd)
+    h, j = hb.width, hb.first
     phi = stuck_mode(structure, mode)[0]
     mass = SI_PER_MM * np.asarray(structure.mass)  # t
     phi = phi / np.sqrt(phi @ mass @ phi)
     pattern = mass @ phi  # N per unit q
     lin = hb.stuck_guess(0.0, hb.excitation(pattern, 1.0))  # cos load; sin: shift below
     unit = np.zeros((structure.dofs, h))
-    unit[:, 2] = lin.reshape(structure.dofs, h)[:, 1]
-    y = unit.ravel()[keep]
-    full = np.zeros(n)
+    unit[:, j + 1] = lin.reshape(structure.dofs, h)[:, j]
+    y = unit.ravel()
     amp = np.empty(q.size)
     freq = np.empty(q.size)
     zeta = np.empty(q.size)
     previous = 1.0
     for i, qi in enumerate(q):
         load = np.zeros((structure.dofs, h))
-        load[:, 2] = qi * pattern
+        load[:, j + 1] = qi * pattern
         flat = load.ravel()
 
         def fun(y: Array, flat: Array = flat) -> tuple[Array, Array]:
-            full[keep] = y
-            res = hb.residual(full, 0.0, flat)
-            return res.r[keep], res.dx[np.ix_(keep, keep)]
+            res = hb.residual(y, 0.0, flat)
+            return res.r, res.dx
 
         y = y * (qi / previous)
         y, ok, _ = newton(fun, y, np.full(y.size, float(np.max(np.abs(y)))), TOLERANCE,
@@ -267,12 +259,11 @@ def _quasi_static(structure: Structure, q: Array, harmonics: int, samples: int,
         if not ok:
             raise ParameterError(f"the quasi-static modal analysis did not converge at "
                                  f"modal force {qi:.6g}")
-        full[keep] = y
-        x = full.reshape(structure.dofs, h)
-        eta1 = complex(phi @ mass @ x[:, 1], -(phi @ mass @ x[:, 2]))
+        x = y.reshape(structure.dofs, h)
+        eta1 = complex(phi @ mass @ x[:, j], -(phi @ mass @ x[:, j + 1]))
         k1 = (complex(0.0, -qi) * eta1.conjugate()).real / abs(eta1) ** 2
-        work = -np.pi * qi * float(pattern @ x[:, 1])
-        amp[i] = abs(complex(structure.output @ x[:, 1], -(structure.output @ x[:, 2])))
+        work = -np.pi * qi * float(pattern @ x[:, j])
+        amp[i] = abs(complex(structure.output @ x[:, j], -(structure.output @ x[:, j + 1])))
         freq[i] = np.sqrt(max(k1, 0.0)) / (2.0 * np.pi)
         zeta[i] = work / (2.0 * np.pi * abs(eta1) ** 2 * k1)
         previous = qi

@@ -6,10 +6,13 @@ A joint force with ``f(-u) = -f(u)`` and a rate-independent hysteresis has a ste
 with half-wave symmetry, ``u(t + T/2) = -u(t)``, when the motion has it: the balance's even
 harmonics (the static one included) then vanish identically, and Newton on the odd
 harmonics alone (``x = S y``, residual ``S^T r``, Jacobian ``S^T J S``) finds the same
-solution as on every harmonic. The dense solve, the cost on a reduced model with many
-contact DOFs, shrinks from ``(n (2H + 1))^3`` to about ``(n (H + 1))^3``, some 6x fewer
-operations for H = 7. Not for joints whose force is not odd (the 3-D contact element's
-normal lift-off, :mod:`.operators3d`), which :func:`epmc_odd` refuses.
+solution as on every harmonic. The balance is built on the odd harmonics alone
+(:class:`~.hb.HarmonicBalance` with ``odd``: its residual, Jacobian and AFT never touch
+the even ones), so the dense solve, the cost on a reduced model with many contact DOFs,
+shrinks from ``(n (2H + 1))^3`` to about ``(n (H + 1))^3``, some 6x fewer operations for
+H = 7, and the balance's memory and set-up to about a quarter. Not for joints whose force
+is not odd (the 3-D contact element's normal lift-off, :mod:`.operators3d`), which
+:func:`epmc_odd` refuses.
 
 Units: as :mod:`.modal`.
 """
@@ -44,7 +47,4 @@ def epmc_odd(structure: Structure, amplitude: ArrayLike, harmonics: int,
 
 def _epmc_odd(structure: Structure, a: Array, harmonics: int, samples: int, mode: int
               ) -> ModalCurve:
-    h = 2 * harmonics + 1
-    odd = np.array([c for k in range(1, harmonics + 1, 2) for c in (2 * k - 1, 2 * k)])
-    keep = (np.arange(structure.dofs)[:, None] * h + odd[None, :]).ravel().astype(np.int64)
-    return _epmc(structure, a, harmonics, samples, mode, keep)
+    return _epmc(structure, a, harmonics, samples, mode, odd=True)
