@@ -374,7 +374,7 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
             forced = each.build(study)
             runs[name] = (forced, [
                 frequency_response(forced.structure, f, forced.load, frange, harmonics,
-                                   samples, args.step)
+                                   samples, args.step, odd=forced.odd)
                 for f in progress(levels, desc=f"frf {name}", total=len(levels))])
         return _print_all(args, study, runs, harmonics, samples, frange)
     forced = FRF_MESH_SOLVERS[solver].build(study)
