@@ -17,7 +17,16 @@ from ..case.model import Case
 from ..case.table import CASE_DESTS, OPTIONS
 from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
-from .modalmesh import ALL, MESH_SOLVERS, MeshCurve, MeshStudy, mesh_study, study_output
+from .modalmesh import (
+    ALL,
+    MESH_SOLVERS,
+    MeshCurve,
+    MeshStudy,
+    curve_table,
+    headline,
+    mesh_study,
+    study_output,
+)
 from .structure import balance_from_args
 
 __all__ = ["REPORT_AMPLITUDES", "SHARED", "TRUTH", "case_argv", "case_comparison",
@@ -50,19 +59,6 @@ def compare_output(study: MeshStudy, curves: dict[str, MeshCurve]) -> dict[str, 
     out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
                        for w in o["warnings"]]
     return out
-
-
-def _table(values: dict[str, Any], curve: MeshCurve) -> list[str]:
-    """One solver's rows under its own column headers."""
-    lines = [" ".join(f"{h:>12}" if f.startswith("{:12") else f"{h:>9}"
-                      for h, f in curve.columns.values())]
-    for row in zip(*(values[k] for k in curve.columns), strict=True):
-        if row[0] is None:
-            lines.append(f"{'failed':>12} (see the warnings)")
-            continue
-        lines.append(" ".join(fmt.format(v) for v, (_, fmt)
-                              in zip(row, curve.columns.values(), strict=True)))
-    return lines
 
 
 def run_all(study: MeshStudy) -> tuple[dict[str, MeshCurve], dict[str, Any]]:
@@ -122,14 +118,10 @@ def run_modal_all(study: MeshStudy) -> int:
     if args.json:
         print_json(out)
         return 0
-    number = study.number
-    print(f"mesh {args.mesh}: mode {number} ({out['label']}), stuck "
-          f"{out['linear_frequencies_Hz'][number - 1]:.6g} Hz, free "
-          f"{out['free_frequencies_Hz'][number - 1]:.6g} Hz; every solver on the same "
-          "amplitude grid")
+    print(headline(study, out, "every solver on the same amplitude grid"))
     for name, curve in curves.items():
         print(f"\n{name}: {curve.label}")
-        print("\n".join(_table(out["solvers"][name], curve)))
+        print("\n".join(curve_table(out["solvers"][name], curve)))
     if out["verdicts"]:
         print(f"\nagainst the full FE at equal amplitude, where its damping ratio is "
               f"{100 * DAMPING_FLOOR:g}-{100 * DAMPING_CEILING:g} % (microslip):")

@@ -143,19 +143,31 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
         return 0
-    number = study.number
-    print(f"mesh {args.mesh}: mode {number} ({out['label']}), stuck "
-          f"{out['linear_frequencies_Hz'][number - 1]:.6g} Hz, free "
-          f"{out['free_frequencies_Hz'][number - 1]:.6g} Hz; {curve.label}")
-    print(" ".join(f"{h:>12}" if f.startswith("{:12") else f"{h:>9}"
-                   for h, f in curve.columns.values()))
-    for row in zip(*(out[k] for k in curve.columns), strict=True):
-        if row[0] is None:
-            print(f"{'failed':>12} (see the warnings)")
-            continue
-        print(" ".join(fmt.format(v) for v, (_, fmt) in zip(row, curve.columns.values(),
-                                                          strict=True)))
+    print(headline(study, out, curve.label))
+    print("\n".join(curve_table(out, curve)))
     return 0
+
+
+def headline(study: MeshStudy, out: dict[str, Any], what: str) -> str:
+    """The first line of the text output: the mesh, the mode, its stuck and free
+    frequencies (Hz) and ``what`` was computed."""
+    number = study.number
+    return (f"mesh {study.args.mesh}: mode {number} ({out['label']}), stuck "
+            f"{out['linear_frequencies_Hz'][number - 1]:.6g} Hz, free "
+            f"{out['free_frequencies_Hz'][number - 1]:.6g} Hz; {what}")
+
+
+def curve_table(values: dict[str, Any], curve: MeshCurve) -> list[str]:
+    """One solver's rows under its own column headers (units in the headers)."""
+    lines = [" ".join(f"{h:>12}" if f.startswith("{:12") else f"{h:>9}"
+                      for h, f in curve.columns.values())]
+    for row in zip(*(values[k] for k in curve.columns), strict=True):
+        if row[0] is None:
+            lines.append(f"{'failed':>12} (see the warnings)")
+            continue
+        lines.append(" ".join(fmt.format(v) for v, (_, fmt)
+                              in zip(row, curve.columns.values(), strict=True)))
+    return lines
 
 
 @dataclass(frozen=True)

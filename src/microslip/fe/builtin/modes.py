@@ -315,6 +315,10 @@ def shift_inverse(a: sp.spmatrix) -> spla.LinearOperator:
     return spla.LinearOperator((n, n), matvec=lu.solve, dtype=np.float64)
 
 
+#: An eigenvalue w^2 at most this times the largest computed is a rigid motion's rounding.
+RIGID = 1e-9
+
+
 def _eigen(k: sp.csr_matrix, m: sp.csr_matrix, n: int, contact: str) -> tuple[FloatArray,
                                                                              FloatArray]:
     # shift below 0: with the contact free K is singular (in-plane rigid motions)
@@ -339,7 +343,9 @@ def _eigen(k: sp.csr_matrix, m: sp.csr_matrix, n: int, contact: str) -> tuple[Fl
     # sign: the largest component positive (reproducible shapes)
     big = np.argmax(np.abs(v), axis=0)
     v = v * np.sign(v[big, np.arange(v.shape[1])])
-    return np.maximum(w, 0.0), v.T.copy()
+    # rigid motions (free contact) come out at w^2 of rounding size: they are 0 Hz
+    w = np.where(w <= RIGID * float(np.max(np.abs(w))), 0.0, w)
+    return w, v.T.copy()
 
 
 def linear_modes(model: MeshModel, density_kg_m3: float, n_modes: int = 10,
