@@ -163,7 +163,7 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     _small_coupling_sweep(monkeypatch)
     monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(), ""))
     code = main(["reproduce", "--out", str(tmp_path / "a"), "--fe", "--quiet",
-                 "--increments", "20", "--no-structure"])
+                 "--increments", "20", "--no-structure-study"])
     assert code == 0
     text = (tmp_path / "a" / "report.md").read_text(encoding="utf-8")
     assert "| FE | ok |" in text and "fig09_fe_vs_model.png" in text
@@ -174,7 +174,7 @@ def test_fe_part_uses_the_validation_when_present(tmp_path, monkeypatch, capsys)
     assert "joint2d_vs_fe.csv" in text and (tmp_path / "a" / "fig13_joint2d_vs_fe.png").is_file()
     monkeypatch.setattr(reproduce_job, "_fe_module", lambda: (_fake_validation(fail=True), ""))
     code = main(["reproduce", "--out", str(tmp_path / "b"), "--quiet", "--increments", "20",
-                 "--no-structure"])
+                 "--no-structure-study"])
     _, err = capsys.readouterr()
     assert code == 1 and "ccx failed" in err
     assert "Not run (failed): ccx failed" in (tmp_path / "b" / "report.md").read_text("utf-8")

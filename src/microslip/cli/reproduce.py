@@ -53,7 +53,7 @@ def add_parser(sub: Any) -> None:
                         f"(default {DEFAULT_WORK_STRAIN_ENERGY})")
     add_model_options(p, "paper", " here, because the paper's top centre level 16000 N equals "
                                   "mu F_N")
-    p.add_argument("--structure", action=argparse.BooleanOptionalAction, default=None,
+    p.add_argument("--structure-study", action=argparse.BooleanOptionalAction, default=None,
                    help="the damping of the cantilever example's two bending modes from its "
                         "mesh: full FE, contact-node ROM and whole joint side by side "
                         "(structure/; about a minute; by default with the finite elements, "
@@ -77,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
                         levels=args.levels, work_energy=args.work_energy, fe=args.fe,
                         fe_mesh=args.fe_mesh, progress=not args.quiet, echo=echo)
         structure: list[Path] = []
-        if args.structure or (args.structure is None and args.fe is not False):
+        if args.structure_study or (args.structure_study is None and args.fe is not False):
             from .structurejob import structure_study
 
             structure, lines = structure_study(stage, None if args.quiet else echo)
