@@ -77,6 +77,26 @@ def slip_snapshots(amplitudes: Sequence[float | None], count: int = SLIP_PANELS)
     return [ok[int(k)] for k in dict.fromkeys(picks.tolist())]
 
 
+#: The damping axis starts this factor below the full FE's smallest damping ratio; a model
+#: far below it (a whole joint that hardly slips: 1e-27) is named as off the axis instead of
+#: squeezing the curves that can be compared into its top decade.
+DAMPING_AXIS_DECADES = 30.0
+
+
+def _damping_floor(ax: Any, solvers: Mapping[str, Any]) -> None:
+    truth = solvers.get("fe", next(iter(solvers.values())))
+    fe = [v for v in truth["damping_ratio"] if v is not None and v > 0]
+    if not fe:
+        return
+    floor = min(fe) / DAMPING_AXIS_DECADES
+    below = [name for name, c in solvers.items()
+             if any(v is not None and 0 <= v < floor for v in c["damping_ratio"])]
+    ax.set_ylim(bottom=floor)
+    if below:
+        ax.text(0.02, 0.02, f"below the axis (ζ < {floor:.1g}): {', '.join(below)}",
+                transform=ax.transAxes, fontsize="small", color="0.3")
+
+
 def compare_figure(out: Mapping[str, Any]) -> Any:
     """The figure of ``modal --mesh ... --solver all``'s JSON object ``out``: frequency and
     damping ratio against amplitude for every solver (top), and the full FE's slip pattern
@@ -104,6 +124,7 @@ def compare_figure(out: Mapping[str, Any]) -> Any:
     freq.axhline(stuck, color="0.5", lw=0.6, ls=":", label=f"stuck {stuck:.5g} Hz")
     damp.axhline(MICROSLIP_CEILING, color="0.5", lw=0.6, ls=":",
                  label=f"ζ = {MICROSLIP_CEILING:g} (end of the verdicts' range)")
+    _damping_floor(damp, solvers)
     freq.set_ylabel("natural frequency f (Hz)")
     damp.set_ylabel("damping ratio ζ (dimensionless)")
     for ax in (freq, damp):
