@@ -33,6 +33,7 @@ from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
     DEFAULT_ROM_MODES,
+    MeshModes,
     add_mesh_structure_options,
     add_reduced_model_options,
     check_mesh_structure,
@@ -109,7 +110,7 @@ def check_range(lo: float, hi: float) -> tuple[float, float]:
 
 
 @dataclass(frozen=True)
-class FrfStudy:
+class FrfStudy(MeshModes):
     """What every solver of ``frf --mesh`` shares: the clamped model, its stuck and free
     modes, the mode studied and the load.
 
@@ -118,20 +119,11 @@ class FrfStudy:
     ``response_motion`` the response set's motion along the mode per unit modal coordinate
     (mass-normalised mode; their product over omega^2 is the single-mode receptance)."""
 
-    args: argparse.Namespace
-    model: Any
-    stuck: Any
-    free: Any
-    number: int
     load_set: str
     load_nodes: np.ndarray = field(repr=False)
     load_direction: np.ndarray = field(repr=False)
     modal_force: float
     response_motion: float
-
-    @property
-    def mode(self) -> Any:
-        return self.stuck.select(self.number)
 
 
 @dataclass(frozen=True)

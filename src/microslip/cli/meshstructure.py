@@ -10,6 +10,7 @@ the modes :func:`microslip.fe.builtin.modes.linear_modes`. Units: mm, N, MPa, kg
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass
 from typing import Any
 
 from ..case.table import add_option, mesh_file, number
@@ -17,9 +18,19 @@ from ..errors import ParameterError
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
 from .ownmesh import given
 
-__all__ = ["DEFAULT_ROM_MODES", "MAX_MODE", "NOT_WITH_MESH", "REQUIRED",
-           "add_mesh_structure_options", "add_reduced_model_options", "check_density",
-           "check_mesh_structure", "mesh_model", "mesh_modes"]
+__all__ = [
+    "DEFAULT_ROM_MODES",
+    "MAX_MODE",
+    "NOT_WITH_MESH",
+    "REQUIRED",
+    "MeshModes",
+    "add_mesh_structure_options",
+    "add_reduced_model_options",
+    "check_density",
+    "check_mesh_structure",
+    "mesh_model",
+    "mesh_modes",
+]
 
 #: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
 NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
@@ -37,6 +48,24 @@ DEFAULT_ROM_MODES = 60
 #: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
 #: named here so that the parser does not import the FE; a test holds the two equal).
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")
+
+
+@dataclass(frozen=True)
+class MeshModes:
+    """What every study of a mesh structure starts from (``modal --mesh``, ``frf --mesh``):
+    the command line, the clamped model, its stuck and free linear modes and the number
+    (1-based) of the mode studied."""
+
+    args: argparse.Namespace
+    model: Any
+    stuck: Any
+    free: Any
+    number: int
+
+    @property
+    def mode(self) -> Any:
+        """The studied stuck mode (:class:`~microslip.fe.builtin.modes.Mode`)."""
+        return self.stuck.select(self.number)
 
 
 def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None:

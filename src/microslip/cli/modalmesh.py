@@ -20,6 +20,7 @@ from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
     DEFAULT_ROM_MODES,
+    MeshModes,
     add_mesh_structure_options,
     add_reduced_model_options,
     check_mesh_structure,
@@ -171,7 +172,7 @@ def curve_table(values: dict[str, Any], curve: MeshCurve) -> list[str]:
 
 
 @dataclass(frozen=True)
-class MeshStudy:
+class MeshStudy(MeshModes):
     """What every solver of ``modal --mesh`` shares: the clamped model, its stuck and free
     modes, the mode studied, and the one amplitude grid.
 
@@ -179,17 +180,8 @@ class MeshStudy:
     through the stuck mode (a = q r / omega^2, r the response set's motion per unit modal
     coordinate), or ``--amplitude-range`` itself: the grid every solver runs on."""
 
-    args: argparse.Namespace
-    model: Any
-    stuck: Any
-    free: Any
-    number: int
     forces: Any
     amplitudes: Any
-
-    @property
-    def mode(self) -> Any:
-        return self.stuck.select(self.number)
 
 
 @dataclass(frozen=True)
