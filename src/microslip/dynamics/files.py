@@ -14,7 +14,8 @@ Two formats:
   or (n_joints, 3, 2) for *3-D contact joints* (a contact node with penalty normal contact,
   :class:`~.operators3d.Contact3D`: tangential 1, tangential 2, normal, in that order) with
   their laws ``joint_stiffness`` (tangential k_t, N/mm), ``joint_normal_stiffness`` (k_n,
-  N/mm), ``joint_preload`` (N_0, N) and ``joint_friction`` (mu), shape (n_joints,), all
+  N/mm), ``joint_preload`` (N_0, N; signed: <= 0 for a node the clamping lifted off, minus
+  k_n times its gap) and ``joint_friction`` (mu), shape (n_joints,), all
   four (``joint_slip_force`` is then mu N_0 and not given), and optionally
   ``joint_stick_force`` (N, shape (n_joints, 2): the tangential force the clamping step
   left in each, |t| <= mu N_0; zero if absent). A reader older than these
@@ -130,7 +131,8 @@ def _contacts(path: str, arrays: dict[str, object], count: int) -> np.ndarray:
         raise ParameterError(f"{path}: 3-D contact joints (joints of shape (n, 3, 2)) need "
                              f"{', '.join(n for n, _ in CONTACT_LAWS)}; missing "
                              f"{', '.join(missing)}")
-    return np.column_stack([_positive(path, name, unit, arrays[name], count)
+    return np.column_stack([_positive(path, name, unit, arrays[name], count,
+                                      signed=name == "joint_preload")
                             for name, unit in CONTACT_LAWS])
 
 
@@ -146,14 +148,16 @@ def _stick(path: str, a: object, count: int) -> np.ndarray:
     return arr.astype(float)
 
 
-def _positive(path: str, name: str, unit: str, a: object, count: int) -> np.ndarray:
-    """One number per joint, finite and > 0."""
+def _positive(path: str, name: str, unit: str, a: object, count: int,
+              signed: bool = False) -> np.ndarray:
+    """One number per joint, finite and > 0 (any sign with ``signed``: a 3-D contact
+    joint's preload, <= 0 where the node is open)."""
     arr = np.asarray(a)
     if arr.dtype.kind not in "iuf" or arr.shape != (count,):
         raise ParameterError(f"{path}: {name} must be {count} numbers (one per joint), "
                              f"got dtype {arr.dtype} shape {arr.shape}")
     arr = arr.astype(np.float64)
-    if not np.all(np.isfinite(arr) & (arr > 0.0)):
+    if not np.all(np.isfinite(arr) & ((arr > 0.0) | signed)):
         raise ParameterError(f"{path}: {name} must be finite and > 0{' ' + unit if unit else ''}")
     return arr
 

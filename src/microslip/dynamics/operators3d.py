@@ -7,7 +7,11 @@ body's inward normal, positive away from the base), preload N_0 (N, the clamping
 normal force):
 
 * normal: ``N(t) = max(0, N_0 - k_n u_n)``; the restoring force on the node is
-  ``f_n = N_0 - N = min(k_n u_n, N_0)`` (the penalty spring, lost at lift-off);
+  ``f_n = N_c - N`` with ``N_c = max(0, N_0)`` the clamped normal force: ``min(k_n u_n, N_0)``
+  for a closed node (the penalty spring, lost at lift-off);
+* open state: a node the clamping step left lifted off has a *signed* preload
+  ``N_0 = -k_n g_0 <= 0`` (g_0 its gap, mm); it carries nothing (``f = 0``, its slider
+  follows it) until ``k_n u_n`` closes the gap, then presses with ``N(t)`` as any node;
 * tangential: slider w (2-D), trial ``f* = k_t (u_t - w)``; ``|f*| <= mu N``: stick,
   ``f_t = f*``; else slip along f*, ``f_t = mu N f* / |f*|``, ``w = u_t - f_t / k_t``;
   lifted off (N = 0): ``f_t = 0``, ``w = u_t``.
@@ -62,7 +66,8 @@ def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float
     w = np.zeros(2)
     w[0], w[1] = -t0[0] / kt, -t0[1] / kt  # the clamped slider: k_t (0 - w) = t0
     dw = np.zeros((2, 3, m))
-    tol = CLOSED * mu * n0 / kt
+    tol = CLOSED * mu * abs(n0) / kt
+    nc = max(n0, 0.0)  # the clamped normal force (0: open after clamping)
     for period in range(MAX_PERIODS):
         w_start = w.copy()
         for t in range(n):
@@ -71,14 +76,14 @@ def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float
             f[t, :] = 0.0
             jb[t] = 0.0
             if normal <= 0.0:  # lifted off
-                f[t, 2] = n0
+                f[t, 2] = nc
                 w[0], w[1] = u[t, 0], u[t, 1]
                 dw[:] = 0.0
                 for a in range(2):
                     for c in range(m):
                         dw[a, a, c] = basis[t, c]
                 continue
-            f[t, 2] = kn * un
+            f[t, 2] = nc - normal  # k_n u_n when closed after clamping
             for c in range(m):
                 jb[t, 2, 2, c] = kn * basis[t, c]
             # trial force and its derivative
@@ -147,7 +152,9 @@ class Contact3D:
     normal_stiffness : float
         k_n = k_n A_i, N/mm.
     preload : float
-        N_0, N (the clamping step's normal force), > 0.
+        N_0, N: the clamping step's normal force (> 0, closed), or minus the normal stiffness
+        times the gap of a node the clamping lifted off (<= 0, open: no stuck stiffness, no
+        force until the gap closes).
     friction : float
         mu.
     stick_force : tuple of 2 floats
@@ -166,24 +173,34 @@ class Contact3D:
     def __post_init__(self) -> None:
         check_positive("tangential stiffness", self.tangential_stiffness, "N/mm")
         check_positive("normal stiffness", self.normal_stiffness, "N/mm")
-        check_positive("preload", self.preload, "N")
+        if not (isinstance(self.preload, (int, float, np.floating, np.integer))
+                and math.isfinite(float(self.preload))):
+            raise ParameterError(f"preload must be a finite number (N; <= 0: open), got "
+                                 f"{self.preload!r}")
         check_positive("friction", self.friction)
         t0 = np.asarray(self.stick_force, dtype=float)
         if t0.shape != (2,) or not np.all(np.isfinite(t0)):
             raise ParameterError(f"stick force must be two finite numbers (N), got "
                                  f"{self.stick_force!r}")
-        if float(np.hypot(*t0)) > self.friction * self.preload * (1.0 + 1e-9):
+        limit = self.friction * max(float(self.preload), 0.0)
+        if float(np.hypot(*t0)) > limit * (1.0 + 1e-9):
             raise ParameterError(f"stick force {float(np.hypot(*t0)):.6g} N exceeds the "
-                                 f"friction limit mu N_0 = "
-                                 f"{self.friction * self.preload:.6g} N")
+                                 f"friction limit mu N_0 = {limit:.6g} N")
         object.__setattr__(self, "stick_force", (float(t0[0]), float(t0[1])))
 
     #: Relative displacement components the element takes (tangential 1, 2 and normal).
     directions = 3
 
     @property
+    def closed(self) -> bool:
+        """Pressed on the base in the clamped state (preload > 0)."""
+        return bool(self.preload > 0.0)
+
+    @property
     def stuck_stiffness(self) -> Array:
-        """diag(k_t, k_t, k_n), N/mm: the slope from the clamped state."""
+        """diag(k_t, k_t, k_n), N/mm: the slope from the clamped state; zero when open."""
+        if not self.closed:
+            return np.zeros((3, 3))
         k = self.tangential_stiffness
         return np.diag([k, k, self.normal_stiffness])
 

@@ -251,6 +251,24 @@ class MeshModel:
         return "fixed" if self.normal is None else "penalty"
 
     @property
+    def closed(self) -> NDArray[np.bool_]:
+        """(n_c,): True where the contact node presses on the base after the clamping step
+        (N_i > 0). The others (``penalty`` normal contact, lifted off by the clamping) are
+        *open*: they carry nothing in the stuck linearisation (no stick spring, no normal
+        penalty) until they close."""
+        return np.asarray(self.normal_force > 0.0)
+
+    @property
+    def preload(self) -> FloatArray:
+        """(n_c,): the signed normal preload after clamping, N: N_i for ``fixed`` normal
+        contact; k_n A_i (-u_n,i) for ``penalty``, which is N_i where the node is closed and
+        minus the normal slope times its gap where it is open (< 0: the force the gap must
+        close before the node presses again)."""
+        if self.normal is None:
+            return np.asarray(self.normal_force, dtype=float)
+        return np.asarray(-self.normal.stiffness * self.u0[self.normal.dofs], dtype=float)
+
+    @property
     def force_scale(self) -> float:
         """mu F_N, N: the largest tangential force the interface carries; the scale of the
         residual tolerance."""

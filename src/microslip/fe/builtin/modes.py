@@ -3,9 +3,10 @@
 After the clamping step (:func:`~microslip.fe.builtin.meshmodel.build_mesh_model`) the
 contact's tangent is linear while every node sticks:
 
-* ``stuck``: the tangential stick springs lambda A_i on both in-plane dofs of every contact
-  node, and the normal stiffness: u_n held (``fixed``) or the penalty k_n A_i of every node
-  closed after clamping (``penalty``);
+* ``stuck``: the tangential stick springs lambda A_i on both in-plane dofs and the normal
+  stiffness of every contact node the clamping step leaves closed (N_i > 0): u_n held
+  (``fixed``) or its penalty k_n A_i (``penalty``); a node the clamping lifted off (open,
+  N_i = 0) carries nothing, as in the frictional FE, where its limit mu N_i is 0;
 * ``free``: the tangential springs removed, the normal kept: the body may slide and turn in
   the contact plane, so its three in-plane rigid motions are 0 Hz modes.
 
@@ -55,10 +56,13 @@ IntArray = NDArray[np.int64]
 
 
 def _stuck(model: MeshModel) -> sp.csr_matrix:
+    """lambda A_i on both in-plane dofs of every contact node closed after clamping (an open
+    node carries nothing: :attr:`~.meshmodel.MeshModel.closed`)."""
     n = model.dof
     c = model.contact_dofs
     rows = [c[:, 0], c[:, 1]]
-    vals = [model.contact_stiffness, model.contact_stiffness]
+    k = np.where(model.closed, model.contact_stiffness, 0.0)
+    vals = [k, k]
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(rows))),
                          shape=(n, n))
 
@@ -75,11 +79,12 @@ CONTACT_STATES: dict[str, Callable[[MeshModel], sp.csr_matrix]] = {
 
 
 def _normal_springs(model: MeshModel) -> sp.csr_matrix:
-    """k_n A_i on the u_n of every contact node closed after clamping (``penalty``)."""
+    """k_n A_i on the u_n of every contact node closed after clamping (``penalty``; N_i > 0,
+    :attr:`~.meshmodel.MeshModel.closed`)."""
     n = model.dof
     if model.normal is None:
         return sp.csr_matrix((n, n))
-    k = model.normal.tangent(model.u0)
+    k = np.where(model.closed, model.normal.stiffness, 0.0)
     d = model.normal.dofs
     return sp.csr_matrix((k, (d, d)), shape=(n, n))
 

@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from ...errors import MacroslipError, ParameterError
 from ..errors import NonConvergenceError
 from ..hexmesh import HexMesh
-from ..result import STICK
+from ..result import OPEN, SLIP, STICK
 from .meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
 from .meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
 from .modes import Mode, modal_stiffness, response_nodes, shift_inverse
@@ -110,11 +110,16 @@ class QSMAPoint:
     damping_ratio : float
     dissipated_energy_Nmm : float
     slip_fraction : float
-        Share of the contact area that slips at some state of the settled cycle.
+        Share of the contact area in touch with the base (closed at some state of the settled
+        cycle) that slips while closed at some state of it; a node that stays lifted off is
+        not counted.
     settled : bool
     cycles : int
     wall_s : float
     message : str
+    open_fraction : float
+        Share of the contact area that is open (lifted off the base, N_i = 0) at some state
+        of the settled cycle, reported apart from the slip.
     node_slipped : ndarray of bool, shape (n_c,)
         Per contact node (:attr:`~.meshmodel.MeshModel.contact_nodes` order): it slipped at
         some state of the settled cycle (the slip pattern; all False for a failed run). Not
@@ -133,6 +138,7 @@ class QSMAPoint:
     cycles: int
     wall_s: float
     message: str
+    open_fraction: float = 0.0
     node_slipped: NDArray[np.bool_] = field(repr=False, compare=False,
                                             default_factory=lambda: np.zeros(0, dtype=bool))
 
@@ -149,7 +155,7 @@ class QSMACurve:
     linear_frequency_Hz : float
         The stuck mode's, Hz.
     force, modal_amplitude, amplitude_mm, frequency_Hz, secant_frequency_Hz, damping_ratio,
-    dissipated_energy_Nmm, slip_fraction : ndarray
+    dissipated_energy_Nmm, slip_fraction, open_fraction : ndarray
         Per amplitude, increasing force (:class:`QSMAPoint`).
     settled : ndarray of bool
     points : tuple of QSMAPoint
@@ -199,6 +205,10 @@ class QSMACurve:
         return self._col("slip_fraction")
 
     @property
+    def open_fraction(self) -> FloatArray:
+        return self._col("open_fraction")
+
+    @property
     def settled(self) -> NDArray[np.bool_]:
         return np.array([p.settled for p in self.points], dtype=bool)
 
@@ -214,7 +224,7 @@ class QSMACurve:
                                "linear_frequency_Hz": self.linear_frequency_Hz}
         for name in ("force", "modal_amplitude", "amplitude_mm", "frequency_Hz",
                      "secant_frequency_Hz", "damping_ratio", "dissipated_energy_Nmm",
-                     "slip_fraction"):
+                     "slip_fraction", "open_fraction"):
             out[name] = self._col(name).tolist()
         out["warnings"] = list(self.warnings)
         return out
@@ -253,17 +263,24 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
     scale = model.friction_limit / model.contact_stiffness
     slipped = (np.max(np.ptp(r.contact.slip[k0:], axis=0), axis=1) > 1e-6 * scale
                if r.contact.slip is not None else np.zeros(scale.size, dtype=bool))
+    # an open node's slider follows it at no force: it slips only if it slid while closed
+    status = r.contact.status[k0:]
+    opened = np.any(status == OPEN, axis=0)
+    touching = np.any(status != OPEN, axis=0)
+    slipped &= np.any(status == SLIP, axis=0)
     if w == 0.0:
         slipped[:] = False
     area = model.contact_area
+    in_touch = float(area[touching].sum())
     zeta = w / (2 * math.pi * a**2 * k1) if k1 > 0 and a > 0 else math.nan
     return QSMAPoint(force=q, modal_amplitude=a, amplitude_mm=float(amp),
                      frequency_Hz=math.sqrt(max(k1, 0.0)) / (2 * math.pi),
                      secant_frequency_Hz=math.sqrt(max(ks, 0.0)) / (2 * math.pi),
                      damping_ratio=float(zeta), dissipated_energy_Nmm=float(w),
-                     slip_fraction=float(area[slipped].sum() / area.sum()),
+                     slip_fraction=float(area[slipped].sum() / in_touch) if in_touch else 0.0,
                      settled=settled, cycles=r.cycles, wall_s=r.wall_s,
-                     message=r.message, node_slipped=np.asarray(slipped, dtype=bool))
+                     message=r.message, open_fraction=float(area[opened].sum() / area.sum()),
+                     node_slipped=np.asarray(slipped, dtype=bool))
 
 
 def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
@@ -271,7 +288,7 @@ def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
     return QSMAPoint(force=force, modal_amplitude=nan, amplitude_mm=nan, frequency_Hz=nan,
                      secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
                      slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
-                     message=f"failed: {why}",
+                     message=f"failed: {why}", open_fraction=nan,
                      node_slipped=np.zeros(contact_nodes, dtype=bool))
 
 
@@ -347,7 +364,8 @@ def _first_loading_top(model: MeshModel, mode: Mode, q1: float, step: float,
             run.advance(np.array([[q]]), i)
         except (NonConvergenceError, MacroslipError, np.linalg.LinAlgError):
             break
-        stuck = float(area[run.status[-1] == STICK].sum() / area.sum())
+        status = run.status[-1]  # the stuck share of the area in touch (open nodes apart)
+        stuck = float(area[status == STICK].sum() / area[status != OPEN].sum())
         if stuck < GROSS_STICK:
             break
         top = q

@@ -93,6 +93,11 @@ class Rom:
         (N; |t_i| <= mu N_i). With ``penalty`` normal contact the 3-D elements start their
         cycles from it (it does not shake down when N varies); with ``fixed`` it shakes down
         and is not used.
+    preload : ndarray, shape (n_c,), or None
+        The signed normal preload after clamping (:attr:`.meshmodel.MeshModel.preload`, N):
+        N_i > 0 where the node is closed; with ``penalty`` contact minus k_n A_i times the
+        gap where the clamping lifted it off (open: it carries nothing until it closes).
+        None: every node closed at N_i = slip force / mu.
     """
 
     mass: FloatArray = field(repr=False)
@@ -107,6 +112,15 @@ class Rom:
     output: FloatArray | None = field(repr=False)
     build_s: float
     stick_force: FloatArray | None = field(default=None, repr=False)
+    preload: FloatArray | None = field(default=None, repr=False)
+
+    @property
+    def closed(self) -> NDArray[np.bool_]:
+        """(n_c,): the contact nodes closed after clamping (preload > 0); the open ones carry
+        no stuck stiffness."""
+        if self.preload is None:
+            return np.asarray(self.slip_force > 0.0)
+        return np.asarray(self.preload > 0.0)
 
     @property
     def dofs(self) -> int:
@@ -120,12 +134,15 @@ class Rom:
 
     def contact_springs(self) -> FloatArray:
         """The contact's stuck tangent on the ROM's coordinates (diagonal, N/mm): lambda A_i
-        on each tangential boundary dof, k_n A_i on each normal one, 0 on the modes."""
+        on each tangential boundary dof, k_n A_i on each normal one, of every node closed
+        after clamping (:attr:`closed`; 0 on an open node's dofs), 0 on the modes."""
         d = np.zeros(self.dofs)
         nb = self.boundary.size
-        d[:nb].reshape(-1, self.per_node)[:, :2] = self.contact_stiffness[:, None]
+        closed = self.closed
+        d[:nb].reshape(-1, self.per_node)[:, :2] = np.where(
+            closed, self.contact_stiffness, 0.0)[:, None]
         if self.per_node == 3:
-            d[:nb].reshape(-1, 3)[:, 2] = self.normal_stiffness
+            d[:nb].reshape(-1, 3)[:, 2] = np.where(closed, self.normal_stiffness, 0.0)
         return d
 
     def response_motion(self, count: int) -> FloatArray:
@@ -162,12 +179,14 @@ def _boundary(model: MeshModel) -> tuple[IntArray, int]:
 
 
 def _springs(model: MeshModel) -> FloatArray:
-    """The contact's stuck tangent on the free dofs (diagonal, N/mm)."""
+    """The contact's stuck tangent on the free dofs (diagonal, N/mm), the nodes closed after
+    clamping only (:attr:`.meshmodel.MeshModel.closed`)."""
     d = np.zeros(model.dof)
-    d[model.contact_dofs[:, 0]] = model.contact_stiffness
-    d[model.contact_dofs[:, 1]] = model.contact_stiffness
+    kc = np.where(model.closed, model.contact_stiffness, 0.0)
+    d[model.contact_dofs[:, 0]] = kc
+    d[model.contact_dofs[:, 1]] = kc
     if model.normal is not None:
-        d[model.normal.dofs] += model.normal.stiffness
+        d[model.normal.dofs] += np.where(model.closed, model.normal.stiffness, 0.0)
     return d
 
 
@@ -282,7 +301,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                interface_frequencies=freq, contact_stiffness=model.contact_stiffness.copy(),
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
-               build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model))
+               build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model),
+               preload=model.preload.copy())
 
 
 def clamped_stick_force(model: MeshModel) -> FloatArray:
@@ -388,10 +408,10 @@ def convergence(model: MeshModel, density_kg_m3: float, counts: list[int],
     return {"modes": list(counts), "full_Hz": list(full), "relative_error": errors}
 
 
-def _joints(rom: Rom) -> IntArray:
-    """(n_c, per_node, 2): each contact node's joint on its boundary ROM dofs (tangential
-    e1, e2, and the normal with ``penalty``), to the ground."""
-    first = np.arange(rom.contact_stiffness.size) * rom.per_node
+def _joints(rom: Rom, nodes: IntArray | None = None) -> IntArray:
+    """(n, per_node, 2): each contact node's (of ``nodes``, default all) joint on its
+    boundary ROM dofs (tangential e1, e2, and the normal with ``penalty``), to the ground."""
+    first = (np.arange(rom.contact_stiffness.size) if nodes is None else nodes) * rom.per_node
     rows = first[:, None] + np.arange(rom.per_node)[None, :]
     return np.stack([rows, np.full_like(rows, -1)], axis=2).astype(np.int64)
 
@@ -399,20 +419,26 @@ def _joints(rom: Rom) -> IntArray:
 def rom_matrices(rom: Rom) -> MatrixFile:
     """The ROM as the matrices of a structure file (SI: kg, N/m; no damping), its joints
     one per contact node with their own laws: lambda A_i and mu N_i (``fixed``: 2-D
-    Jenkins), or lambda A_i, k_n A_i, N_i and mu (``penalty``: 3-D contact elements)."""
+    Jenkins), or lambda A_i, k_n A_i, N_i and mu (``penalty``: 3-D contact elements).
+
+    A node the clamping step left open: with ``penalty`` its element has the signed preload
+    (minus k_n A_i times its gap, :attr:`Rom.preload`) and may close during the vibration;
+    with ``fixed`` normal contact it has no joint (it carries nothing)."""
     from ...dynamics.files import MatrixFile, check_matrices
 
     m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
                              np.zeros_like(rom.mass))
     if rom.per_node == 3:
         n = rom.contact_stiffness.size
+        preload = rom.slip_force / rom.friction if rom.preload is None else rom.preload
         contacts = np.column_stack([rom.contact_stiffness, rom.normal_stiffness,
-                                    rom.slip_force / rom.friction, np.full(n, rom.friction)])
+                                    preload, np.full(n, rom.friction)])
         stick = np.zeros((n, 2)) if rom.stick_force is None else rom.stick_force
         return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
                           contacts=contacts, stick_forces=np.asarray(stick, dtype=float))
-    return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom), path="rom",
-                      laws=np.column_stack([rom.contact_stiffness, rom.slip_force]))
+    closed = np.flatnonzero(rom.closed)
+    return MatrixFile(mass=m, stiffness=k, damping=c, joints=_joints(rom, closed), path="rom",
+                      laws=np.column_stack([rom.contact_stiffness, rom.slip_force])[closed])
 
 
 def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
