@@ -157,8 +157,11 @@ def test_3d_joint_arrays_checked(tmp_path):
         read_structure(_save(p, **{k: v for k, v in LAWS.items() if k != "joint_preload"}))
     with pytest.raises(ParameterError, match="not joint_slip_force"):
         read_structure(_save(p, **LAWS, joint_slip_force=np.array([2.0])))
-    with pytest.raises(ParameterError, match="joint_preload must be finite and > 0 N"):
-        read_structure(_save(p, **{**LAWS, "joint_preload": np.array([-1.0])}))
+    with pytest.raises(ParameterError, match="joint_preload must be finite N"):
+        read_structure(_save(p, **{**LAWS, "joint_preload": np.array([np.nan])}))
+    # a node the clamping lifted off: preload -k_n x gap (issue 28 item 2)
+    assert read_structure(_save(p, **{**LAWS, "joint_preload": np.array([-1.0])})
+                          ).contacts.tolist() == [[10.0, 100.0, -1.0, 0.4]]
     with pytest.raises(ParameterError, match="joint_friction must be 1 numbers"):
         read_structure(_save(p, **{**LAWS, "joint_friction": np.array([0.4, 0.4])}))
     with pytest.raises(ParameterError, match="belong to 3-D contact joints"):

@@ -157,6 +157,8 @@ def _positive(path: str, name: str, unit: str, a: object, count: int,
         raise ParameterError(f"{path}: {name} must be {count} numbers (one per joint), "
                              f"got dtype {arr.dtype} shape {arr.shape}")
     arr = arr.astype(np.float64)
+    if signed and not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{path}: {name} must be finite {unit} (<= 0: an open node)")
     if not np.all(np.isfinite(arr) & ((arr > 0.0) | signed)):
         raise ParameterError(f"{path}: {name} must be finite and > 0{' ' + unit if unit else ''}")
     return arr
