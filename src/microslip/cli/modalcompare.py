@@ -109,6 +109,7 @@ def run_modal_all(study: MeshStudy) -> int:
     and draw them (``--plot``)."""
     args = study.args
     curves, out = run_all(study)
+    table = frequency_convergence(study, out)  # --convergence: the stuck frequencies
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     if args.plot:
@@ -127,4 +128,6 @@ def run_modal_all(study: MeshStudy) -> int:
               f"{100 * DAMPING_FLOOR:g}-{100 * DAMPING_CEILING:g} % (microslip):")
         for v in out["verdicts"].values():
             print(f"  {v['verdict']}")
+    if table:
+        print("\n".join(table))
     return 0
