@@ -17,6 +17,7 @@ from ..case.model import Case
 from ..case.table import CASE_DESTS, OPTIONS
 from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
+from .convergence import frequency_convergence
 from .modalmesh import (
     ALL,
     MESH_SOLVERS,

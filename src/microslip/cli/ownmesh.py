@@ -149,7 +149,6 @@ def mesh_case(args: argparse.Namespace) -> Any:
 def run_own_mesh(args: argparse.Namespace) -> int:
     from ..fe.ownmesh import loops_of
     from ..fe.ownmesh import run_own_mesh as run
-
     from .convergence import check_convergence, mesh_convergence
 
     case = mesh_case(args)

@@ -109,7 +109,6 @@ class OwnMeshRun:
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .meshcheck import check_roles
     from .meshfile import read_mesh
-
     from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
