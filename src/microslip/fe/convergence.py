@@ -7,7 +7,8 @@ v* = v_last + (v_last - v_prev) / (r^p - 1); from two levels the element's theor
 the given (coarsest) mesh is v0 / v* - 1. The uncertainty of the estimate is Roache's grid
 convergence index, F_s |v* - v_last| / |v*| with the safety factor F_s = 1.25 for an observed
 order and 3 for an assumed one (Roache 1998, *Verification and Validation in Computational
-Science and Engineering*, ch. 5).
+Science and Engineering*, ch. 5); three levels outside the asymptotic range (oscillating, or
+changing more on the finer pair) take 3 x the largest change between levels instead.
 
 :func:`converge_own_mesh` runs an own-mesh case (:mod:`.ownmesh`) on the given mesh and one
 or two refinements x2 (:mod:`.refine`) and estimates W (N·mm) and the peak displacement (mm);
@@ -137,7 +138,10 @@ def richardson(values: Sequence[float], assumed_order: float,
     last, prev = v[-1], v[-2]
     value = last + (last - prev) / (ratio ** order - 1.0)
     error = v[0] / value - 1.0 if value else math.nan
-    spread = abs(value - last) / abs(value) if value else math.nan
+    # outside the asymptotic range the largest change between levels bounds the error
+    change = abs(value - last) if len(v) == 2 or source == "observed" else max(
+        abs(a - b) for a, b in zip(v[1:], v[:-1], strict=True))
+    spread = change / abs(value) if value else math.nan
     return Estimate(tuple(v), value, order, source, error, SAFETY[source] * spread, note)
 
 
