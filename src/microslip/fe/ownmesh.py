@@ -208,6 +208,11 @@ def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path 
     mesh = _mesh_of(case)
     record = out is not None and vtu and solver == "builtin"
     summary, result = OWN_MESH_SOLVERS[solver](mesh, case, record)
+    from .meshcheck import scale_warnings
+
+    units = scale_warnings(mesh, case.clamp_set, case.normal_force, case.modulus)
+    if units:
+        summary["warnings"] = [*units, *summary.get("warnings", [])]
     summary = {"mesh": str(case.mesh_file), "nodes": len(mesh.nodes),
                "elements": len(mesh.elements), **summary}
     if case.refine > 1:
