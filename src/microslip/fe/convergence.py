@@ -51,11 +51,16 @@ REFINEMENT_RATIO = 2
 LEVEL_CHOICES = (2, 3)
 #: The relative distance of the given mesh from the estimate above which a warning is given.
 WARN_ERROR = 0.05
-#: Orders of convergence assumed from two levels, for 8-node hexahedra (C3D8I), by quantity:
-#: the loop area W converges as h^2 (friction at the nodes: the slip front is placed to O(h),
-#: the loop area to O(h^2); tests/test_fe_builtin_convergence.py observes 2.1 on the tip bar);
-#: displacements and eigenvalues of linear elements as h^2 (Strang & Fix), frequencies too.
-THEORETICAL_ORDER = {"dissipated_energy": 2.0, "peak_displacement": 2.0, "frequency": 2.0}
+#: Orders of convergence assumed from two levels, for 8-node hexahedra (C3D8I), by quantity.
+#: The loop area W: 1, the conservative end of what is measured. Friction acts at the nodes,
+#: so the slip front is placed to O(h) and, once the slip zone spans many nodes, the loop area
+#: converges as h^2 (2.1 on the tip bar at R = 0.75, tests/test_fe_builtin_convergence.py);
+#: in microslip the zone spans a few nodes and the measured rate is 1.2 (the tip bar at
+#: R = 0.05, tests/test_fe_small_slip.py), and coarse meshes are not yet in the asymptotic
+#: range at all (the cantilever's W: 24x6x2 -> 96x24x8, docs/interpretation.md 14).
+#: Displacements and eigenvalues of linear elements converge as h^2 (Strang & Fix), the
+#: frequencies too.
+THEORETICAL_ORDER = {"dissipated_energy": 1.0, "peak_displacement": 2.0, "frequency": 2.0}
 #: An observed order outside this range is not trusted: the assumed order is used instead.
 ORDER_RANGE = (0.5, 6.0)
 #: Roache's safety factors of the grid convergence index: observed order, assumed order.
