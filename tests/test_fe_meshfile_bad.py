@@ -61,7 +61,7 @@ def test_bad_gmsh_files_are_one_line(capsys: pytest.CaptureFixture[str], name: s
 
 def test_a_mesh_in_metres_warns_twice(capsys: pytest.CaptureFixture[str]) -> None:
     pytest.importorskip("meshio")
-    code, out, err = _fe(capsys, "metres.msh")
+    _code, out, err = _fe(capsys, "metres.msh")
     warnings = json.loads(out)["warnings"]
     assert "the part is 0.004 mm across" in warnings[0] and "metres" in warnings[0]
     assert "times the modulus" in warnings[1] and "a mesh in metres" in warnings[1]

@@ -67,9 +67,9 @@ def mesh_convergence(args: argparse.Namespace, case: Any) -> tuple[dict[str, Any
               f"{lv.dissipated_energy_Nmm:13.6g} {lv.peak_displacement_mm:16.6g} "
               f"{lv.wall_s:9.3g}" for lv in study.levels]
     for name, unit, est in (("W", "N·mm", w), ("peak displacement", "mm", d)):
-        lines.append(f"  converged {name:<17s} {est.value:12.6g} {unit}  ({est.order_source} "
-                     f"order {est.order:.3g}; uncertainty {100 * est.uncertainty:.2g} %; the "
-                     f"given mesh {100 * est.relative_error:+.2f} % from it)")
+        lines.append(f"  converged {name:<17s} {est.value:12.6g} {unit}  ({est.how}; "
+                     f"uncertainty {100 * est.uncertainty:.2g} %; the given mesh "
+                     f"{100 * est.relative_error:+.2f} % from it)")
     if w.note:
         lines.append(f"  note: {w.note}")
     return out, lines
@@ -95,6 +95,6 @@ def frequency_convergence(study: Any, out: dict[str, Any]) -> list[str]:
         row = "".join(f" {lv[k]:12.6g}" for lv in levels)
         lines.append(f"  {k + 1:4d}{row} {est.value:15.6g} {est.order:6.3g} "
                      f"{100 * est.relative_error:+10.2f}%")
-    lines.append(f"  ({found.estimates[0].order_source} order; DOF "
-                 f"{', '.join(map(str, found.dof))})")
+    lines.append(f"  (order: {', '.join(sorted({e.order_source for e in found.estimates}))}"
+                 f"; DOF {', '.join(map(str, found.dof))})")
     return lines

@@ -7,8 +7,10 @@ v* = v_last + (v_last - v_prev) / (r^p - 1); from two levels the element's theor
 the given (coarsest) mesh is v0 / v* - 1. The uncertainty of the estimate is Roache's grid
 convergence index, F_s |v* - v_last| / |v*| with the safety factor F_s = 1.25 for an observed
 order and 3 for an assumed one (Roache 1998, *Verification and Validation in Computational
-Science and Engineering*, ch. 5); three levels outside the asymptotic range (oscillating, or
-changing more on the finer pair) take 3 x the largest change between levels instead.
+Science and Engineering*, ch. 5). Three levels outside the asymptotic range (oscillating, or
+changing more on the finer pair, or an observed order outside :data:`ORDER_RANGE`) are not
+extrapolated: the estimate is the finest value, its uncertainty 3 x the largest change between
+levels, and ``order_source`` is ``none``.
 
 :func:`converge_own_mesh` runs an own-mesh case (:mod:`.ownmesh`) on the given mesh and one
 or two refinements x2 (:mod:`.refine`) and estimates W (N·mm) and the peak displacement (mm);
@@ -63,8 +65,9 @@ WARN_ERROR = 0.05
 THEORETICAL_ORDER = {"dissipated_energy": 1.0, "peak_displacement": 2.0, "frequency": 2.0}
 #: An observed order outside this range is not trusted: the assumed order is used instead.
 ORDER_RANGE = (0.5, 6.0)
-#: Roache's safety factors of the grid convergence index: observed order, assumed order.
-SAFETY = {"observed": 1.25, "assumed": 3.0}
+#: Roache's safety factors of the grid convergence index, by the order's source: observed,
+#: assumed (two levels), none (three levels outside the asymptotic range: no extrapolation).
+SAFETY = {"observed": 1.25, "assumed": 3.0, "none": 3.0}
 
 
 @dataclass(frozen=True)
@@ -80,8 +83,9 @@ class Estimate:
     order : float
         The order of convergence used.
     order_source : str
-        ``observed`` (from three levels) or ``assumed`` (the element's theoretical order:
-        two levels, or three that are not in the asymptotic range; ``note`` says which).
+        ``observed`` (from three levels), ``assumed`` (two levels: the element's theoretical
+        order) or ``none`` (three levels not in the asymptotic range, ``note`` says why: the
+        value is the finest level's, not extrapolated; ``order`` is the theoretical one).
     relative_error : float
         The given mesh's discretisation error, values[0] / value - 1.
     uncertainty : float
@@ -98,6 +102,13 @@ class Estimate:
     uncertainty: float
     note: str = ""
 
+    @property
+    def how(self) -> str:
+        """How the estimate was made, in words."""
+        if self.order_source == "none":
+            return "the finest level: not in the asymptotic range, not extrapolated"
+        return f"{self.order_source} order {self.order:.3g}"
+
     def summary(self) -> dict[str, Any]:
         return {"value": self.value, "order": self.order, "order_source": self.order_source,
                 "relative_error": self.relative_error, "uncertainty": self.uncertainty,
@@ -109,8 +120,8 @@ def richardson(values: Sequence[float], assumed_order: float,
     """Richardson's extrapolation of ``values`` on meshes h, h/ratio (, h/ratio^2).
 
     Three values that converge monotonically (successive differences of one sign, shrinking)
-    give the observed order, if it lies in :data:`ORDER_RANGE`; otherwise, and from two
-    values, ``assumed_order`` extrapolates the last two.
+    give the observed order, if it lies in :data:`ORDER_RANGE`; otherwise the finest value is
+    the estimate (``order_source`` ``none``). From two values ``assumed_order`` extrapolates.
 
     >>> e = richardson([1.25, 1.0625, 1.015625], 2.0)   # 1 + h^2, h = 1/2, 1/4, 1/8
     >>> round(e.value, 12), round(e.order, 12), e.order_source
@@ -141,11 +152,15 @@ def richardson(values: Sequence[float], assumed_order: float,
     else:
         note = "two levels: the element's theoretical order is assumed"
     last, prev = v[-1], v[-2]
-    value = last + (last - prev) / (ratio ** order - 1.0)
+    if len(v) == 3 and source != "observed":
+        # outside the asymptotic range no extrapolation is trusted: the finest value, and
+        # the largest change between levels as its error
+        source, value = "none", last
+        change = max(abs(a - b) for a, b in zip(v[1:], v[:-1], strict=True))
+    else:
+        value = last + (last - prev) / (ratio ** order - 1.0)
+        change = abs(value - last)
     error = v[0] / value - 1.0 if value else math.nan
-    # outside the asymptotic range the largest change between levels bounds the error
-    change = abs(value - last) if len(v) == 2 or source == "observed" else max(
-        abs(a - b) for a, b in zip(v[1:], v[:-1], strict=True))
     spread = change / abs(value) if value else math.nan
     return Estimate(tuple(v), value, order, source, error, SAFETY[source] * spread, note)
 
@@ -193,9 +208,8 @@ class MeshConvergence:
             if abs(est.relative_error) > WARN_ERROR:
                 out.append(f"the given mesh's {name} ({est.values[0]:.6g} {unit}) is "
                            f"{100 * est.relative_error:+.1f} % from the converged estimate "
-                           f"{est.value:.6g} {unit} ({est.order_source} order "
-                           f"{est.order:.3g}): refine the mesh (--refine 2) or use the "
-                           "estimate")
+                           f"{est.value:.6g} {unit} ({est.how}): refine the mesh "
+                           "(--refine 2) or use the estimate")
         return out
 
     def summary(self) -> dict[str, Any]:
