@@ -337,8 +337,8 @@ _OPTIONS: tuple[Option, ...] = (
            key="mesh.response_set", check=text, scope="mesh"),
     # mesh convergence of the user's own mesh (fe --mesh FILE, modal --mesh FILE; issue 29)
     Option("refine", "subdivide every hexahedron of the mesh N times in each direction (N^3 "
-           "children, sets carried) before the run", "", "[1, 8]", type=int, metavar="N",
-           scope="mesh"),
+           "children, sets carried) before the run, N in [1, 8]", "", "[1, 8]", type=int,
+           metavar="N", scope="mesh"),
     Option("convergence", "run the mesh and its refinements x2 and report Richardson's "
            "estimate of the converged values, the observed order and the given mesh's "
            "discretisation error", "", "", type=None, scope="mesh"),

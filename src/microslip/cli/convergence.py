@@ -26,7 +26,7 @@ def add_convergence_options(g: Any, refine: bool = True) -> None:
     """``--convergence``, ``--levels`` (and ``--refine``) on the argument group ``g``."""
     if refine:
         add_option(g, "refine", default=None)
-    add_option(g, "convergence", action="store_true", default=False)
+    add_option(g, "convergence", action="store_true", default=None)
     add_option(g, "levels", default=None, choices=[2, 3])
 
 
