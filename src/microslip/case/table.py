@@ -335,6 +335,16 @@ _OPTIONS: tuple[Option, ...] = (
     Option("response_set", "set of the mesh whose mean displacement along the mode is the "
            "amplitude", "", "a set name of the mesh file", type=set_name, metavar="NAME",
            key="mesh.response_set", check=text, scope="mesh"),
+    # mesh convergence of the user's own mesh (fe --mesh FILE, modal --mesh FILE; issue 29)
+    Option("refine", "subdivide every hexahedron of the mesh N times in each direction (N^3 "
+           "children, sets carried) before the run, N in [1, 8]", "", "[1, 8]", type=int,
+           metavar="N", scope="mesh"),
+    Option("convergence", "run the mesh and its refinements x2 and report Richardson's "
+           "estimate of the converged values, the observed order and the given mesh's "
+           "discretisation error", "", "", type=None, scope="mesh"),
+    Option("levels", "with --convergence: meshes run, the given one and 1 or 2 refinements x2 "
+           "(3 observes the order, 2 assumes the element's)", "", "2 | 3", type=int,
+           metavar="N", choices=None, scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",
@@ -424,7 +434,7 @@ def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
                               "help": _help(opt, default, note, help)}
     if opt.choices is not None:
         kwargs["choices"] = list(opt.choices)
-    else:
+    elif opt.metavar is not None:  # a flag (store_true) has none
         kwargs["metavar"] = opt.metavar
     if opt.type is not None:
         kwargs["type"] = opt.type

@@ -17,6 +17,7 @@ from ..case.model import Case
 from ..case.table import CASE_DESTS, OPTIONS
 from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
+from .convergence import frequency_convergence
 from .modalmesh import (
     ALL,
     MESH_SOLVERS,
@@ -109,6 +110,7 @@ def run_modal_all(study: MeshStudy) -> int:
     and draw them (``--plot``)."""
     args = study.args
     curves, out = run_all(study)
+    table = frequency_convergence(study, out)  # --convergence: the stuck frequencies
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     if args.plot:
@@ -127,4 +129,6 @@ def run_modal_all(study: MeshStudy) -> int:
               f"{100 * DAMPING_FLOOR:g}-{100 * DAMPING_CEILING:g} % (microslip):")
         for v in out["verdicts"].values():
             print(f"  {v['verdict']}")
+    if table:
+        print("\n".join(table))
     return 0

@@ -18,6 +18,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from .common import check_plot, print_json
+from .convergence import add_convergence_options, check_convergence, frequency_convergence
 from .meshstructure import (
     DEFAULT_ROM_MODES,
     MeshModes,
@@ -35,7 +36,8 @@ __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 # frf --mesh).
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-             "response_set", "solver", "workers", "rom_modes", "backbone")
+             "response_set", "solver", "workers", "rom_modes", "backbone", "convergence",
+             "levels")
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
 
@@ -48,6 +50,7 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                    + f"; {ALL}: every one of them side by side, with a verdict on each "
                    "against the full FE (default fe)")
     add_reduced_model_options(g)
+    add_convergence_options(g, refine=False)
     g.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes for the amplitudes (independent runs; default 1)")
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
@@ -71,6 +74,7 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
 
 def _check(args: argparse.Namespace) -> None:
     check_mesh_structure(args)
+    check_convergence(args)
     solver = args.solver or "fe"
     for dest in dict.fromkeys(o for s in MESH_SOLVERS.values() for o in s.options):
         if given(args, dest) and solver != ALL and dest not in MESH_SOLVERS[solver].options:
@@ -135,6 +139,7 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
     solver = args.solver or "fe"
     curve = MESH_SOLVERS[solver].run(study)
     out = study_output(study, solver, curve)
+    table = frequency_convergence(study, out)  # --convergence: the stuck frequencies
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)
     if args.plot:
@@ -145,7 +150,7 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
         print_json(out)
         return 0
     print(headline(study, out, curve.label))
-    print("\n".join(curve_table(out, curve)))
+    print("\n".join(curve_table(out, curve) + table))
     return 0
 
 

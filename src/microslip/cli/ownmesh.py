@@ -21,7 +21,7 @@ __all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_ca
 
 #: Options of a mesh file only (destinations).
 MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_cycles",
-             "cycles", "plot")
+             "cycles", "plot", "refine", "convergence", "levels")
 #: Options of the built-in box only: refused with a mesh file.
 BOX_ONLY = ("model", "preset", "length", "width", "thickness", "amplitude",
             "displacement_amplitude", "pressure_law", "clamping_csv", "element", "reuse",
@@ -70,6 +70,9 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
                        help="calculix: cycles to run (default 3; compare cycle_work_Nmm)")
         g.add_argument("--plot", metavar="FILE.png",
                        help="draw each load's loop over the settled cycle")
+        from .convergence import add_convergence_options
+
+        add_convergence_options(g)
 
 
 def verb(flags: list[str]) -> str:
@@ -139,18 +142,26 @@ def mesh_case(args: argparse.Namespace) -> Any:
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
-        cycles=3 if args.cycles is None else args.cycles, **extra)
+        cycles=3 if args.cycles is None else args.cycles,
+        refine=1 if getattr(args, "refine", None) is None else args.refine, **extra)
 
 
 def run_own_mesh(args: argparse.Namespace) -> int:
     from ..fe.ownmesh import loops_of
     from ..fe.ownmesh import run_own_mesh as run
+    from .convergence import check_convergence, mesh_convergence
 
     case = mesh_case(args)
+    check_convergence(args, ("out", "plot"))
     check_output_dir(args.out)
     check_plot(args.plot)
-    done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)
-    out = {**done.summary, "clamp_portion": "whole",
+    table: list[str] = []
+    if args.convergence:
+        summary, table = mesh_convergence(args, case)
+    else:
+        done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)
+        summary = done.summary
+    out = {**summary, "clamp_portion": "whole",
            "options": {"normal_contact": case.normal_contact,
                        "stick_slope_N_per_mm3": case.stick_slope,
                        "normal_slope_N_per_mm3": case.normal_slope
@@ -167,17 +178,20 @@ def run_own_mesh(args: argparse.Namespace) -> int:
         out.setdefault("files", []).append(args.plot)
     for warning in out.get("warnings", []):
         print(f"warning: {warning}", file=sys.stderr)
-    status = 0 if out.get("converged", True) else 1
+    status = 0 if out.get("solver_converged", out.get("converged", True)) else 1
     if args.json:
         print_json(out)
         return status
     _print_text(args, out)
+    if table:
+        print("\n".join(table))
     return status
 
 
 def _print_text(args: argparse.Namespace, out: dict[str, Any]) -> None:
     o = out["options"]
-    print(f"mesh {out['mesh']} ({out['nodes']} nodes, {out['elements']} elements, "
+    refined = f" refined x{out['refine']}" if "refine" in out else ""
+    print(f"mesh {out['mesh']}{refined} ({out['nodes']} nodes, {out['elements']} elements, "
           f"{out['dof']} DOF), {args.solver} solver ({out['element']}), {o['normal_contact']} "
           f"normal contact, stick slope {o['stick_slope_N_per_mm3']:g} N/mm^3")
     for k, ld in enumerate(out["loads"], 1):

@@ -60,6 +60,9 @@ class HexMesh:
     node_ids, element_ids : ndarray of int, or None
         The node and element numbers of the file (one per row), for messages and for writing
         the mesh back; None: the row + 1.
+    set_dims : mapping of str to int
+        The dimension (0 point, 1 curve, 2 surface, 3 volume) of the file's group a set came
+        from, where the file says (gmsh physical groups, meshio cell sets); for messages.
     """
 
     nodes: FloatArray
@@ -69,6 +72,7 @@ class HexMesh:
     source: str = "mesh"
     node_ids: IntArray | None = None
     element_ids: IntArray | None = None
+    set_dims: Mapping[str, int] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         nodes = _frozen(self.nodes, np.float64)
@@ -87,6 +91,8 @@ class HexMesh:
         object.__setattr__(self, "surfaces", MappingProxyType(
             {k: _frozen(np.asarray(v).reshape(-1, 2), np.int64)
              for k, v in self.surfaces.items()}))
+        object.__setattr__(self, "set_dims", MappingProxyType(
+            {str(k): int(v) for k, v in self.set_dims.items()}))
         for name, rows in (("node_ids", len(nodes)), ("element_ids", len(elements))):
             ids = getattr(self, name)
             if ids is None:

@@ -3,7 +3,8 @@
 :func:`check_roles` is what the own-mesh solver and the CalculiX deck writer call first: every
 role set (contact, clamp, loads) must exist (a typo gets the closest name), hold element faces,
 and, for the contact and the clamp, lie on the boundary; every element must have a positive
-Jacobian determinant at its corners and Gauss points (:func:`check_elements`). Each failure
+Jacobian determinant at its corners and Gauss points (:func:`check_elements`), and no two
+nodes may coincide (:func:`check_joined`: volumes meshed apart). Each failure
 is one :class:`~microslip.errors.ParameterError` line naming the file, the set or element (the
 file's number) and what is wrong; the command line turns it into exit code 1.
 """
@@ -20,7 +21,8 @@ from ..errors import ParameterError
 from .hexmesh import HexMesh
 from .meshload import MeshLoad
 
-__all__ = ["boundary_faces", "check_elements", "check_roles", "check_set", "jacobian_dets"]
+__all__ = ["boundary_faces", "check_elements", "check_joined", "check_roles", "check_set",
+           "jacobian_dets", "scale_warnings"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -138,6 +140,13 @@ def check_set(mesh: HexMesh, name: str, role: str, boundary: bool = False) -> In
     size = len(mesh.surfaces[name]) if name in mesh.surfaces else len(mesh.node_sets[name])
     if size == 0:
         raise ParameterError(f"{mesh.source}: set {name!r} (the {role}) is empty")
+    dim = mesh.set_dims.get(name)
+    wrong = (dim is not None and dim < 2) or (boundary and dim == 3)
+    if wrong:
+        raise ParameterError(
+            f"{mesh.source}: set {name!r} (the {role}) is a {_DIM_NAMES[int(dim or 0)]} group "
+            f"of the mesh file; the {role} must be a surface group (2-D: quadrilaterals on "
+            "the hexahedra's faces)")
     faces = mesh.faces(name)
     if len(faces) == 0:
         raise ParameterError(
@@ -152,6 +161,61 @@ def check_set(mesh: HexMesh, name: str, role: str, boundary: bool = False) -> In
                 f"{int(inner.sum())} of its {len(faces)} faces are shared by two elements "
                 f"(e.g. face S{int(f) + 1} of element {mesh.element_label(int(e))})")
     return faces
+
+
+#: A group's dimension in words, for messages.
+_DIM_NAMES = {0: "point (0-D)", 1: "curve (1-D)", 2: "surface (2-D)", 3: "volume (3-D)"}
+#: Nodes closer than this fraction of the part's size count as coincident.
+COINCIDENT = 1e-9
+#: The clamping pressure F_N / A over the modulus outside this range is not a clamp in mm, N
+#: and MPa: a mesh in metres (areas 1e6 too small) or a modulus in Pa (1e6 too large).
+PRESSURE_TO_MODULUS = (1e-8, 1e-2)
+#: A part smaller than this across (mm) is probably a mesh in metres.
+SMALLEST_PART_MM = 1.0
+
+
+def check_joined(mesh: HexMesh) -> None:
+    """Refuse nodes at the same place as others: volumes meshed apart and not joined (each
+    would be a body of its own, touching the other without any contact between them)."""
+    from scipy.spatial import cKDTree
+
+    used = np.unique(mesh.elements)
+    x = mesh.nodes[used]
+    size = float(np.max(np.ptp(x, axis=0)))
+    pairs = cKDTree(x).query_pairs(COINCIDENT * size, output_type="ndarray")
+    if not len(pairs):
+        return
+    a, b = (int(used[i]) for i in pairs[0])
+    where = ", ".join(f"{v:.6g}" for v in mesh.nodes[a])
+    raise ParameterError(
+        f"{mesh.source}: {len(pairs)} nodes lie at the same place as others (e.g. nodes "
+        f"{mesh.node_label(a)} and {mesh.node_label(b)} at ({where}) mm): volumes meshed apart "
+        "are not joined; join them before meshing (gmsh: BooleanFragments, or Coherence Mesh)")
+
+
+def scale_warnings(mesh: HexMesh, clamp: str, normal_force: float,
+                   modulus: float) -> list[str]:
+    """Warnings (not errors) that the units are not mm, N and MPa: the part is under
+    :data:`SMALLEST_PART_MM` across, or the clamping pressure F_N / A over the modulus lies
+    outside :data:`PRESSURE_TO_MODULUS`."""
+    out = []
+    size = float(np.max(np.ptp(mesh.nodes[np.unique(mesh.elements)], axis=0)))
+    if size < SMALLEST_PART_MM:
+        out.append(f"{mesh.source}: the part is {size:.3g} mm across; microslip reads the "
+                   "mesh in mm: a mesh in metres needs its coordinates x 1000 (gmsh: "
+                   "Mesh.ScalingFactor 1000)")
+    from .hexmesh import face_load
+
+    area = face_load(mesh, mesh.faces(clamp))[2]
+    ratio = normal_force / area / modulus
+    lo, hi = PRESSURE_TO_MODULUS
+    if not lo <= ratio <= hi:
+        what = ("a mesh in metres (areas 1e6 too small)?" if ratio > hi
+                else "a modulus in Pa instead of MPa, or a mesh in micrometres?")
+        out.append(f"the clamping pressure F_N / A = {normal_force / area:.3g} MPa is "
+                   f"{ratio:.2g} times the modulus ({modulus:g} MPa), outside [{lo:g}, {hi:g}] "
+                   f"for a clamp in N, mm and MPa: {what}")
+    return out
 
 
 def check_roles(mesh: HexMesh, contact: str, clamp: str,
@@ -174,4 +238,5 @@ def check_roles(mesh: HexMesh, contact: str, clamp: str,
     for load in loads:
         name = load.set if isinstance(load, MeshLoad) else str(load)
         check_set(mesh, name, "set of a load")
+    check_joined(mesh)
     check_elements(mesh)

@@ -49,6 +49,9 @@ _MESHIO_HEX = {"hexahedron": 8, "hexahedron20": 20, "hexahedron27": 20}
 _MESHIO_OTHER_SOLIDS = {"tetra": "tetrahedra", "tetra10": "tetrahedra", "wedge": "wedges",
                         "wedge15": "wedges", "pyramid": "pyramids", "pyramid13": "pyramids"}
 _QUADS = {"quad", "quad8", "quad9"}
+#: Dimension of meshio's lower-dimensional cell types (any other: a solid, 3).
+_CELL_DIM = {"vertex": 0, "line": 1, "line3": 1, "triangle": 2, "triangle6": 2, "quad": 2,
+             "quad8": 2, "quad9": 2}
 _GMSH_DIM = {0: "point", 1: "curve", 2: "surface", 3: "volume"}
 
 
@@ -84,11 +87,15 @@ def read_meshio(path: str | Path) -> HexMesh:
     sizes = {_MESHIO_HEX[m.cells[i].type] for i in blocks}
     if len(sizes) > 1:
         raise ParameterError(f"{src}: the mesh mixes 8- and 20-node hexahedra; use one kind")
-    elements = np.concatenate([np.asarray(m.cells[i].data)[:, :sizes.pop()] for i in blocks])
+    size = sizes.pop()  # one block per gmsh volume: every block cut to the same size
+    elements = np.concatenate([np.asarray(m.cells[i].data)[:, :size] for i in blocks])
     groups = _meshio_groups(m)
     node_sets = {name: np.asarray(v, dtype=np.int64) for name, v in m.point_sets.items()}
-    return assemble(src, np.asarray(m.points, dtype=float), elements.astype(np.int64),
+    dims = {name: max(_CELL_DIM.get(t, 3) for t, _ in cells) for name, cells in groups.items()}
+    mesh = assemble(src, np.asarray(m.points, dtype=float), elements.astype(np.int64),
                     node_sets, groups, node_ids=None, element_ids=None)
+    return HexMesh(mesh.nodes, mesh.elements, mesh.node_sets, mesh.surfaces, source=src,
+                   set_dims=dims)
 
 
 def _meshio_groups(m: Any) -> dict[str, list[tuple[str, IntArray]]]:

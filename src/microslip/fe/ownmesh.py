@@ -48,6 +48,8 @@ class OwnMeshCase:
     runs cycles until the work of a cycle is within ``tol`` (relative) of the last, at most
     ``max_cycles`` (CalculiX runs ``cycles``); ``paper`` is the paper's load step of the box
     (a quarter-cycle rise, then one cycle; W over that cycle), loads at phase 0 only.
+    ``refine`` N > 1 runs the mesh with every element subdivided N times in each direction
+    (:func:`~microslip.fe.refine.refine_mesh`, its sets carried).
     """
 
     mesh_file: str
@@ -67,6 +69,7 @@ class OwnMeshCase:
     max_cycles: int = 10
     cycles: int = 3
     options: dict[str, Any] = field(default_factory=dict)
+    refine: int = 1
 
     def __post_init__(self) -> None:
         if not self.loads:
@@ -78,6 +81,12 @@ class OwnMeshCase:
                 self.substeps >= 10 and self.substeps % 5 == 0):
             raise ParameterError(f"--substeps must be a multiple of 5, at least 10, got "
                                  f"{self.substeps!r}")
+        from .refine import MAX_REFINE
+
+        if isinstance(self.refine, bool) or not isinstance(self.refine, int) or not (
+                1 <= self.refine <= MAX_REFINE):
+            raise ParameterError(f"--refine must be a whole number in [1, {MAX_REFINE}], got "
+                                 f"{self.refine!r}")
         if self.history == "paper" and any(ld.phase_deg % 360 for ld in self.loads):
             raise ParameterError("the paper's load step starts every load from rest at phase "
                                  "0; with phases use the default history (settle)")
@@ -100,10 +109,11 @@ class OwnMeshRun:
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .meshcheck import check_roles
     from .meshfile import read_mesh
+    from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
     check_roles(mesh, case.contact_set, case.clamp_set, case.loads)
-    return mesh
+    return refine_mesh(mesh, case.refine)
 
 
 def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
@@ -198,8 +208,15 @@ def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path 
     mesh = _mesh_of(case)
     record = out is not None and vtu and solver == "builtin"
     summary, result = OWN_MESH_SOLVERS[solver](mesh, case, record)
+    from .meshcheck import scale_warnings
+
+    units = scale_warnings(mesh, case.clamp_set, case.normal_force, case.modulus)
+    if units:
+        summary["warnings"] = [*units, *summary.get("warnings", [])]
     summary = {"mesh": str(case.mesh_file), "nodes": len(mesh.nodes),
                "elements": len(mesh.elements), **summary}
+    if case.refine > 1:
+        summary["refine"] = case.refine
     files: list[Path] = []
     if out is not None:
         d = Path(out)
