@@ -132,10 +132,31 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
     across = across_from_args(args, np.asarray(joints))
     own = (matrices.laws is not None or matrices.contacts is not None) and \
         np.array_equal(np.asarray(joints), matrices.joints)
-    given = None if own and args.joint is None else joint_from_args(args)
+    if own:
+        _refuse_own_law(args)
+    given = None if own else joint_from_args(args)
     structure = from_matrices(matrices, np.asarray(joints), given,
                               args.coupling or "circular", across, args.pairing)
     return with_output(structure, modal_output(structure, mode_from_args(args)))
+
+
+#: Options of the joint that a structure file's own joint laws replace (refused with them).
+JOINT_LAW_OPTIONS = ("joint", "joint_stiffness", "slip_force", "chi", "beta", "elements",
+                     "stick_slope", "transverse", "pairing", "fe_mesh", "coupling")
+
+
+def _refuse_own_law(args: argparse.Namespace) -> None:
+    """The joints of a structure file that carry their own law (``reduce``'s ROM: a circular
+    Jenkins element or a 3-D contact element per contact node) take no joint, no coupling and
+    no joint across: such an option would change nothing, so it is refused in one line."""
+    given = getattr(args, "given_options", frozenset())
+    bad = [f"--{d.replace('_', '-')}" for d in JOINT_LAW_OPTIONS if d in given]
+    if not bad and args.coupling is not None:
+        bad = [f"[structure] coupling of case {args.case}"]
+    if bad:
+        raise ParameterError(f"{', '.join(bad)} changes nothing here: the joints of "
+                             f"{args.structure} carry their own law (each contact node's "
+                             "circular Coulomb element); remove it")
 
 
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:

@@ -1,0 +1,42 @@
+"""Issue 27, items 6 and 7: the option table's promises on the command line (a default the
+help promises holds, an option that changes nothing is refused, a case file's documented
+default is used) and the case file that describes the user's own part."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from conftest import one_line_error, run
+
+
+@pytest.fixture
+def own_law_file(tmp_path):
+    """A two-DOF structure file whose one two-directional joint carries its own law (as
+    ``reduce`` writes a contact node's circular Jenkins element)."""
+    path = tmp_path / "own.npz"
+    np.savez(path, M=np.eye(2), K=np.diag([4e6, 9e6]), joints=np.array([[[0, -1], [1, -1]]]),
+             joint_stiffness=np.array([1e3]), joint_slip_force=np.array([1.0]))
+    return str(path)
+
+
+MODAL = ("--amplitude-range", "1e-3", "1e-2", "--amplitudes", "2", "--harmonics", "1")
+
+
+def test_own_law_structure_runs_and_refuses_coupling(capsys, own_law_file):
+    code, out, err = run(capsys, "modal", "--structure", own_law_file, *MODAL, "--json")
+    assert code == 0, err
+    for coupling in ("decoupled", "circular"):
+        one_line_error(run(capsys, "modal", "--structure", own_law_file, "--coupling",
+                           coupling, *MODAL), "--coupling", "own law", own_law_file)
+    one_line_error(run(capsys, "frf", "--structure", own_law_file, "--coupling", "decoupled",
+                       "--force", "1"), "--coupling", "own law")
+    one_line_error(run(capsys, "modal", "--structure", own_law_file, "--joint", "jenkins",
+                       "--joint-stiffness", "1", "--slip-force", "1", *MODAL),
+                   "--joint, --joint-stiffness, --slip-force", "own law")
+
+
+def test_own_law_structure_refuses_the_case_files_coupling(capsys, own_law_file, tmp_path):
+    case = tmp_path / "c.toml"
+    case.write_text(f'[structure]\nfile = "{own_law_file}"\ncoupling = "decoupled"\n')
+    one_line_error(run(capsys, "modal", "--case", case, *MODAL),
+                   "[structure] coupling of case", "own law")
