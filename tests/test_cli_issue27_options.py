@@ -40,3 +40,16 @@ def test_own_law_structure_refuses_the_case_files_coupling(capsys, own_law_file,
     case.write_text(f'[structure]\nfile = "{own_law_file}"\ncoupling = "decoupled"\n')
     one_line_error(run(capsys, "modal", "--case", case, *MODAL),
                    "[structure] coupling of case", "own law")
+
+
+def test_sweep_runs_on_the_template_with_the_cases_model(capsys, tmp_path):
+    case = tmp_path / "clamp.toml"
+    assert run(capsys, "case", "new", case)[0] == 0
+    code, out, err = run(capsys, "sweep", "--case", case)
+    assert code == 0, err
+    assert "tip model" in out
+    # the same numbers as the explicit --model tip
+    code, explicit, _ = run(capsys, "sweep", "--case", case, "--model", "tip")
+    assert code == 0
+    strip = [line for line in out.splitlines() if "computed in" not in line]
+    assert strip == [line for line in explicit.splitlines() if "computed in" not in line]

@@ -203,6 +203,13 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
             continue  # the command line wins; the amplitude is resolved after the parse
         value = case.values[key]
         out[dest] = [value] if isinstance(dests[dest], argparse._AppendAction) else value
+    for key, (dest, scope) in CASE_OPTIONS.items():
+        # a required option the file leaves out takes the default the case file documents
+        # (``load.model``: tip), as the file's comment promises
+        if (dest in dests and dests[dest].required and dest not in explicit
+                and dest not in out and _reads(command, scope)
+                and case.get(key) is not None):
+            out[dest] = case.get(key)
     if case.params is not None and "preset" in dests:
         if "preset" in explicit:
             raise ParameterError(f"--preset {explicit['preset']} conflicts with the clamp of "
