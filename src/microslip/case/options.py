@@ -21,7 +21,7 @@ from ..errors import ParameterError
 from ..params import preset
 from .model import Case, load_case
 from .schema import CLAMP_KEYS
-from .table import CASE_DESTS, OPTIONS
+from .table import CASE_DESTS, OPTIONS, add_option
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
@@ -62,11 +62,10 @@ _ACTIVE: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar(
     "microslip_case_output", default=None)
 
 
-def add_case_option(parser: argparse.ArgumentParser) -> None:
-    """Add ``--case FILE.toml`` to a subcommand's parser (docs/casefile.md)."""
-    parser.add_argument("--case", metavar="FILE.toml",
-                        help="read the joint and load case from a TOML case file (microslip "
-                             "case new FILE.toml writes a template); options given here win")
+def add_case_option(parser: argparse.ArgumentParser, help: str | None = None) -> None:
+    """Add ``--case FILE.toml`` to a subcommand's parser (docs/casefile.md); ``help``: what
+    this command reads of the case file, if not the joint and load case."""
+    add_option(parser, "case", help=help)
 
 
 def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:

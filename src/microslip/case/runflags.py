@@ -17,7 +17,14 @@ import argparse
 
 from .checks import Option, set_name
 
-__all__ = ["RUN_OPTIONS", "positive_int", "seed"]
+__all__ = ["DEFAULT_ROM_MODES", "MAX_ROM_MODES", "RUN_OPTIONS", "positive_int", "seed"]
+
+#: Fixed-interface modes of the contact-node ROM unless --rom-modes says (the cantilever's
+#: stuck frequencies then equal the full FE's to about 1e-6): ``modal --mesh``,
+#: ``frf --mesh`` and ``reduce``.
+DEFAULT_ROM_MODES = 60
+#: Most fixed-interface modes ``--rom-modes`` takes.
+MAX_ROM_MODES = 2000
 
 
 def positive_int(text: str) -> int:
@@ -124,7 +131,7 @@ RUN_OPTIONS: tuple[Option, ...] = (
            metavar="N"),
     # -- the structure on a mesh: its reduced models and loads
     Option("rom_modes", "fixed-interface modes kept in the contact-node ROM, the lowest N", "",
-           "[1, 2000]", type=int, metavar="N"),
+           f"[1, {MAX_ROM_MODES}]", type=int, metavar="N"),
     Option("cutoff_frequency", "keep every fixed-interface mode below HZ", "Hz", "> 0",
            metavar="HZ"),
     Option("backbone", "joint: the whole joint's backbone, the FE's own first loading by the "

@@ -50,11 +50,15 @@ from .checks import (
     text,
     whole,
 )
-from .runflags import RUN_OPTIONS
+from .runflags import DEFAULT_ROM_MODES, MAX_ROM_MODES, RUN_OPTIONS
 
 __all__ = [
     "CASE_DESTS",
+    "DEFAULT_ROM_MODES",
+    "MAX_MODE",
+    "MAX_ROM_MODES",
     "MESH_HELP",
+    "MODES_KEY",
     "OPTIONS",
     "PRESSURE_LAWS",
     "SOLVERS",
@@ -69,6 +73,7 @@ __all__ = [
     "mesh_level",
     "mesh_or_file",
     "mesh_text",
+    "mode_options",
     "number",
     "positive",
     "pressure_text",
@@ -244,20 +249,35 @@ def _help(opt: Option, default: Any, note: str, help_text: str | None) -> str:
     rng = f", {opt.range}" if opt.range and opt.choices is None and opt.type is number else ""
     hidden = default is None or default is argparse.SUPPRESS or isinstance(default, bool) \
         or default == []
+    value = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else default
     shown = "" if hidden else f" (default {default:g})" if isinstance(default, float) \
-        else f" (default {default})"
+        else f" (default {value})"
     return f"{body}{unit}{rng}{shown}{'; ' + note if note else ''}"
 
 
+#: The parser default under which :func:`add_option` records the mode an option belongs to
+#: (``mode="mesh"``): destination -> mode, for :func:`mode_options`.
+MODES_KEY = "option_modes"
+
+
+def mode_options(args: argparse.Namespace, mode: str) -> tuple[str, ...]:
+    """The destinations of the options that ``add_option(..., mode=mode)`` added to the
+    command of ``args``: the options that do something in that mode only."""
+    modes: dict[str, str] = getattr(args, MODES_KEY, {})
+    return tuple(d for d, m in modes.items() if m == mode)
+
+
 def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
-               help: str | None = None, flag: str | None = None,
+               help: str | None = None, flag: str | None = None, mode: str | None = None,
                **extra: Any) -> argparse.Action:
     """Add the option ``name`` of :data:`OPTIONS` to a parser or argument group.
 
     ``default`` is the command's default (shown in the help), ``note`` a command-specific
     sentence after the shared help, ``help`` a replacement of the shared help text, ``flag``
-    another spelling (``case new --mesh`` for ``mesh_file``); ``extra`` goes to
-    ``add_argument`` (``required=True``, the choices of a library registry, ...).
+    another spelling (``case new --mesh`` for ``mesh_file``), ``mode`` the mode of the
+    command the option belongs to (``"mesh"``: with ``--mesh FILE`` only; the command refuses
+    it in its other modes, :func:`mode_options`); ``extra`` goes to ``add_argument``
+    (``required=True``, the choices of a library registry, ...).
     ``--solver`` is not here: :func:`add_solver` documents what it means per command.
     """
     opt = OPTIONS[name]
@@ -278,13 +298,32 @@ def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
         if opt.type is not None:
             kwargs["type"] = opt.type
     kwargs.update(extra)
-    return group.add_argument(flag or opt.flag, **kwargs)
+    action = group.add_argument(flag or opt.flag, **kwargs)
+    if mode is not None:
+        _record_mode(group, action.dest, mode)
+    return action
 
 
-def add_solver(group: Any, command: str, choices: Sequence[str] | None = None) -> argparse.Action:
-    """``--solver`` of ``command``, its choices and what each means (:data:`SOLVERS`)."""
-    meaning = SOLVERS[command]
+def _record_mode(group: Any, dest: str, mode: str) -> None:
+    """Record that the option ``dest`` of ``group``'s parser belongs to ``mode``."""
+    modes = dict(group.get_default(MODES_KEY) or {})
+    modes[dest] = mode
+    group.set_defaults(**{MODES_KEY: modes})
+
+
+def add_solver(group: Any, command: str, choices: Sequence[str] | None = None,
+               meaning: dict[str, str] | None = None, mode: str | None = None,
+               note: str = "") -> argparse.Action:
+    """``--solver`` of ``command``, its choices and what each means (:data:`SOLVERS`, or
+    ``meaning`` from a library registry: ``modal --mesh``'s solvers), the first the default.
+    With ``mode`` (:func:`add_option`) the option belongs to that mode only and defaults to
+    nothing (the command takes the first where it applies)."""
+    meaning = SOLVERS[command] if meaning is None else meaning
     names = list(meaning if choices is None else choices)
-    return group.add_argument(
-        "--solver", choices=names, default=names[0],
-        help="; ".join(f"{k}: {meaning[k]}" for k in names) + f" (default {names[0]})")
+    action = group.add_argument(
+        "--solver", choices=names, default=names[0] if mode is None else None,
+        help="; ".join(f"{k}: {meaning[k]}" for k in names) + f" (default {names[0]})"
+        + (f"; {note}" if note else ""))
+    if mode is not None:
+        _record_mode(group, action.dest, mode)
+    return action

@@ -67,8 +67,8 @@ def run_new(args: argparse.Namespace) -> int:
         raise ParameterError(f"cannot write {args.file}: {exc.strerror or exc}") from None
     run = (f"microslip loop --case {args.file}" if args.mesh is None
            else f"microslip fe --case {args.file} once it has its [[mesh.load]] tables")
-    print(f"wrote {args.file} ({'case-file template' if args.mesh is None else 'case of ' + args.mesh}"
-          f"; edit it, then run e.g. {run})")
+    what = "case-file template" if args.mesh is None else f"case of {args.mesh}"
+    print(f"wrote {args.file} ({what}; edit it, then run e.g. {run})")
     return 0
 
 

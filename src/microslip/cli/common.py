@@ -43,8 +43,7 @@ PARAM_FLAGS = tuple((OPTIONS[f.name].flag[2:], f.name, OPTIONS[f.name].unit)
 
 def add_params(parser: argparse.ArgumentParser, default_preset: str | None = None) -> None:
     g = parser.add_argument_group("clamped zone (override the preset's values)")
-    g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
-                   help=f"paper parameter set (default {default_preset})")
+    add_option(g, "preset", choices=sorted(PRESETS), default=default_preset)
     add_clamp_flags(g)
     add_option(g, "amplitude", note="default: the preset's")
 
@@ -71,18 +70,12 @@ def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "ph
                       centre_why: str = "") -> None:
     """Flags of :class:`ModelOptions`; ``centre_why`` explains a non-default centre reading."""
     g = parser.add_argument_group("reading of the paper (docs/interpretation.md)")
-    g.add_argument("--no-corrections", action="store_true",
-                   help="switch off the Poisson and length updates (rigid-foundation limit)")
-    g.add_argument("--poisson", choices=POISSON_MODES, default="consistent",
-                   help="Poisson update of the cross-section (default consistent)")
-    g.add_argument("--no-length-update", action="store_true",
-                   help="keep the clamped length constant (no L + delta)")
-    g.add_argument("--centre-reading", choices=CENTRE_READINGS, default=centre_default,
-                   help="centre model: physical (F/2 per half, a = F/2q, macroslip at mu F_N) "
-                        "or paper (Eq. 11 as printed, macroslip at 2 mu F_N); default "
-                        f"{centre_default}{centre_why}")
-    g.add_argument("--paper-literal", action="store_true",
-                   help="every equation as printed (Eqs 6-7 total force, Eq. 15 sign, Eq. 11)")
+    add_option(g, "no_corrections")
+    add_option(g, "poisson", choices=POISSON_MODES, default="consistent")
+    add_option(g, "no_length_update")
+    add_option(g, "centre_reading", choices=CENTRE_READINGS, default=centre_default,
+               note=centre_why.lstrip(",; ") if centre_why else "")
+    add_option(g, "paper_literal")
 
 
 def model_options(args: argparse.Namespace) -> ModelOptions:
@@ -91,12 +84,10 @@ def model_options(args: argparse.Namespace) -> ModelOptions:
 
 def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_STRAIN_ENERGY,
                       why: str = "") -> None:
-    parser.add_argument(
-        "--strain-energy", choices=list(STRAIN_ENERGY), default=default,
-        help="definition of U in eta = W_d/(2 pi U): "
-        + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
-        + f" (default {default}{why})",
-    )
+    add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default,
+               help="definition of U in eta = W_d/(2 pi U): "
+               + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items()),
+               note=why.lstrip(",; ") if why else "")
 
 
 def check_plot(path: str | None) -> None:

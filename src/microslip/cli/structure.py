@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
-from ..case.table import add_option
+from ..case.table import MAX_MODE, add_option
 from ..conventions import CLAMP_MODELS
 from ..dynamics.assemble import (
     PlacedJoint,
@@ -38,7 +38,6 @@ from .across import (
     add_across_options,
     describe_across,
 )
-from .common import number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
@@ -66,35 +65,21 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
     given = g.add_mutually_exclusive_group()
-    given.add_argument("--frequency", type=number, metavar="HZ",
-                       help="natural frequency with the joint removed, Hz")
-    given.add_argument("--stuck-frequency", type=number, metavar="HZ",
-                       help="natural frequency with the joint stuck (as measured at low "
-                            "amplitude), Hz; the frequency with the joint removed follows "
-                            "from the joint's initial stiffness")
-    g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
-    g.add_argument("--damping-ratio", type=number, metavar="X",
-                   help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
-                        "(default 0)")
-    g.add_argument("--participation", type=number, metavar="X",
-                   help="joint displacement per unit modal displacement, != 0 (default 1)")
+    add_option(given, "frequency")
+    add_option(given, "stuck_frequency")
+    add_option(g, "modal_mass")
+    add_option(g, "damping_ratio", note="default 0")
+    add_option(g, "participation", note="default 1")
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
     add_option(f, "structure", note="see docs/dynamics.md")
-    f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
-                   help="a joint between DOF I (0-based) and the ground, or I J between two "
-                        "DOFs; give it twice for a two-directional joint (one per "
-                        "direction); replaces the file's joints")
-    f.add_argument("--mode", type=int, metavar="N",
-                   help="mode followed and reported, 1-based by stuck frequency (default 1)")
+    add_option(f, "joint_dof")
+    add_option(f, "mode", note="default 1; with --mesh FILE the mode whose damping is studied")
     add_option(f, "coupling", note="default circular")
     add_across_options(f)
     add_joint_options(parser, required=False)
-    add_case_option(parser)
-    for action in parser._actions:
-        if action.dest == "case":
-            action.help = ("a case file with [structure] file and [[joint]] tables: several "
-                           "joints, each with its own model (docs/casefile.md); or a clamp "
-                           "for --joint tip|centre")
+    add_case_option(parser, "a case file with [structure] file and [[joint]] tables: several "
+                    "joints, each with its own model; or a clamp for --joint tip|centre; or "
+                    "a [mesh] of your own part (docs/casefile.md); options given here win")
 
 
 def structure_from_args(args: argparse.Namespace) -> Structure:
@@ -187,8 +172,10 @@ def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[Placed
 
 
 def mode_from_args(args: argparse.Namespace) -> int:
-    """The followed mode, 0-based."""
+    """The followed mode, 0-based (``--mode`` is 1-based, in the option table's range)."""
     mode = 1 if getattr(args, "mode", None) is None else args.mode
+    if not 1 <= mode <= MAX_MODE:
+        raise ParameterError(f"--mode must be in [1, {MAX_MODE}], got {mode}")
     return int(mode) - 1
 
 
@@ -264,12 +251,9 @@ def describe_contacts(structure: Structure) -> dict[str, Any]:
 def add_balance_options(parser: argparse.ArgumentParser) -> None:
     """``--harmonics`` and ``--samples``."""
     g = parser.add_argument_group("harmonic balance")
-    g.add_argument("--harmonics", type=int, metavar="H",
-                   help=f"harmonics, 1 = single-harmonic (describing-function) balance "
-                        f"(default {DEFAULT_HARMONICS})")
-    g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
-                   help=f"time samples per period of the alternating frequency-time scheme "
-                        f"(default {DEFAULT_HB_SAMPLES})")
+    add_option(g, "harmonics", note=f"default {DEFAULT_HARMONICS}")
+    add_option(g, "samples", default=DEFAULT_HB_SAMPLES,
+               note="of the alternating frequency-time scheme")
 
 
 def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
