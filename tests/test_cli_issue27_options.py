@@ -53,3 +53,56 @@ def test_sweep_runs_on_the_template_with_the_cases_model(capsys, tmp_path):
     assert code == 0
     strip = [line for line in out.splitlines() if "computed in" not in line]
     assert strip == [line for line in explicit.splitlines() if "computed in" not in line]
+
+
+PART = """preset = "table1"
+[material]
+modulus = 70000
+poisson_ratio = 0.33
+[contact]
+friction = 0.5
+[clamping]
+normal_force = 2000
+[mesh]
+file = "cantilever.inp"
+contact_set = "contact"
+clamp_set = "clamp"
+density = 2700
+response_set = "response"
+normal_contact = "penalty"
+normal_slope = 1e6
+"""
+
+
+def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
+    import shutil
+    import tomllib
+    from pathlib import Path
+
+    from microslip.case.model import parse_case
+    from microslip.cli.main import build_parser
+    from microslip.cli.modalcompare import case_argv
+
+    shutil.copy(Path(__file__).resolve().parents[1] / "examples" / "cantilever.inp", tmp_path)
+    argv = case_argv(parse_case(tomllib.loads(PART), str(tmp_path / "case.toml")), 4)
+    assert argv is not None
+    flags = dict(zip(argv, argv[1:], strict=False))
+    assert flags["--normal-contact"] == "penalty" and flags["--normal-slope"] == "1000000.0"
+    # and modal --mesh parses it (the study's own checks take it: no refusal of penalty)
+    args = build_parser(argv).parse_args(argv)
+    assert args.normal_contact == "penalty" and args.normal_slope == 1e6
+    fixed = PART.replace('normal_contact = "penalty"\nnormal_slope = 1e6\n', "")
+    argv = case_argv(parse_case(tomllib.loads(fixed), "dir/case.toml"), 4)
+    assert argv is not None and "--normal-contact" not in argv and "--normal-slope" not in argv
+
+
+def test_the_report_says_when_the_mesh_has_no_density(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "case.toml").write_text(PART.replace("density = 2700\n", ""))
+    code, out, err = run(capsys, "report", "--case", "case.toml", "--no-fe", "--increments",
+                         "100", "--out", "r.html")
+    assert code == 0, err
+    assert err.count("\n") == 1 and err.startswith("warning: ")
+    assert "no density" in err and "bar of the case's clamp" in err
+    page = (tmp_path / "r.html").read_text()
+    assert "has no density" in page and "not this mesh" in page

@@ -68,6 +68,12 @@ def run(args: argparse.Namespace) -> int:
                               fe_solver=args.fe_solver, mesh=args.mesh, substeps=args.substeps,
                               fe_points=not args.no_fe)
     case = load_case(args.report_case)
+    if "mesh.file" in case.values and "mesh.density" not in case.values:
+        from ..case.options import warn
+
+        warn(f"case {args.report_case}: its mesh {case.values['mesh.file']} has no density "
+             "([mesh] density, kg/m^3): the report leaves the structure out and describes the "
+             "bar of the case's clamp (its preset and [geometry]), not the mesh")
     def structure() -> dict[str, Any] | None:  # the case's own mesh, every solver
         return case_comparison(case)
 
