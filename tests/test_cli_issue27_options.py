@@ -106,3 +106,121 @@ def test_the_report_says_when_the_mesh_has_no_density(capsys, tmp_path, monkeypa
     assert "no density" in err and "bar of the case's clamp" in err
     page = (tmp_path / "r.html").read_text()
     assert "has no density" in page and "not this mesh" in page
+
+
+# -- the case file describes the part -------------------------------------------------------
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
+LOAD = '\n[[mesh.load]]\nset = "tip"\ndirection = [1.0, 0.0, 0.0]\namplitude = 100.0\n'
+
+
+def test_docs_list_every_mesh_key():
+    from microslip.case.schema import KEYS, MESH_LOAD_KEYS
+
+    text = (ROOT / "docs" / "casefile.md").read_text()
+    for key in KEYS:
+        if key.section == "mesh":
+            assert f"| `{key.name}` |" in text, key.name
+    for name in MESH_LOAD_KEYS:
+        assert f"`{name}`" in text
+
+
+def test_mesh_loads_beside_the_templates_load_section(capsys, tmp_path):
+    """The template's [load] table and the mesh's loads in one file (issue 27: "Cannot
+    overwrite a value" with [[load]])."""
+    from microslip.case.model import load_case
+
+    case = tmp_path / "c.toml"
+    assert run(capsys, "case", "new", case)[0] == 0
+    case.write_text(case.read_text() + LOAD)
+    loaded = load_case(case)
+    assert [(ld.set, ld.amplitude) for ld in loaded.mesh_loads] == [("tip", 100.0)]
+    both = LOAD.replace("mesh.load", "load") + LOAD.replace("[[mesh.load]]", "[mesh]\n[[mesh.load]]")
+    (tmp_path / "both.toml").write_text(both)
+    one_line_error(run(capsys, "case", "check", tmp_path / "both.toml"), "not both")
+
+
+@pytest.fixture
+def part(capsys, tmp_path, monkeypatch):
+    """``case new --mesh`` on the cantilever of examples/, with a load and a density."""
+    import shutil
+
+    monkeypatch.chdir(tmp_path)
+    shutil.copy(ROOT / "examples" / "cantilever.inp", tmp_path / "cantilever.inp")
+    code, out, err = run(capsys, "case", "new", "--mesh", "cantilever.inp", "part.toml")
+    assert code == 0 and err == "" and "part.toml" in out
+    return tmp_path / "part.toml"
+
+
+def test_case_new_mesh_lists_the_sets_and_check_shows_the_part(capsys, part):
+    text = part.read_text()
+    assert "node sets: clamp, contact, response, tip" in text
+    assert 'file = "cantilever.inp"' in text and 'contact_set = "contact"' in text
+    assert 'clamp_set = "clamp"' in text and 'response_set = "response"' in text
+    assert "\npreset =" not in text and "\n[geometry]" not in text
+    assert "# [[mesh.load]]" in text and "[load]" not in text
+    code, out, _ = run(capsys, "case", "check", part)
+    assert code == 0
+    assert "the part is the mesh " in out and "cantilever.inp (its geometry" in out
+    assert "no preset bar" in out
+    assert "mesh.contact_set" in out and "no [[mesh.load]] tables" in out
+    assert "no density" in out
+    assert "750" not in out and "amplitude" not in out.replace("load", "")  # no bar, no F0
+    part.write_text(text.replace("# density =", "density = 2700.0") + LOAD)
+    code, out, _ = run(capsys, "case", "check", part)
+    assert "load 1: 100 N on set tip along (1, 0, 0)" in out and "no density" not in out
+
+
+def test_fe_runs_on_the_written_case_as_on_its_options(capsys, part):
+    import json
+
+    part.write_text(part.read_text() + LOAD)
+    code, out, err = run(capsys, "fe", "--case", part, "--json")
+    assert code == 0, err
+    by_case = json.loads(out)
+    code, out, err = run(capsys, "fe", "--mesh", "cantilever.inp", "--contact-set", "contact",
+                         "--clamp-set", "clamp", "--modulus", "68947", "--poisson-ratio",
+                         "0.3", "--friction", "0.8", "--normal-force", "445", "--stick-slope",
+                         "1e4", "--load", "tip:1,0,0:100", "--json")
+    assert code == 0, err
+    assert by_case["dissipated_energy_Nmm"] == json.loads(out)["dissipated_energy_Nmm"]
+
+
+@pytest.mark.parametrize("command", ["modal", "frf", "reduce", "validate", "fe"])
+def test_every_mesh_command_reads_the_mesh_section(capsys, part, command):
+    from microslip.case.options import parse_args
+    from microslip.cli.main import build_parser
+
+    part.write_text(part.read_text().replace("# density =", "density = 2700.0")
+                    .replace("# normal_contact = \"fixed\"", "normal_contact = \"penalty\"")
+                    + LOAD)
+    extra = {"frf": ["--force", "1"], "validate": ["--out", "v"], "reduce": [],
+             "modal": [], "fe": []}[command]
+    argv = [command, "--case", str(part), *extra]
+    args = parse_args(build_parser(argv), argv)
+    mesh = args.mesh[0] if command == "validate" else args.mesh
+    assert mesh.endswith("cantilever.inp") and args.contact_set == "contact"
+    assert args.clamp_set == "clamp" and args.normal_contact == "penalty"
+    if command in ("modal", "frf", "reduce"):
+        assert args.density == 2700.0 and args.response_set == "response"
+    if command in ("fe", "validate"):
+        from microslip.fe.meshload import MeshLoad
+
+        assert [MeshLoad.parse(x) for x in args.load] == [MeshLoad("tip", (1, 0, 0), 100)]
+    capsys.readouterr()
+
+
+def test_another_structure_leaves_the_mesh_section_unread(capsys, part, own_law_file):
+    from microslip.case.options import parse_args
+    from microslip.cli.main import build_parser
+
+    argv = ["modal", "--case", str(part), "--structure", own_law_file, "--amplitude-range",
+            "1e-3", "1e-2"]
+    args = parse_args(build_parser(argv), argv)
+    assert args.mesh is None and args.contact_set is None
+    assert "[mesh] not read by modal" in capsys.readouterr().err
+
+
+def test_mode_has_one_range_on_both_structures(capsys, own_law_file):
+    one_line_error(run(capsys, "modal", "--structure", own_law_file, "--mode", "0", *MODAL),
+                   "--mode must be in [1, 50], got 0")
