@@ -203,6 +203,9 @@ class Option:
         argparse ``action`` (``store_true``, ``append``, ...) and ``nargs``.
     spelling : str or None
         The flag when it is not ``--`` plus the name (``overwrite`` is ``--force``).
+    default : object
+        The option's default on every command that does not give its own (None: nothing;
+        an on/off option is off).
     """
 
     name: str
@@ -221,6 +224,7 @@ class Option:
     action: Any = None
     nargs: int | str | None = None
     spelling: str | None = None
+    default: Any = None
 
     @property
     def flag(self) -> str:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..energy import DEFAULT_STRAIN_ENERGY
 from .checks import Option, set_name
 
 __all__ = ["DEFAULT_ROM_MODES", "MAX_ROM_MODES", "RUN_OPTIONS", "positive_int", "seed"]
@@ -51,7 +52,7 @@ def seed(text: str) -> int:
 
 def _flag(name: str, help: str, spelling: str | None = None) -> Option:
     """An on/off option (``store_true``)."""
-    return Option(name, help, type=None, action="store_true", spelling=spelling)
+    return Option(name, help, type=None, action="store_true", spelling=spelling, default=False)
 
 
 RUN_OPTIONS: tuple[Option, ...] = (
@@ -70,29 +71,33 @@ RUN_OPTIONS: tuple[Option, ...] = (
     _flag("quiet", "no progress display"),
     Option("scheduler", "a dask.distributed scheduler (tcp://HOST:8786) to run on", "",
            "an address", type=None, metavar="ADDRESS"),
-    Option("threads", "threads of the solver", "", ">= 1", type=int, metavar="N"),
+    Option("threads", "threads of the solver", "", ">= 1", type=int, metavar="N", default=1),
     Option("workers", "local processes for the amplitudes (independent runs)", "", ">= 1",
            type=int, metavar="N"),
     Option("timeout", "stop each solver run after S seconds", "s", "> 0", metavar="S"),
     _flag("reuse", "read job directories that already hold a run of the identical deck"),
     _flag("no_vtu", "do not write the VTU files"),
     # -- the clamp's preset and the 1-D models' reading
-    Option("preset", "paper parameter set", "", "a preset of microslip.params", type=None),
-    Option("tip_preset", "parameters of the tip model", "", "a preset", type=None),
-    Option("centre_preset", "parameters of the centre model", "", "a preset", type=None),
+    Option("preset", "paper parameter set", "", "a preset of microslip.params", type=None,
+           default="table1"),
+    Option("tip_preset", "parameters of the tip model", "", "a preset", type=None,
+           default="table2-tip"),
+    Option("centre_preset", "parameters of the centre model", "", "a preset", type=None,
+           default="table2-centre"),
     Option("tip_symmetry", "tip models in parallel in the whole clamp (2: the paper's tip model "
            "is one symmetric half)", "", ">= 1", type=int, metavar="K"),
     _flag("no_corrections", "switch off the Poisson and length updates (rigid-foundation "
            "limit)"),
-    Option("poisson", "Poisson update of the cross-section", "", "a reading", type=None),
+    Option("poisson", "Poisson update of the cross-section", "", "a reading", type=None,
+           default="consistent"),
     _flag("no_length_update", "keep the clamped length constant (no L + delta)"),
     Option("centre_reading", "centre model: physical (F/2 per half, a = F/2q, macroslip at "
            "mu F_N) or paper (Eq. 11 as printed, macroslip at 2 mu F_N)", "", "a reading",
-           type=None),
+           type=None, default="physical"),
     _flag("paper_literal", "every equation as printed (Eqs 6-7 total force, Eq. 15 sign, "
            "Eq. 11)"),
     Option("strain_energy", "definition of U in eta = W_d/(2 pi U)", "", "a definition",
-           type=None),
+           type=None, default=DEFAULT_STRAIN_ENERGY),
     Option("work_energy", "U of the combined motion in the work-based eta", "", "a definition",
            type=None),
     _flag("no_shear_lag", "leave out the body's through-thickness shear compliance (then a "
@@ -101,15 +106,16 @@ RUN_OPTIONS: tuple[Option, ...] = (
            "force amplitude is the one whose first loading reaches d0 (instead of "
            "--amplitude)", "mm", "> 0", metavar="MM"),
     Option("increments", "force increments of each first loading", "", ">= 10", type=int,
-           metavar="N"),
+           metavar="N", default=1000),
     Option("levels", "how R maps onto the paper's amplitude levels", "", "a scheme",
-           type=None, metavar="SCHEME"),
+           type=None, metavar="SCHEME", default="base"),
     Option("samples_per_cycle", "samples of the work-based cycle", "", ">= 1", type=int,
-           metavar="N"),
+           metavar="N", default=2048),
     # -- the finite elements
-    Option("fe_solver", "the FE solver", "", "builtin | calculix", type=None),
+    Option("fe_solver", "the FE solver", "", "builtin | calculix", type=None,
+           default="builtin"),
     Option("substeps", "equal substeps over t = 0..1.25 s, a multiple of 5", "",
-           "a multiple of 5", type=int, metavar="N"),
+           "a multiple of 5", type=int, metavar="N", default=50),
     Option("element", "calculix: the 20-node brick, reduced (C3D20R) or full (C3D20)", "",
            "an element", type=None),
     Option("clamping_csv", "builtin: write the interface pressure after clamping (x_mm,"
@@ -117,9 +123,9 @@ RUN_OPTIONS: tuple[Option, ...] = (
            type=None, metavar="FILE"),
     Option("cycles", "load cycles to run", "", ">= 1", type=int, metavar="N"),
     Option("increments_per_cycle", "load increments per cycle", "", ">= 1", type=int,
-           metavar="N"),
+           metavar="N", default=256),
     Option("cycle_tolerance", "relative change of W per cycle taken as settled", "", "> 0",
-           metavar="X"),
+           metavar="X", default=1e-3),
     Option("load", "a load F(t) = A sin(2 pi t + phase) on a set of the mesh, as a uniform "
            "traction of total force A (N) along (DX, DY, DZ); repeat for several loads "
            "(planar: two loads at 90 degrees)", "", "SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]",
@@ -164,7 +170,8 @@ RUN_OPTIONS: tuple[Option, ...] = (
     Option("samples", "time samples per period", "", ">= 1", type=int, metavar="N"),
     Option("amplitude_range", "amplitudes from MIN to MAX", "", "0 < MIN <= MAX", nargs=2,
            metavar=("MIN", "MAX")),
-    Option("amplitudes", "number of amplitudes", "", ">= 1", type=int, metavar="N"),
+    Option("amplitudes", "number of amplitudes", "", ">= 1", type=int, metavar="N",
+           default=20),
     Option("force_range", "force amplitudes, N, below the macroslip force (geometric "
            "spacing)", "N", "0 < MIN <= MAX", nargs=2, metavar=("MIN", "MAX")),
     Option("force", "excitation amplitude (repeat for several curves): a modal force on "
@@ -188,11 +195,13 @@ RUN_OPTIONS: tuple[Option, ...] = (
     Option("seed", "seed of the random draws; the same seed writes the same file", "",
            "[0, 2^63)", type=seed, metavar="S"),
     Option("chunk_size", "cases per chunk / Dask task", "", ">= 1", type=positive_int,
-           metavar="N"),
-    Option("retries", "retries of a failed Dask task", "", ">= 0", type=int, metavar="N"),
+           metavar="N", default=65536),
+    Option("retries", "retries of a failed Dask task", "", ">= 0", type=int, metavar="N",
+           default=3),
     Option("fit", "parameters to identify", "", "parameter names", type=None, metavar="NAME",
            nargs="+"),
-    Option("confidence", "confidence level of the intervals", "", "[0.5, 1)", metavar="X"),
+    Option("confidence", "confidence level of the intervals", "", "[0.5, 1)", metavar="X",
+           default=0.95),
     # -- reproduce and report
     Option("fe", "run the finite elements", "", "", type=None,
            action=argparse.BooleanOptionalAction),

@@ -140,7 +140,7 @@ _OPTIONS: tuple[Option, ...] = (
     Option("phase", "phase of the centre force ahead of the tip force", "degrees",
            "[-360, 360]", metavar="DEG", key="load.planar.phase_deg",
            check=interval(-360.0, 360.0, "degrees", closed=True), scope="planar",
-           case_default=0.0),
+           case_default=0.0, default=0.0),
     # the finite-element model
     Option("mesh", MESH_HELP, "", f"{' | '.join(LEVELS)} | NXxNYxNZ", type=mesh_level,
            metavar="LEVEL"),
@@ -267,12 +267,17 @@ def mode_options(args: argparse.Namespace, mode: str) -> tuple[str, ...]:
     return tuple(d for d, m in modes.items() if m == mode)
 
 
-def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
+#: ``add_option``'s "no default of the command's own": the option's table default.
+_TABLE_DEFAULT: Any = object()
+
+
+def add_option(group: Any, name: str, *, default: Any = _TABLE_DEFAULT, note: str = "",
                help: str | None = None, flag: str | None = None, mode: str | None = None,
                **extra: Any) -> argparse.Action:
     """Add the option ``name`` of :data:`OPTIONS` to a parser or argument group.
 
-    ``default`` is the command's default (shown in the help), ``note`` a command-specific
+    ``default`` is the command's default if it has its own (else the table's,
+    :attr:`Option.default`; shown in the help), ``note`` a command-specific
     sentence after the shared help, ``help`` a replacement of the shared help text, ``flag``
     another spelling (``case new --mesh`` for ``mesh_file``), ``mode`` the mode of the
     command the option belongs to (``"mesh"``: with ``--mesh FILE`` only; the command refuses
@@ -281,6 +286,8 @@ def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
     ``--solver`` is not here: :func:`add_solver` documents what it means per command.
     """
     opt = OPTIONS[name]
+    if default is _TABLE_DEFAULT:
+        default = opt.default
     kwargs: dict[str, Any] = {"dest": opt.name, "help": _help(opt, default, note, help)}
     if opt.action == "store_true":
         kwargs["action"] = "store_true"

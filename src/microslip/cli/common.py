@@ -11,7 +11,7 @@ from typing import Any
 from ..case import run
 from ..case.run import planar_zones
 from ..case.table import OPTIONS, add_option, number
-from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
+from ..energy import STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import check_writable, to_jsonable
 from ..models import check_increments
@@ -41,7 +41,8 @@ PARAM_FLAGS = tuple((OPTIONS[f.name].flag[2:], f.name, OPTIONS[f.name].unit)
                     for f in dataclasses.fields(ClampParams))
 
 
-def add_params(parser: argparse.ArgumentParser, default_preset: str | None = None) -> None:
+def add_params(parser: argparse.ArgumentParser,
+               default_preset: str | None = OPTIONS["preset"].default) -> None:
     g = parser.add_argument_group("clamped zone (override the preset's values)")
     add_option(g, "preset", choices=sorted(PRESETS), default=default_preset)
     add_clamp_flags(g)
@@ -66,12 +67,13 @@ def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None 
     return run.clamp_from_options(vars(args), fallback_amplitude)
 
 
-def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "physical",
+def add_model_options(parser: argparse.ArgumentParser,
+                      centre_default: str = OPTIONS["centre_reading"].default,
                       centre_why: str = "") -> None:
     """Flags of :class:`ModelOptions`; ``centre_why`` explains a non-default centre reading."""
     g = parser.add_argument_group("reading of the paper (docs/interpretation.md)")
     add_option(g, "no_corrections")
-    add_option(g, "poisson", choices=POISSON_MODES, default="consistent")
+    add_option(g, "poisson", choices=POISSON_MODES)
     add_option(g, "no_length_update")
     add_option(g, "centre_reading", choices=CENTRE_READINGS, default=centre_default,
                note=centre_why.lstrip(",; ") if centre_why else "")
@@ -82,7 +84,8 @@ def model_options(args: argparse.Namespace) -> ModelOptions:
     return run.model_options_from(vars(args))
 
 
-def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_STRAIN_ENERGY,
+def add_strain_energy(parser: argparse.ArgumentParser,
+                      default: str = OPTIONS["strain_energy"].default,
                       why: str = "") -> None:
     add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default,
                help="definition of U in eta = W_d/(2 pi U): "

@@ -47,7 +47,7 @@ def add_parser(sub: Any) -> None:
     add_option(p, "model", choices=list(LOAD_CASES),
                help="the box's load case (required unless --mesh is a file): "
                + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
-    add_params(p, default_preset="table1")
+    add_params(p)
     add_displacement_option(p, note="a root-find on the force, one run per step "
                             "(docs/report.md)")
     g = p.add_argument_group("finite-element model (docs/validation.md)")
@@ -68,12 +68,12 @@ def add_parser(sub: Any) -> None:
                help="calculix: 20-node brick, reduced (C3D20R, default) or full integration "
                     "(C3D20); builtin: 8-node brick with incompatible modes (C3D8I, default) "
                     "or plain (C3D8)")
-    add_option(g, "substeps", default=50)
+    add_option(g, "substeps")
     add_own_mesh_options(p)
     s = p.add_argument_group("solver")
     add_solver(s, "fe", list(SOLVERS))
     add_option(s, "timeout", note="default 120 s + 0.15 s per DOF")
-    add_option(s, "threads", default=1, help="OpenMP threads of the solver")
+    add_option(s, "threads", help="OpenMP threads of the solver")
     add_option(s, "out", metavar="DIR",
                help="write result.json and the VTU series (displacement, contact status and "
                     "slip of every increment, fe_<model>.pvd for ParaView) into DIR; calculix "

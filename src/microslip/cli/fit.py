@@ -24,12 +24,12 @@ def add_parser(sub: Any) -> None:
         "centred first. The clamp options give the known values and the starting guesses.")
     p.add_argument("loops", nargs="+", metavar="LOOP.csv", help="measured loop(s)")
     add_option(p, "model", choices=list(LOADINGS), required=True)
-    add_params(p, default_preset="table1")
+    add_params(p)
     add_option(p, "fit", choices=list(FIT_PARAMETERS), default=["friction", "stick_slope"],
                metavar="NAME", note=f"from {', '.join(FIT_PARAMETERS)}")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE,
                note="the known value or the starting guess of the fit")
-    add_option(p, "confidence", default=0.95)
+    add_option(p, "confidence")
     add_option(p, "json")
     add_option(p, "plot", help="write a figure of the measured loops against the fitted model "
                                "(.png, .pdf or .svg)")

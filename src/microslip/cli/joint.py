@@ -79,7 +79,7 @@ def add_joint_options(parser: argparse.ArgumentParser, required: bool = True) ->
                "(instead of --joint-stiffness)")
     add_option(g, "elements")
     before = len(parser._actions)
-    add_params(parser, default_preset="table1")
+    add_params(parser)
     add_model_options(parser)
     clamp = []
     for action in parser._actions[before:]:
@@ -145,7 +145,7 @@ def add_parser(sub: Any) -> None:
     r = p.add_argument_group("amplitudes (one of)")
     add_option(r, "amplitude_range", help="displacement amplitudes, mm (geometric spacing)")
     add_option(r, "force_range")
-    add_option(p, "amplitudes", default=20)
+    add_option(p, "amplitudes")
     add_option(p, "samples", default=DEFAULT_SAMPLES, note="of the quadrature")
     add_option(p, "json")
     add_option(p, "plot", help="write a figure of K_eq, D_eq and eta")

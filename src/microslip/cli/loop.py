@@ -29,9 +29,9 @@ def add_parser(sub: Any) -> None:
                        description="Run the tip (Eqs 2-10) or centre (Eqs 11-18) model to an "
                        "amplitude, complete the loop with Masing's rule, report W_d, U and eta.")
     add_option(p, "model", choices=list(MODELS), required=True)
-    add_params(p, default_preset="table1")
+    add_params(p)
     add_displacement_option(p)
-    add_option(p, "increments", default=1000)
+    add_option(p, "increments")
     add_model_options(p)
     add_strain_energy(p)
     add_contact_options(p)

@@ -50,7 +50,7 @@ def add_parser(sub: Any) -> None:
     g = p.add_argument_group("amplitudes and output")
     add_option(g, "amplitude_range", help="modal amplitudes, mm (geometric spacing); required "
                "but with --mesh, where the default runs from first slip to near gross sliding")
-    add_option(g, "amplitudes", default=20)
+    add_option(g, "amplitudes")
     add_option(g, "method", choices=list(METHODS), default="epmc")
     add_option(g, "json")
     add_option(g, "csv")

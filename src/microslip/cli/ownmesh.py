@@ -45,7 +45,7 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
         add_option(g, "normal_contact", choices=["penalty"], mode="mesh",
                    note="CalculiX takes penalty normal contact only (the default)")
         add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode="mesh")
-        add_option(g, "substeps", default=50, help="substeps over 1.25 cycles, a multiple of 5",
+        add_option(g, "substeps", help="substeps over 1.25 cycles, a multiple of 5",
                    mode="mesh")
     add_option(g, "contact_set", mode="mesh")
     add_option(g, "clamp_set", mode="mesh")

@@ -75,14 +75,14 @@ def add_parser(sub: Any) -> None:
     add_option(g, "ratio", note="the amplitudes follow from the paper's levels (2000 N tip, "
                "4000 N centre per level)")
     add_displacement_option(g, PLANAR_HELP, nargs=2, metavar=("TIP_MM", "CENTRE_MM"))
-    add_option(g, "levels", choices=list(LEVEL_SCHEMES), default="base",
+    add_option(g, "levels", choices=list(LEVEL_SCHEMES),
                help="level pairs for --ratio: "
                + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items()))
-    add_option(g, "phase", default=0.0,
+    add_option(g, "phase",
                note="0: the paper's loading; 90: the ellipse of Fig. 1")
     m = p.add_argument_group("clamped zones")
-    add_option(m, "tip_preset", choices=sorted(PRESETS), default="table2-tip")
-    add_option(m, "centre_preset", choices=sorted(PRESETS), default="table2-centre")
+    add_option(m, "tip_preset", choices=sorted(PRESETS))
+    add_option(m, "centre_preset", choices=sorted(PRESETS))
     add_option(m, "tip_symmetry", default=TIP_SYMMETRY)
     c = p.add_argument_group(
         "one's own clamp (overrides the zones' values; the tip zone is one of --tip-symmetry "
@@ -96,8 +96,8 @@ def add_parser(sub: Any) -> None:
                default=DEFAULT_WORK_STRAIN_ENERGY,
                help="U of the combined motion in the work-based eta: "
                + "; ".join(f"{k}: {v[1]}" for k, v in WORK_STRAIN_ENERGY.items()))
-    add_option(p, "increments", default=1000)
-    add_option(p, "samples_per_cycle", default=2048)
+    add_option(p, "increments")
+    add_option(p, "samples_per_cycle")
     add_solver(p, "planar", SOLVERS)
     f = p.add_argument_group("--solver fe (docs/solver.md)")
     add_option(f, "preset", choices=sorted(PRESETS), default="table1",
@@ -105,8 +105,8 @@ def add_parser(sub: Any) -> None:
     add_option(f, "mesh", note=f"default {DEFAULT_MESH}")
     add_option(f, "cycles", default=6, help="most load cycles per run, until W per cycle "
                                              "settles")
-    add_option(f, "increments_per_cycle", default=256)
-    add_option(f, "cycle_tolerance", default=1e-3)
+    add_option(f, "increments_per_cycle")
+    add_option(f, "cycle_tolerance")
     add_option(p, "json")
     add_option(p, "plot", help="write a figure of the loops and the load path")
     add_case_option(p)

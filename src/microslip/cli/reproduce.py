@@ -40,8 +40,8 @@ def add_parser(sub: Any) -> None:
                "default always; --no-fe skips both)")
     add_option(p, "fe_mesh", choices=list(FE_MESHES), default=DEFAULT_MESH, type=None,
                help="mesh of the finite-element validation")
-    add_option(p, "increments", default=1000)
-    add_option(p, "levels", choices=list(LEVEL_SCHEMES), default="base",
+    add_option(p, "increments")
+    add_option(p, "levels", choices=list(LEVEL_SCHEMES),
                note="; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items()))
     add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22; secant is reported beside it")
     add_option(p, "work_energy", choices=list(WORK_STRAIN_ENERGY),

@@ -81,10 +81,10 @@ def add_parser(sub: Any) -> None:
     add_option(g, "samples", type=positive_int, default=1000, metavar="M",
                help="draws per grid point with --sample")
     add_option(g, "seed", note="default: a fresh seed, printed")
-    add_option(g, "levels", default="base",
+    add_option(g, "levels",
                note="planar: how R maps to the amplitudes (microslip.planar.LEVEL_SCHEMES)")
     add_displacement_option(g, note="for the base clamp (no swept clamp parameters)")
-    add_option(p, "increments", default=1000)
+    add_option(p, "increments")
     add_model_options(p)
     add_contact_options(p)
     add_strain_energy(p)
@@ -92,10 +92,10 @@ def add_parser(sub: Any) -> None:
     add_option(o, "out", metavar="FILE", help="write FILE.csv or FILE.nc (NetCDF)")
     add_option(o, "plot", help="summary plot of eta against the swept parameter")
     add_option(o, "scheduler")
-    add_option(o, "chunk_size", default=65536)
-    add_option(o, "threads", type=positive_int, help="threads of a local run",
+    add_option(o, "chunk_size")
+    add_option(o, "threads", type=positive_int, default=None, help="threads of a local run",
                note="default: all cores")
-    add_option(o, "retries", default=3)
+    add_option(o, "retries")
     add_option(o, "no_progress")
     add_fe_sweep_options(p)
     add_case_option(p)

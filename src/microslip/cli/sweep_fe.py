@@ -29,10 +29,10 @@ def add_options(parser: argparse.ArgumentParser) -> None:
 
     g = parser.add_argument_group("--solver fe: finite-element amplitude sweep (docs/report.md)")
     add_solver(g, "sweep")
-    add_option(g, "fe_solver", choices=list(SOLVERS), default="builtin",
+    add_option(g, "fe_solver", choices=list(SOLVERS),
                note="with --solver fe")
     add_option(g, "mesh", default=DEFAULT_MESH, note="--solver fe")
-    add_option(g, "substeps", default=50, note="of each FE run")
+    add_option(g, "substeps", note="of each FE run")
 
 
 def _check(args: argparse.Namespace) -> None:

@@ -26,7 +26,7 @@ def add_parser(sub: Any) -> None:
         "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     add_option(p, "out", metavar="DIR", required=True, help="output directory")
-    add_params(p, default_preset="table1")
+    add_params(p)
     add_option(p, "mesh", action="append", type=mesh_or_file, metavar="LEVEL|FILE",
                note="repeat for several; or one mesh file of your own clamp (.inp, .msh, "
                ".vtu, ...) with --contact-set, --clamp-set and --load: the built-in solver "
@@ -36,7 +36,7 @@ def add_parser(sub: Any) -> None:
                note="repeat for several (default: tip and centre)")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
     add_option(p, "timeout", note="of each solver run (default 120 s + 0.15 s per DOF)")
-    add_option(p, "threads", default=1, help="OpenMP threads of each solver run")
+    add_option(p, "threads", help="OpenMP threads of each solver run")
     add_option(p, "scheduler", note="default: locally")
     add_option(p, "reuse")
     add_option(p, "no_progress")
