@@ -95,8 +95,9 @@ def _table_defaults(*names: str) -> dict[str, Any]:
 #: them: the option table's (one definition; tests/test_report_consistency.py holds them
 #: equal to the parsers'), and where a command has its own, the library's constant it uses;
 #: a case's keys and the report's settings are laid over them.
-_MODEL_DEFAULTS: dict[str, Any] = _table_defaults(
-    "preset", "amplitude", "displacement_amplitude", *CLAMP_FIELDS, "strain_energy")
+_MODEL_DEFAULTS: dict[str, Any] = {
+    **_table_defaults("preset", "amplitude", "displacement_amplitude", *CLAMP_FIELDS),
+    "strain_energy": DEFAULT_STRAIN_ENERGY}
 _READING_DEFAULTS: dict[str, Any] = _table_defaults(
     "no_corrections", "poisson", "no_length_update", "centre_reading", "paper_literal",
     "stick_slope", "pressure_law", "no_shear_lag")

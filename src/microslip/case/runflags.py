@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..energy import DEFAULT_STRAIN_ENERGY
 from .checks import Option, set_name
 
 __all__ = ["DEFAULT_ROM_MODES", "MAX_ROM_MODES", "RUN_OPTIONS", "positive_int", "seed"]
@@ -97,7 +96,7 @@ RUN_OPTIONS: tuple[Option, ...] = (
     _flag("paper_literal", "every equation as printed (Eqs 6-7 total force, Eq. 15 sign, "
            "Eq. 11)"),
     Option("strain_energy", "definition of U in eta = W_d/(2 pi U)", "", "a definition",
-           type=None, default=DEFAULT_STRAIN_ENERGY),
+           type=None),  # default: microslip.energy's (importing it here costs the models)
     Option("work_energy", "U of the combined motion in the work-based eta", "", "a definition",
            type=None),
     _flag("no_shear_lag", "leave out the body's through-thickness shear compliance (then a "

@@ -11,7 +11,7 @@ from typing import Any
 from ..case import run
 from ..case.run import planar_zones
 from ..case.table import OPTIONS, add_option, number
-from ..energy import STRAIN_ENERGY
+from ..energy import DEFAULT_STRAIN_ENERGY, STRAIN_ENERGY
 from ..errors import ParameterError
 from ..io import check_writable, to_jsonable
 from ..models import check_increments
@@ -85,7 +85,7 @@ def model_options(args: argparse.Namespace) -> ModelOptions:
 
 
 def add_strain_energy(parser: argparse.ArgumentParser,
-                      default: str = OPTIONS["strain_energy"].default,
+                      default: str = DEFAULT_STRAIN_ENERGY,
                       why: str = "") -> None:
     add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default,
                help="definition of U in eta = W_d/(2 pi U): "
