@@ -4,6 +4,8 @@ default is used) and the case file that describes the user's own part."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from conftest import one_line_error, run
@@ -23,7 +25,7 @@ MODAL = ("--amplitude-range", "1e-3", "1e-2", "--amplitudes", "2", "--harmonics"
 
 
 def test_own_law_structure_runs_and_refuses_coupling(capsys, own_law_file):
-    code, out, err = run(capsys, "modal", "--structure", own_law_file, *MODAL, "--json")
+    code, _, err = run(capsys, "modal", "--structure", own_law_file, *MODAL, "--json")
     assert code == 0, err
     for coupling in ("decoupled", "circular"):
         one_line_error(run(capsys, "modal", "--structure", own_law_file, "--coupling",
@@ -76,8 +78,9 @@ normal_slope = 1e6
 
 def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
     import shutil
-    import tomllib
     from pathlib import Path
+
+    import tomllib
 
     from microslip.case.model import parse_case
     from microslip.cli.main import build_parser
@@ -86,7 +89,7 @@ def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
     shutil.copy(Path(__file__).resolve().parents[1] / "examples" / "cantilever.inp", tmp_path)
     argv = case_argv(parse_case(tomllib.loads(PART), str(tmp_path / "case.toml")), 4)
     assert argv is not None
-    flags = dict(zip(argv, argv[1:], strict=False))
+    flags = dict(itertools.pairwise(argv))
     assert flags["--normal-contact"] == "penalty" and flags["--normal-slope"] == "1000000.0"
     # and modal --mesh parses it (the study's own checks take it: no refusal of penalty)
     args = build_parser(argv).parse_args(argv)
@@ -99,7 +102,7 @@ def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
 def test_the_report_says_when_the_mesh_has_no_density(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "case.toml").write_text(PART.replace("density = 2700\n", ""))
-    code, out, err = run(capsys, "report", "--case", "case.toml", "--no-fe", "--increments",
+    code, _, err = run(capsys, "report", "--case", "case.toml", "--no-fe", "--increments",
                          "100", "--out", "r.html")
     assert code == 0, err
     assert err.count("\n") == 1 and err.startswith("warning: ")
@@ -135,7 +138,8 @@ def test_mesh_loads_beside_the_templates_load_section(capsys, tmp_path):
     case.write_text(case.read_text() + LOAD)
     loaded = load_case(case)
     assert [(ld.set, ld.amplitude) for ld in loaded.mesh_loads] == [("tip", 100.0)]
-    both = LOAD.replace("mesh.load", "load") + LOAD.replace("[[mesh.load]]", "[mesh]\n[[mesh.load]]")
+    both = (LOAD.replace("mesh.load", "load")
+            + LOAD.replace("[[mesh.load]]", "[mesh]\n[[mesh.load]]"))
     (tmp_path / "both.toml").write_text(both)
     one_line_error(run(capsys, "case", "check", tmp_path / "both.toml"), "not both")
 

@@ -213,7 +213,7 @@ class Option:
     unit: str = ""
     range: str = ""
     type: Callable[[str], Any] | None = number
-    metavar: str | None = None
+    metavar: str | tuple[str, ...] | None = None
     choices: tuple[str, ...] | None = None
     key: str | None = None
     joint_key: str | None = None

@@ -134,7 +134,7 @@ def _refuse_own_law(args: argparse.Namespace) -> None:
     """The joints of a structure file that carry their own law (``reduce``'s ROM: a circular
     Jenkins element or a 3-D contact element per contact node) take no joint, no coupling and
     no joint across: such an option would change nothing, so it is refused in one line."""
-    given = getattr(args, "given_options", frozenset())
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
     bad = [f"--{d.replace('_', '-')}" for d in JOINT_LAW_OPTIONS if d in given]
     if not bad and args.coupling is not None:
         bad = [f"[structure] coupling of case {args.case}"]
