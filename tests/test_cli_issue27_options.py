@@ -228,3 +228,29 @@ def test_another_structure_leaves_the_mesh_section_unread(capsys, part, own_law_
 def test_mode_has_one_range_on_both_structures(capsys, own_law_file):
     one_line_error(run(capsys, "modal", "--structure", own_law_file, "--mode", "0", *MODAL),
                    "--mode must be in [1, 50], got 0")
+
+
+@pytest.mark.parametrize("flag", [["--normal-contact", "penalty"], ["--normal-slope", "1e6"],
+                                  ["--substeps", "20"], ["--load", "tip:1,0,0:1"]])
+def test_validate_refuses_the_mesh_options_on_the_box(capsys, tmp_path, flag):
+    """The options of a mesh file did nothing on validate's box: refused in one line (they
+    are recorded as the mesh's by add_option(mode=...), no hand list)."""
+    one_line_error(run(capsys, "validate", "--out", tmp_path / "v", *flag),
+                   flag[0], "--mesh FILE only")
+    assert not (tmp_path / "v").exists()
+
+
+def test_mode_records_come_from_add_option():
+    from microslip.case.table import MODE_BOX, MODE_MESH, MODE_STRUCTURE, mode_options
+    from microslip.cli.main import build_parser
+
+    def modes(argv: list[str], mode: str) -> set[str]:
+        return set(mode_options(build_parser(argv).parse_args(argv), mode))
+
+    assert {"density", "response_set", "rom_modes", "solver", "workers"} <= modes(
+        ["modal", "--amplitude-range", "1", "2"], MODE_MESH)
+    assert {"frequency", "structure", "coupling", "joint", "length", "method"} <= modes(
+        ["modal", "--amplitude-range", "1", "2"], MODE_STRUCTURE)
+    assert {"model", "preset", "length", "pressure_law", "strain_energy"} <= modes(
+        ["fe"], MODE_BOX)
+    assert "modulus" not in modes(["fe"], MODE_BOX) | modes(["modal"], MODE_STRUCTURE)

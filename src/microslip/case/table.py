@@ -59,6 +59,9 @@ __all__ = [
     "MAX_ROM_MODES",
     "MESH_HELP",
     "MODES_KEY",
+    "MODE_BOX",
+    "MODE_MESH",
+    "MODE_STRUCTURE",
     "OPTIONS",
     "PRESSURE_LAWS",
     "SOLVERS",
@@ -254,6 +257,11 @@ def _help(opt: Option, default: Any, note: str, help_text: str | None) -> str:
         else f" (default {value})"
     return f"{body}{unit}{rng}{shown}{'; ' + note if note else ''}"
 
+
+#: The modes of a command that :func:`add_option` records (``mode=``): a mesh of the user's
+#: own (``--mesh FILE``), the built-in box (``fe``, ``validate`` without a mesh file), a
+#: structure file or one mode (``modal``, ``frf`` without ``--mesh``).
+MODE_MESH, MODE_BOX, MODE_STRUCTURE = "mesh", "box", "structure"
 
 #: The parser default under which :func:`add_option` records the mode an option belongs to
 #: (``mode="mesh"``): destination -> mode, for :func:`mode_options`.

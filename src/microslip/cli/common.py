@@ -41,18 +41,27 @@ PARAM_FLAGS = tuple((OPTIONS[f.name].flag[2:], f.name, OPTIONS[f.name].unit)
                     for f in dataclasses.fields(ClampParams))
 
 
+#: The clamp's values a mesh of the user's own gives itself (its geometry).
+GEOMETRY = ("length", "width", "thickness")
+
+
 def add_params(parser: argparse.ArgumentParser,
-               default_preset: str | None = OPTIONS["preset"].default) -> None:
+               default_preset: str | None = OPTIONS["preset"].default,
+               mode: str | None = None) -> None:
+    """``--preset``, the seven clamp flags and ``--amplitude``; with ``mode`` the preset, the
+    geometry and the amplitude belong to that mode only (:func:`~microslip.case.table.
+    add_option`): the box's, which a mesh of the user's own replaces."""
     g = parser.add_argument_group("clamped zone (override the preset's values)")
-    add_option(g, "preset", choices=sorted(PRESETS), default=default_preset)
-    add_clamp_flags(g)
-    add_option(g, "amplitude", note="default: the preset's")
+    add_option(g, "preset", choices=sorted(PRESETS), default=default_preset, mode=mode)
+    add_clamp_flags(g, mode)
+    add_option(g, "amplitude", note="default: the preset's", mode=mode)
 
 
-def add_clamp_flags(group: Any) -> None:
-    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude)."""
+def add_clamp_flags(group: Any, geometry_mode: str | None = None) -> None:
+    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude); the
+    geometry's in ``geometry_mode`` only, if given."""
     for _, field, _ in PARAM_FLAGS:
-        add_option(group, field)
+        add_option(group, field, mode=geometry_mode if field in GEOMETRY else None)
 
 
 def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:
@@ -86,8 +95,8 @@ def model_options(args: argparse.Namespace) -> ModelOptions:
 
 def add_strain_energy(parser: argparse.ArgumentParser,
                       default: str = DEFAULT_STRAIN_ENERGY,
-                      why: str = "") -> None:
-    add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default,
+                      why: str = "", mode: str | None = None) -> None:
+    add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default, mode=mode,
                help="definition of U in eta = W_d/(2 pi U): "
                + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items()),
                note=why.lstrip(",; ") if why else "")

@@ -19,10 +19,12 @@ DISPLACEMENT_HELP = OPTIONS["displacement_amplitude"].help
 
 
 def add_displacement_option(parser: Any, help: str | None = None, nargs: Any = None,
-                            metavar: Any = None, note: str = "") -> None:
+                            metavar: Any = None, note: str = "", mode: str | None = None
+                            ) -> None:
     """Add ``--displacement-amplitude`` to a parser or argument group (``help``: another
-    meaning, ``note``: a sentence of this command after the shared help)."""
-    add_option(parser, "displacement_amplitude", help=help, note=note,
+    meaning, ``note``: a sentence of this command after the shared help, ``mode``: the mode
+    of the command it belongs to)."""
+    add_option(parser, "displacement_amplitude", help=help, note=note, mode=mode,
                **({} if nargs is None else {"nargs": nargs}),
                **({} if metavar is None else {"metavar": metavar}))
 

@@ -15,7 +15,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
-from ..case.table import add_option, add_solver, mesh_or_file
+from ..case.table import MODE_BOX, add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe import SOLVERS
@@ -44,12 +44,12 @@ def add_parser(sub: Any) -> None:
         "substeps), run it, and report the loop, W_d, U and eta. The built-in solver "
         "(default) needs nothing else; --solver calculix needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
-    add_option(p, "model", choices=list(LOAD_CASES),
+    add_option(p, "model", choices=list(LOAD_CASES), mode=MODE_BOX,
                help="the box's load case (required unless --mesh is a file): "
                + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
-    add_params(p)
+    add_params(p, mode=MODE_BOX)
     add_displacement_option(p, note="a root-find on the force, one run per step "
-                            "(docs/report.md)")
+                            "(docs/report.md)", mode=MODE_BOX)
     g = p.add_argument_group("finite-element model (docs/validation.md)")
     add_option(g, "mesh", default=DEFAULT_MESH, type=mesh_or_file, metavar="LEVEL|FILE",
                note="or a mesh file of your own clamp (.inp, .msh, .vtu, ...; hexahedra with "
@@ -60,11 +60,13 @@ def add_parser(sub: Any) -> None:
     add_option(g, "normal_contact",
                help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items()),
                note="default fixed; docs/solver.md")
-    add_option(g, "pressure_law", note="builtin: on the top face; power:N[:EDGE] or "
-               "table:FILE.csv (columns x_mm,pressure) as the 1-D commands take it")
-    add_option(g, "clamping_csv", note="ready for --pressure-law table:FILE of loop, planar "
-               "and sweep")
-    add_option(g, "element", choices=[e for s in SOLVERS.values() for e in s.elements],
+    add_option(g, "pressure_law", mode=MODE_BOX, note="builtin: on the top face; "
+               "power:N[:EDGE] or table:FILE.csv (columns x_mm,pressure) as the 1-D commands "
+               "take it")
+    add_option(g, "clamping_csv", mode=MODE_BOX, note="ready for --pressure-law table:FILE "
+               "of loop, planar and sweep")
+    add_option(g, "element", mode=MODE_BOX,
+               choices=[e for s in SOLVERS.values() for e in s.elements],
                help="calculix: 20-node brick, reduced (C3D20R, default) or full integration "
                     "(C3D20); builtin: 8-node brick with incompatible modes (C3D8I, default) "
                     "or plain (C3D8)")
@@ -78,10 +80,10 @@ def add_parser(sub: Any) -> None:
                help="write result.json and the VTU series (displacement, contact status and "
                     "slip of every increment, fe_<model>.pvd for ParaView) into DIR; calculix "
                     "keeps its job files there too (default: nothing written)")
-    add_option(s, "reuse", help="if DIR already holds a successful run of the identical deck, "
-                                "read it")
+    add_option(s, "reuse", mode=MODE_BOX,
+               help="if DIR already holds a successful run of the identical deck, read it")
     add_option(s, "no_vtu")
-    add_strain_energy(p)
+    add_strain_energy(p, mode=MODE_BOX)
     add_option(p, "json")
     add_case_option(p)
     p.set_defaults(func=run)

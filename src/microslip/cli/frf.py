@@ -27,6 +27,7 @@ from .frfmesh import (
     run_frf_mesh,
 )
 from .structure import (
+    NOT_MESH,
     across_warnings,
     add_balance_options,
     add_structure_options,
@@ -57,7 +58,7 @@ def add_parser(sub: Any) -> None:
     add_frf_mesh_options(p)
     g = p.add_argument_group("excitation and output")
     add_option(g, "force", required=True, note="with --mesh the total force on --load-set")
-    add_option(g, "excitation", note="default: the modal force of --mode")
+    add_option(g, "excitation", note="default: the modal force of --mode", mode=NOT_MESH)
     add_option(g, "frequency_range", note=f"default {RANGE_MARGIN:g} x the joint-removed to "
                f"{1 / RANGE_MARGIN:g} x the stuck frequency; with --mesh {MESH_RANGE[0]:g} to "
                f"{MESH_RANGE[1]:g} x the mode's stuck frequency")

@@ -67,19 +67,22 @@ _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", 
           "beta": "--beta", "stick_slope": "--stick-slope", "elements": "--elements"}
 
 
-def add_joint_options(parser: argparse.ArgumentParser, required: bool = True) -> None:
+def add_joint_options(parser: argparse.ArgumentParser, required: bool = True,
+                      mode: str | None = None) -> None:
     """``--joint`` and its parameters, with the clamp's options for the tip and centre joints;
-    ``required=False`` where another source may give the joint (``modal --mesh``)."""
+    ``required=False`` where another source may give the joint (``modal --mesh``), ``mode``
+    the mode of the command the joint belongs to (the clamp's material, friction and force
+    serve a mesh as well)."""
     g = parser.add_argument_group("joint (units N, mm, N/mm)")
-    add_option(g, "joint", required=required, choices=list(JOINTS),
+    add_option(g, "joint", required=required, choices=list(JOINTS), mode=mode,
                **({} if required else {"note": "required but with --mesh"}))
     for name in ("joint_stiffness", "slip_force", "chi", "beta"):
-        add_option(g, name)
+        add_option(g, name, mode=mode)
     add_option(g, "stick_slope", note="tip, centre: series spring = slope x width x length "
                "(instead of --joint-stiffness)")
-    add_option(g, "elements")
+    add_option(g, "elements", mode=mode)
     before = len(parser._actions)
-    add_params(parser)
+    add_params(parser, mode=mode)
     add_model_options(parser)
     clamp = []
     for action in parser._actions[before:]:

@@ -13,7 +13,15 @@ import argparse
 from dataclasses import dataclass
 from typing import Any
 
-from ..case.table import DEFAULT_ROM_MODES, MAX_MODE, add_option, mesh_file
+from ..case.table import (
+    DEFAULT_ROM_MODES,
+    MAX_MODE,
+    MODE_MESH,
+    MODE_STRUCTURE,
+    add_option,
+    mesh_file,
+    mode_options,
+)
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
@@ -22,7 +30,6 @@ from .ownmesh import given
 __all__ = [
     "DEFAULT_ROM_MODES",
     "MAX_MODE",
-    "NOT_WITH_MESH",
     "REQUIRED",
     "MeshModes",
     "add_mesh_structure_options",
@@ -33,12 +40,6 @@ __all__ = [
     "mesh_modes",
 ]
 
-#: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
-NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
-                 "participation", "structure", "joint_dof", "coupling", "joint",
-                 "joint_stiffness", "slip_force", "chi", "beta", "elements", "preset",
-                 "length", "width", "thickness", "method", "transverse", "pairing",
-                 "fe_mesh")
 #: The clamp's values and the density a mesh structure needs: destination -> flag.
 REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
 #: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
@@ -69,24 +70,24 @@ def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None
     ``--normal-slope``, ``--density`` and ``--response-set`` on the argument group ``g``
     (``response_help``: what the command does with the response set, if not the
     amplitude's set)."""
-    add_option(g, "mesh_file", flag="--mesh", dest="mesh", type=mesh_file, mode="mesh",
+    add_option(g, "mesh_file", flag="--mesh", dest="mesh", type=mesh_file, mode=MODE_MESH,
                help="a hexahedral mesh of your structure with its clamp (.inp, .msh, .vtu, "
                     "...): its modes and the damping its clamp gives them")
     for name in ("contact_set", "clamp_set"):
-        add_option(g, name, mode="mesh")
-    add_option(g, "normal_contact", note="default fixed", mode="mesh")
-    add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode="mesh")
-    add_option(g, "density", mode="mesh")
-    add_option(g, "response_set", help=response_help, mode="mesh")
+        add_option(g, name, mode=MODE_MESH)
+    add_option(g, "normal_contact", note="default fixed", mode=MODE_MESH)
+    add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
+    add_option(g, "density", mode=MODE_MESH)
+    add_option(g, "response_set", help=response_help, mode=MODE_MESH)
 
 
 def add_reduced_model_options(g: Any) -> None:
     """``--rom-modes`` and ``--backbone``: the reduced models of ``modal --mesh`` and ``frf
     --mesh`` (the contact-node ROM, ``rom``, and the whole joint built on it, ``joint``)."""
-    add_option(g, "rom_modes", mode="mesh",
+    add_option(g, "rom_modes", mode=MODE_MESH,
                note=f"rom, joint; default {DEFAULT_ROM_MODES}: the ROM's stuck frequencies "
                "then equal the full FE's to about 1e-6")
-    add_option(g, "backbone", choices=list(BACKBONE_NAMES), mode="mesh", note="default fe")
+    add_option(g, "backbone", choices=list(BACKBONE_NAMES), mode=MODE_MESH, note="default fe")
 
 
 def check_density(density: float) -> float:
@@ -99,7 +100,9 @@ def check_density(density: float) -> float:
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:
     """Refuse, in one line, the one-mode and structure-file options (and ``not_with``), a
     missing clamp value, set or density, and --normal-slope without penalty contact."""
-    bad = [f"--{d.replace('_', '-')}" for d in (*NOT_WITH_MESH, *not_with) if given(args, d)]
+    # the one-mode, structure-file and joint options (added with mode="structure")
+    bad = [f"--{d.replace('_', '-')}" for d in (*mode_options(args, MODE_STRUCTURE), *not_with)
+           if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} not used with --mesh (the mesh gives the "
                              "structure, its contact the joint)")

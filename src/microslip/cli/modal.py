@@ -24,6 +24,7 @@ from .modalmesh import (
     run_modal_mesh,
 )
 from .structure import (
+    NOT_MESH,
     across_warnings,
     add_balance_options,
     add_structure_options,
@@ -51,7 +52,7 @@ def add_parser(sub: Any) -> None:
     add_option(g, "amplitude_range", help="modal amplitudes, mm (geometric spacing); required "
                "but with --mesh, where the default runs from first slip to near gross sliding")
     add_option(g, "amplitudes")
-    add_option(g, "method", choices=list(METHODS), default="epmc")
+    add_option(g, "method", choices=list(METHODS), default="epmc", mode=NOT_MESH)
     add_option(g, "json")
     add_option(g, "csv")
     add_option(g, "plot", help="write a figure of frequency and damping ratio vs amplitude")

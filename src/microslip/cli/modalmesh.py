@@ -16,7 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ..case.table import add_option, add_solver, mode_options
+from ..case.table import MODE_MESH, add_option, add_solver, mode_options
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
@@ -33,7 +33,7 @@ from .ownmesh import given, verb
 __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 
 # The mesh structure's options, checks, model and modes: cli.meshstructure (shared with
-# frf --mesh). The options of --mesh only are those added with mode="mesh".
+# frf --mesh). The options of --mesh only are those added with mode=MODE_MESH.
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
 
@@ -43,11 +43,11 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     add_mesh_structure_options(g)
     add_solver(g, "modal", meaning={**{k: v.help for k, v in MESH_SOLVERS.items()},
                                     ALL: "every one of them side by side, with a verdict on "
-                                         "each against the full FE"}, mode="mesh")
+                                         "each against the full FE"}, mode=MODE_MESH)
     add_reduced_model_options(g)
-    add_option(g, "workers", note="default 1", mode="mesh")
+    add_option(g, "workers", note="default 1", mode=MODE_MESH)
     add_option(g, "scheduler", help="a Dask scheduler (tcp://HOST:8786) to run the amplitudes "
-                                    "on", mode="mesh")
+                                    "on", mode=MODE_MESH)
 
 
 def _nulls(values: Any) -> list[float | None]:
@@ -59,7 +59,7 @@ def _nulls(values: Any) -> list[float | None]:
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """Without --mesh, the mesh's options given on the command line are refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, "mesh") if given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_MESH) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to modal --mesh FILE only; remove "
                              "them")

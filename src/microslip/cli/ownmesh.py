@@ -11,7 +11,7 @@ import argparse
 import sys
 from typing import Any
 
-from ..case.table import add_option, mode_options
+from ..case.table import MODE_BOX, MODE_MESH, add_option, mode_options
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import check_output_dir, check_plot, print_json
@@ -19,10 +19,6 @@ from .common import check_output_dir, check_plot, print_json
 __all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
            "refuse_mesh_options", "run_own_mesh", "verb"]
 
-#: Options of the built-in box only: refused with a mesh file.
-BOX_ONLY = ("model", "preset", "length", "width", "thickness", "amplitude",
-            "displacement_amplitude", "pressure_law", "clamping_csv", "element", "reuse",
-            "strain_energy")
 #: Clamp values a mesh run needs (the mesh gives the geometry): destination -> flag.
 REQUIRED = {"normal_force": "--normal-force N", "friction": "--friction X",
             "modulus": "--modulus MPA", "poisson_ratio": "--poisson-ratio X"}
@@ -42,24 +38,24 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
 
     g = p.add_argument_group("your own mesh (--mesh FILE; docs/ownmesh.md)")
     if validate:
-        add_option(g, "normal_contact", choices=["penalty"], mode="mesh",
+        add_option(g, "normal_contact", choices=["penalty"], mode=MODE_MESH,
                    note="CalculiX takes penalty normal contact only (the default)")
-        add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode="mesh")
+        add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
         add_option(g, "substeps", help="substeps over 1.25 cycles, a multiple of 5",
-                   mode="mesh")
-    add_option(g, "contact_set", mode="mesh")
-    add_option(g, "clamp_set", mode="mesh")
-    add_option(g, "load", mode="mesh")
-    add_option(g, "history", choices=list(HISTORIES), mode="mesh",
+                   mode=MODE_MESH)
+    add_option(g, "contact_set", mode=MODE_MESH)
+    add_option(g, "clamp_set", mode=MODE_MESH)
+    add_option(g, "load", mode=MODE_MESH)
+    add_option(g, "history", choices=list(HISTORIES), mode=MODE_MESH,
                help="; ".join(f"{k}: {v}" for k, v in HISTORIES.items()),
                note="default settle")
-    add_option(g, "settle_tol", note="default 1e-3", mode="mesh")
-    add_option(g, "max_cycles", note="default 10", mode="mesh")
+    add_option(g, "settle_tol", note="default 1e-3", mode=MODE_MESH)
+    add_option(g, "max_cycles", note="default 10", mode=MODE_MESH)
     if not validate:
         add_option(g, "cycles", help="calculix: cycles to run",
-                   note="default 3; compare cycle_work_Nmm", mode="mesh")
+                   note="default 3; compare cycle_work_Nmm", mode=MODE_MESH)
         add_option(g, "plot", help="draw each load's loop over the settled cycle",
-                   mode="mesh")
+                   mode=MODE_MESH)
 
 
 def verb(flags: list[str]) -> str:
@@ -75,7 +71,7 @@ def given(args: argparse.Namespace, dest: str) -> bool:
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """The box's run: a mesh file's option given on the command line is refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, "mesh") if given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_MESH) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to --mesh FILE only (a mesh of your "
                              f"own), not to the box --mesh {args.mesh}; remove them")
@@ -85,7 +81,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
-    bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if given(args, d)]
+    # the box's options (added with mode=MODE_BOX): refused with a mesh file
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_BOX) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} the mesh gives the geometry and --load the "

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
-from ..case.table import MAX_MODE, add_option
+from ..case.table import MAX_MODE, MODE_STRUCTURE, add_option
 from ..conventions import CLAMP_MODELS
 from ..dynamics.assemble import (
     PlacedJoint,
@@ -54,6 +54,11 @@ ACROSS_WARNING = (
     "give {fix} to take the FE's first loading across")
 
 
+#: The mode of ``modal`` and ``frf`` that a mesh of the user's own replaces: one mode, a
+#: structure file, their joint and the box's geometry (:func:`add_structure_options`; with
+#: ``--mesh`` these options are refused, :func:`~.meshstructure.check_mesh_structure`).
+NOT_MESH = MODE_STRUCTURE
+
 #: Harmonics of the balance unless --harmonics is given.
 DEFAULT_HARMONICS = 7
 
@@ -65,18 +70,18 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
     given = g.add_mutually_exclusive_group()
-    add_option(given, "frequency")
-    add_option(given, "stuck_frequency")
-    add_option(g, "modal_mass")
-    add_option(g, "damping_ratio", note="default 0")
-    add_option(g, "participation", note="default 1")
+    add_option(given, "frequency", mode=NOT_MESH)
+    add_option(given, "stuck_frequency", mode=NOT_MESH)
+    add_option(g, "modal_mass", mode=NOT_MESH)
+    add_option(g, "damping_ratio", note="default 0", mode=NOT_MESH)
+    add_option(g, "participation", note="default 1", mode=NOT_MESH)
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
-    add_option(f, "structure", note="see docs/dynamics.md")
-    add_option(f, "joint_dof")
+    add_option(f, "structure", note="see docs/dynamics.md", mode=NOT_MESH)
+    add_option(f, "joint_dof", mode=NOT_MESH)
     add_option(f, "mode", note="default 1; with --mesh FILE the mode whose damping is studied")
-    add_option(f, "coupling", note="default circular")
-    add_across_options(f)
-    add_joint_options(parser, required=False)
+    add_option(f, "coupling", note="default circular", mode=NOT_MESH)
+    add_across_options(f, NOT_MESH)
+    add_joint_options(parser, required=False, mode=NOT_MESH)
     add_case_option(parser, "a case file with [structure] file and [[joint]] tables: several "
                     "joints, each with its own model; or a clamp for --joint tip|centre; or "
                     "a [mesh] of your own part (docs/casefile.md); options given here win")

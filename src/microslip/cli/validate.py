@@ -7,7 +7,7 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
-from ..case.table import add_option, mesh_or_file
+from ..case.table import MODE_BOX, add_option, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
@@ -26,19 +26,19 @@ def add_parser(sub: Any) -> None:
         "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
     add_option(p, "out", metavar="DIR", required=True, help="output directory")
-    add_params(p)
+    add_params(p, mode=MODE_BOX)
     add_option(p, "mesh", action="append", type=mesh_or_file, metavar="LEVEL|FILE",
                note="repeat for several; or one mesh file of your own clamp (.inp, .msh, "
                ".vtu, ...) with --contact-set, --clamp-set and --load: the built-in solver "
                "against CalculiX on it (docs/ownmesh.md)")
     add_own_mesh_options(p, validate=True)
-    add_option(p, "model", choices=list(LOAD_CASES), action="append",
+    add_option(p, "model", choices=list(LOAD_CASES), action="append", mode=MODE_BOX,
                note="repeat for several (default: tip and centre)")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
     add_option(p, "timeout", note="of each solver run (default 120 s + 0.15 s per DOF)")
     add_option(p, "threads", help="OpenMP threads of each solver run")
     add_option(p, "scheduler", note="default: locally")
-    add_option(p, "reuse")
+    add_option(p, "reuse", mode=MODE_BOX)
     add_option(p, "no_progress")
     add_option(p, "json", help="print the table rows and the files as JSON")
     add_case_option(p)
