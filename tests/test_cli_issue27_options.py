@@ -24,9 +24,13 @@ def own_law_file(tmp_path):
 MODAL = ("--amplitude-range", "1e-3", "1e-2", "--amplitudes", "2", "--harmonics", "1")
 
 
-def test_own_law_structure_runs_and_refuses_coupling(capsys, own_law_file):
+@pytest.mark.slow
+def test_own_law_structure_runs(capsys, own_law_file):
     code, _, err = run(capsys, "modal", "--structure", own_law_file, *MODAL, "--json")
     assert code == 0, err
+
+
+def test_own_law_structure_refuses_coupling(capsys, own_law_file):
     for coupling in ("decoupled", "circular"):
         one_line_error(run(capsys, "modal", "--structure", own_law_file, "--coupling",
                            coupling, *MODAL), "--coupling", "own law", own_law_file)
@@ -99,6 +103,7 @@ def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
     assert argv is not None and "--normal-contact" not in argv and "--normal-slope" not in argv
 
 
+@pytest.mark.slow
 def test_the_report_says_when_the_mesh_has_no_density(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "case.toml").write_text(PART.replace("density = 2700\n", ""))
@@ -254,3 +259,33 @@ def test_mode_records_come_from_add_option():
     assert {"model", "preset", "length", "pressure_law", "strain_energy"} <= modes(
         ["fe"], MODE_BOX)
     assert "modulus" not in modes(["fe"], MODE_BOX) | modes(["modal"], MODE_STRUCTURE)
+
+
+def test_every_option_of_every_command_is_in_the_table():
+    """Each flag of each command is an option of the table (its own spelling, or a command's
+    other spelling of one: ``--mesh`` for the mesh file); its destination is the option's
+    name but where the command's subject keeps its own (report --case)."""
+    import argparse
+
+    from microslip.case.table import OPTIONS
+    from microslip.cli.main import build_parser
+
+    by_flag = {o.flag: o for o in OPTIONS.values()}
+    parser = build_parser()
+    (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    parsers = dict(sub.choices)
+    for action in parsers["case"]._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            parsers.update({f"case {k}": v for k, v in action.choices.items()})
+    seen = 0
+    for command, p in parsers.items():
+        for a in p._actions:
+            flags = [f for f in a.option_strings if f.startswith("--")]
+            if not flags or flags[0] in ("--help", "--solver"):
+                continue
+            seen += 1
+            opt = OPTIONS.get(a.dest) or by_flag.get(flags[0])
+            assert opt is not None, (command, flags[0])
+            assert a.dest == opt.name or (command, a.dest) == ("report", "report_case"), (
+                command, flags[0])
+    assert seen > 300
