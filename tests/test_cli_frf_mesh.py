@@ -193,7 +193,7 @@ def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
 
 def test_missing_response_set_is_one_line(capsys: pytest.CaptureFixture[str],
                                           mesh: str) -> None:
-    assert main(["frf", "--mesh", mesh, *BASE[:-2], "--force", "1"]) == 1
+    assert main(["frf", "--mesh", mesh, *BASE[:-2], "--force", "1"]) == 2
     _, err = capsys.readouterr()
     assert "needs --response-set NAME" in err and len(err.strip().splitlines()) == 1
 

@@ -55,7 +55,6 @@ def test_fe_and_rom_side_by_side(capsys: pytest.CaptureFixture[str], mesh: str) 
 
 
 @pytest.mark.parametrize(("extra", "message"), [
-    ([], "needs --density KG/M3"),
     (["--density", "2700", "--mode", "51"], "--mode must be in [1, 50]"),
     (["--density", "2700", "--frequency", "100"], "--frequency not used with --mesh"),
     (["--density", "2700", "--harmonics", "5"],
@@ -67,6 +66,13 @@ def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
     assert main(["modal", "--mesh", mesh, *BASE, *extra]) == 1
     _, err = capsys.readouterr()
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_required_option_left_out_is_a_usage_mistake(capsys: pytest.CaptureFixture[str],
+                                                       mesh: str) -> None:
+    assert main(["modal", "--mesh", mesh, *BASE]) == 2
+    _, err = capsys.readouterr()
+    assert "needs --density KG/M3" in err and len(err.strip().splitlines()) == 1
 
 
 def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[str]) -> None:

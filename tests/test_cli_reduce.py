@@ -87,17 +87,14 @@ def test_few_modes_warn(capsys, mesh, tmp_path):
 
 
 @pytest.mark.parametrize(("extra", "message"), [
-    (["--rom-modes", "5"], "reduce needs --density KG/M3"),
-    (["--density", "2700"], "not both and not neither"),
-    (["--density", "2700", "--rom-modes", "5", "--cutoff-frequency", "1e4"],
-     "not both and not neither"),
     (["--density", "2700", "--rom-modes", "0"], "--rom-modes must be in [1, 2000], got 0"),
     (["--density", "2700", "--cutoff-frequency", "-5"],
      "--cutoff-frequency must be finite and > 0 Hz, got -5"),
     (["--density", "-1", "--rom-modes", "5"], "--density must be finite and > 0 kg/m^3"),
     (["--density", "2700", "--rom-modes", "5", "--normal-slope", "1e6"],
      "--normal-slope needs --normal-contact penalty"),
-    (["--density", "2700", "--rom-modes", "5", "--response-set", "nowhere"], "nowhere"),
+    (["--density", "2700", "--rom-modes", "5", "--response-set", "nowhere"],
+     "no set named 'nowhere' (the response set)"),
     (["--density", "2700", "--cutoff-frequency", "1"], "no fixed-interface mode below 1"),
 ])
 def test_bad_input_one_line(capsys, mesh, tmp_path, extra, message):
@@ -106,6 +103,38 @@ def test_bad_input_one_line(capsys, mesh, tmp_path, extra, message):
     _, err = capsys.readouterr()
     assert err.count("\n") == 1 and err.startswith("error: ") and message in err
     assert not out.exists() and not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize(("extra", "message"), [
+    (["--rom-modes", "5"], "the following arguments are required: --density KG/M3"),
+    (["--density", "2700", "--rom-modes", "5", "--cutoff-frequency", "1e4"],
+     "argument --cutoff-frequency: not allowed with argument --rom-modes"),
+])
+def test_usage_mistakes_exit_2(capsys, mesh, tmp_path, extra, message):
+    """A required option left out, or two that exclude each other: usage mistakes, exit 2
+    as argparse's own (issue 27)."""
+    out = tmp_path / "bad.npz"
+    assert main(["reduce", "--mesh", mesh, *CLAMP, *extra, "--out", str(out)]) == 2
+    _, err = capsys.readouterr()
+    assert err.count("\n") == 1 and err.startswith("error: ") and message in err
+    assert not list(tmp_path.iterdir())
+
+
+def test_rom_modes_defaults_to_60(capsys, mesh, tmp_path, monkeypatch):
+    """Without --rom-modes (and --cutoff-frequency) reduce keeps the 60 modes the help
+    promises (issue 27: it refused)."""
+    import microslip.fe.builtin.reduce as reduce_module
+
+    seen = {}
+
+    def spy(*a, **k):
+        seen.update(k)
+        raise KeyboardInterrupt  # stop before the work: the count is what is tested
+
+    monkeypatch.setattr(reduce_module, "build_rom", spy)
+    assert main(["reduce", "--mesh", mesh, *CLAMP, "--density", "2700",
+                 "--out", str(tmp_path / "a.npz")]) == 130
+    assert seen["modes"] == 60 and seen["cutoff_hz"] is None
 
 
 def test_unknown_set_and_bad_out_refused(capsys, mesh, tmp_path):
@@ -117,8 +146,8 @@ def test_unknown_set_and_bad_out_refused(capsys, mesh, tmp_path):
     assert main(["reduce", "--mesh", mesh, *CLAMP, "--density", "2700", "--rom-modes", "5",
                  "--out", str(tmp_path / "a.txt")]) == 1
     assert "--out must end in .npz" in capsys.readouterr().err
-    assert main(["reduce", *CLAMP, "--density", "2700", "--rom-modes", "5"]) == 1
-    assert "reduce needs --mesh FILE" in capsys.readouterr().err
+    assert main(["reduce", *CLAMP, "--density", "2700", "--rom-modes", "5"]) == 2
+    assert "the following arguments are required: --mesh FILE" in capsys.readouterr().err
     assert not list(tmp_path.iterdir())
 
 

@@ -328,8 +328,8 @@ def test_epmc_against_time_integration(small):
 
 def test_modal_and_frf_read_the_rom(small, tmp_path, capsys):
     """``microslip modal --structure rom.npz`` and ``frf`` take the ROM like any structure
-    file; the file's per-node laws replace the command line's joint (which the CLI still
-    asks for)."""
+    file; the file's per-node laws are its joints (a joint on the command line would change
+    nothing and is refused: tests/test_cli_issue27_options.py)."""
     import json
 
     from microslip.cli.main import main
@@ -337,7 +337,7 @@ def test_modal_and_frf_read_the_rom(small, tmp_path, capsys):
     rom, s = small
     path = str(tmp_path / "rom.npz")
     write_rom(path, rom)
-    joint = ["--joint", "jenkins", "--joint-stiffness", "1", "--slip-force", "1"]
+    joint: list[str] = []
     assert main(["modal", "--structure", path, "--mode", "2", *joint, "--amplitude-range",
                  "1e-3", "1e-2", "--amplitudes", "2", "--harmonics", "3", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)

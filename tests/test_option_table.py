@@ -133,6 +133,21 @@ def test_the_command_line_is_parsed_once_and_explicit_options_win(tmp_path, monk
 def test_a_required_option_neither_given_nor_in_the_case_is_a_usage_error(capsys, tmp_path):
     case = tmp_path / "c.toml"
     case.write_text('preset = "table1"\n')
-    assert main(["loop", "--case", str(case)]) == 2
-    assert capsys.readouterr().err == ("error: microslip loop: the following arguments are "
-                                       "required: --model\n")
+    assert main(["frf", "--case", str(case)]) == 2
+    assert capsys.readouterr().err == ("error: microslip frf: the following arguments are "
+                                       "required: --force\n")
+
+
+def test_a_required_option_takes_the_default_the_case_file_documents(tmp_path):
+    """load.model is documented as "default: tip": --case gives it to loop and sweep, which
+    require --model (issue 27: sweep --case on the template failed)."""
+    from microslip.case.options import parse_args
+
+    case = tmp_path / "c.toml"
+    case.write_text('preset = "table1"\n')
+    for command in ("loop", "sweep"):
+        args = parse_args(build_parser([command]), [command, "--case", str(case)])
+        assert args.model == "tip" and "model" not in args.given_options
+    args = parse_args(build_parser(["loop"]), ["loop", "--case", str(case), "--model",
+                                               "centre"])
+    assert args.model == "centre"

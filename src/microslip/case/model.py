@@ -20,7 +20,7 @@ from ..errors import ParameterError
 from ..named import result
 from ..params import PRESETS, ClampParams
 from .joints import JointSpec, parse_joints
-from .schema import CLAMP_KEYS, KEYS, SECTIONS
+from .schema import CLAMP_KEYS, KEYS, MESH_LOAD_KEYS, SECTIONS
 from .units import plausibility_warnings
 
 if sys.version_info >= (3, 11):
@@ -44,7 +44,8 @@ class Case:
     values are filled in from ``preset`` where the file does not set them. ``params`` is the
     clamp when it is complete (a preset, or all seven values), else None. ``joints`` are the
     ``[[joint]]`` tables of a structure (:mod:`.joints`; empty if the file has none);
-    ``mesh_loads`` the ``[[load]]`` tables of a mesh of the user's own ([mesh] file).
+    ``mesh_loads`` the ``[[mesh.load]]`` tables of a mesh of the user's own ([mesh] file);
+    ``loads_as`` how the file wrote them (``[[mesh.load]]``, or ``[[load]]`` as before).
     """
 
     source: str | None
@@ -53,6 +54,7 @@ class Case:
     warnings: tuple[str, ...]
     joints: tuple[JointSpec, ...] = ()
     mesh_loads: tuple[MeshLoad, ...] = ()
+    loads_as: str = "[[mesh.load]]"
 
     @property
     def name(self) -> str:
@@ -135,7 +137,7 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
     try:
         table = dict(table)
         joint_tables = table.pop("joint", None)
-        load_tables = table.pop("load") if isinstance(table.get("load"), list) else None
+        load_tables, loads_as = _load_tables(table)
         values = _flatten(table)
         if "structure.file" in values:
             values["structure.file"] = _beside(source, values["structure.file"])
@@ -155,21 +157,45 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
                                                   f"{where}joint {j.number}: ")
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
-    return Case(source, MappingProxyType(values), params, tuple(warnings), joints, mesh_loads)
+    return Case(source, MappingProxyType(values), params, tuple(warnings), joints, mesh_loads,
+                loads_as)
 
 
-#: Keys of a ``[[load]]`` table (a load on a set of the user's mesh) and their defaults.
-LOAD_TABLE_KEYS = {"set": None, "direction": None, "amplitude": None, "phase_deg": 0.0}
+def _load_tables(table: dict[str, Any]) -> tuple[list[Any] | None, str]:
+    """Pop the loads of the mesh out of ``table``: ``[[mesh.load]]`` tables (the [mesh]
+    section's own, which sit beside the uniaxial ``[load]`` section of the template), or the
+    top-level ``[[load]]`` tables of a file without a ``[load]`` section (read as before)."""
+    mesh = table.get("mesh")
+    inner = None
+    if isinstance(mesh, dict) and "load" in mesh:
+        mesh = dict(mesh)
+        inner = mesh.pop("load")
+        table["mesh"] = mesh
+        if not isinstance(inner, list):
+            raise ParameterError("mesh.load must be [[mesh.load]] tables (set, direction, "
+                                 "amplitude, phase_deg)")
+    outer = table.pop("load") if isinstance(table.get("load"), list) else None
+    if inner is not None and outer is not None:
+        raise ParameterError("give the loads of the mesh as [[mesh.load]] tables or as "
+                             "[[load]] tables, not both")
+    if inner is not None:
+        return inner, "[[mesh.load]]"
+    return outer, "[[load]]"
+
+
+#: Keys of a ``[[mesh.load]]`` table (a load on a set of the user's mesh) and their defaults.
+LOAD_TABLE_KEYS = {name: default for name, (default, _) in MESH_LOAD_KEYS.items()}
 
 
 def _mesh_loads(tables: list[Any]) -> tuple[MeshLoad, ...]:
-    """The ``[[load]]`` tables: set, direction = [DX, DY, DZ], amplitude (N), phase_deg."""
+    """The ``[[mesh.load]]`` tables: set, direction = [DX, DY, DZ], amplitude (N),
+    phase_deg."""
     from ..fe.meshload import MeshLoad  # only a mesh case pays for the FE package
     out = []
     for k, t in enumerate(tables, 1):
-        where = f"load {k}"
+        where = f"mesh.load {k}"
         if not isinstance(t, dict):
-            raise ParameterError(f"{where}: a [[load]] entry must be a table")
+            raise ParameterError(f"{where}: a [[mesh.load]] entry must be a table")
         unknown = [key for key in t if key not in LOAD_TABLE_KEYS]
         if unknown:
             hint = difflib.get_close_matches(unknown[0], list(LOAD_TABLE_KEYS), n=1)

@@ -21,7 +21,7 @@ from ..errors import ParameterError
 from ..params import preset
 from .model import Case, load_case
 from .schema import CLAMP_KEYS
-from .table import CASE_DESTS, OPTIONS
+from .table import CASE_DESTS, OPTIONS, add_option
 from .units import plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
@@ -30,12 +30,14 @@ __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "p
 #: Commands that read the planar load case ([load.planar]); every other command reads [load].
 PLANAR_COMMANDS = ("planar",)
 
-#: Commands that read a mesh of the user's own ([mesh] and [[load]] tables).
-MESH_COMMANDS = ("fe",)
+#: Commands that read a mesh of the user's own with its loads ([mesh] and its [[mesh.load]]
+#: tables): the frictional FE on the mesh.
+MESH_COMMANDS = ("fe", "validate")
 
-#: Commands that read the [mesh] section (file and sets) but no [[load]] tables: the
-#: structure of the user's mesh (``reduce``).
-MESH_STRUCTURE_COMMANDS = ("reduce",)
+#: Commands that read the [mesh] section (file, sets, contact, density, mode, response set)
+#: but not its loads: the structure of the user's mesh. ``modal`` and ``frf`` read it unless
+#: the command line or the case gives another structure (:func:`_structure_given`).
+MESH_STRUCTURE_COMMANDS = ("reduce", "modal", "frf")
 
 #: Commands of a structure: they read [structure] and [[joint]], and no load case (their
 #: excitation is --force).
@@ -60,11 +62,10 @@ _ACTIVE: contextvars.ContextVar[dict[str, Any] | None] = contextvars.ContextVar(
     "microslip_case_output", default=None)
 
 
-def add_case_option(parser: argparse.ArgumentParser) -> None:
-    """Add ``--case FILE.toml`` to a subcommand's parser (docs/casefile.md)."""
-    parser.add_argument("--case", metavar="FILE.toml",
-                        help="read the joint and load case from a TOML case file (microslip "
-                             "case new FILE.toml writes a template); options given here win")
+def add_case_option(parser: argparse.ArgumentParser, help: str | None = None) -> None:
+    """Add ``--case FILE.toml`` to a subcommand's parser (docs/casefile.md); ``help``: what
+    this command reads of the case file, if not the joint and load case."""
+    add_option(parser, "case", help=help)
 
 
 def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
@@ -137,17 +138,38 @@ def _reads(command: str, scope: str) -> bool:
     return command not in PLANAR_COMMANDS and command not in STRUCTURE_COMMANDS
 
 
+#: Destinations of a structure that is not the case's mesh (``modal``, ``frf``): given on the
+#: command line, they leave the [mesh] section unread.
+OTHER_STRUCTURE = ("structure", "frequency", "stuck_frequency", "modal_mass")
+
+
+def _structure_given(case: Case, command: str, explicit: Collection[str]) -> bool:
+    """True if ``modal`` or ``frf`` studies another structure than the case's mesh: a
+    structure file or one mode given on the command line, or a [structure] file in the case."""
+    return command in STRUCTURE_COMMANDS and (
+        any(d in explicit for d in OTHER_STRUCTURE) or "structure.file" in case.values)
+
+
+def _case_reads(case: Case, command: str, scope: str, explicit: Collection[str]) -> bool:
+    """:func:`_reads`, and [mesh] not read by a structure command given another structure."""
+    if scope == "mesh" and _structure_given(case, command, explicit):
+        return False
+    return _reads(command, scope)
+
+
 def _section(dotted: str) -> str:
     return dotted.rsplit(".", 1)[0] if "." in dotted else ""
 
 
-def unread(case: Case, command: str, dests: Collection[str]) -> tuple[str, ...]:
+def unread(case: Case, command: str, dests: Collection[str],
+           explicit: Collection[str] = ()) -> tuple[str, ...]:
     """What of ``case`` the command does not read: ``[section]`` when it reads none of the
     section's keys the file sets, else the dotted keys; ``[[joint]]`` for joint tables off
     modal and frf. A case file describes one clamp for every command, so these are ignored.
     """
     skipped = [k for k, (dest, scope) in CASE_OPTIONS.items()
-               if k in case.values and (not _reads(command, scope) or dest not in dests)]
+               if k in case.values and (not _case_reads(case, command, scope, explicit)
+                                        or dest not in dests)]
     out: list[str] = []
     for key in skipped:
         section = _section(key)
@@ -159,7 +181,7 @@ def unread(case: Case, command: str, dests: Collection[str]) -> tuple[str, ...]:
     if case.joints and command not in STRUCTURE_COMMANDS:
         out.append("[[joint]]")
     if case.mesh_loads and command not in MESH_COMMANDS:
-        out.append("[[load]]")
+        out.append(case.loads_as)
     return tuple(out)
 
 
@@ -197,12 +219,20 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
     if case.mesh_loads and command in MESH_COMMANDS and "load" not in explicit:
         out["load"] = [ld.spec() for ld in case.mesh_loads]
     for key, (dest, scope) in CASE_OPTIONS.items():
-        if key not in case.values or not _reads(command, scope) or dest not in dests:
+        if (key not in case.values or not _case_reads(case, command, scope, explicit)
+                or dest not in dests):
             continue
         if dest in explicit or dest == "amplitude":
             continue  # the command line wins; the amplitude is resolved after the parse
         value = case.values[key]
         out[dest] = [value] if isinstance(dests[dest], argparse._AppendAction) else value
+    for key, (dest, scope) in CASE_OPTIONS.items():
+        # a required option the file leaves out takes the default the case file documents
+        # (``load.model``: tip), as the file's comment promises
+        if (dest in dests and dests[dest].required and dest not in explicit
+                and dest not in out and _case_reads(case, command, scope, explicit)
+                and case.get(key) is not None):
+            out[dest] = case.get(key)
     if case.params is not None and "preset" in dests:
         if "preset" in explicit:
             raise ParameterError(f"--preset {explicit['preset']} conflicts with the clamp of "
@@ -256,7 +286,7 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
         case = load_case(case_path)
         dests = {a.dest: a for a in sub._actions}
         defaults = case_defaults(case, args.command, dests, explicit)
-        skipped = unread(case, args.command, dests)
+        skipped = unread(case, args.command, dests, explicit)
         if skipped:
             print(f"case: {', '.join(skipped)} not read by {args.command}", file=sys.stderr)
     _complete(sub, args, defaults)

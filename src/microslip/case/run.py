@@ -23,7 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..conventions import check_whole
+from ..conventions import DEFAULT_MESH, check_whole
 from ..energy import DEFAULT_STRAIN_ENERGY, damping
 from ..errors import MacroslipError, ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
@@ -39,6 +39,7 @@ from ..results import DampingResult
 from .model import Case
 from .options import CASE_OPTIONS, _reads
 from .schema import CLAMP_KEYS
+from .table import OPTIONS, SOLVERS
 
 __all__ = [
     "CLAMP_FIELDS",
@@ -85,33 +86,35 @@ MODEL_PORTION = {"tip": "half", "centre": "whole"}
 _PORTION_TEXT = {"half": "one symmetric half of the clamp", "whole": "the whole clamp",
                  "mixed": "tip half with the whole centre"}
 
+def _table_defaults(*names: str) -> dict[str, Any]:
+    """The option table's defaults of ``names`` (:attr:`~.table.Option.default`)."""
+    return {name: OPTIONS[name].default for name in names}
+
+
 #: The defaults of the options that loop, planar and fe read, as their command lines have
-#: them (tests/test_report_consistency.py holds them equal to the parsers'); a case's keys
-#: and the report's settings are laid over them.
+#: them: the option table's (one definition; tests/test_report_consistency.py holds them
+#: equal to the parsers'), and where a command has its own, the library's constant it uses;
+#: a case's keys and the report's settings are laid over them.
 _MODEL_DEFAULTS: dict[str, Any] = {
-    "preset": None, "amplitude": None, "displacement_amplitude": None,
-    **{f: None for f in CLAMP_FIELDS},
-    "strain_energy": DEFAULT_STRAIN_ENERGY,
-}
-_READING_DEFAULTS: dict[str, Any] = {
-    "no_corrections": False, "poisson": "consistent", "no_length_update": False,
-    "centre_reading": "physical", "paper_literal": False,
-    "stick_slope": None, "pressure_law": None, "no_shear_lag": False,
-}
+    **_table_defaults("preset", "amplitude", "displacement_amplitude", *CLAMP_FIELDS),
+    "strain_energy": DEFAULT_STRAIN_ENERGY}
+_READING_DEFAULTS: dict[str, Any] = _table_defaults(
+    "no_corrections", "poisson", "no_length_update", "centre_reading", "paper_literal",
+    "stick_slope", "pressure_law", "no_shear_lag")
 COMMAND_DEFAULTS: dict[str, dict[str, Any]] = {
-    "loop": {**_MODEL_DEFAULTS, **_READING_DEFAULTS, "preset": "table1", "increments": 1000},
+    "loop": {**_MODEL_DEFAULTS, **_READING_DEFAULTS, **_table_defaults("increments")},
     "planar": {**{k: v for k, v in _MODEL_DEFAULTS.items() if k != "amplitude"},
-               **_READING_DEFAULTS, "preset": "table1", "increments": 1000,
-               "tip_amplitude": None, "centre_amplitude": None, "ratio": None,
-               "levels": "base", "phase": 0.0, "tip_preset": "table2-tip",
-               "centre_preset": "table2-centre", "tip_symmetry": TIP_SYMMETRY,
-               "work_energy": DEFAULT_WORK_STRAIN_ENERGY, "samples_per_cycle": 2048,
-               "solver": "analytical"},
-    "fe": {**_MODEL_DEFAULTS, "preset": "table1", "mesh": "coarse",
-           "stick_slope": DEFAULT_STICK_SLOPE, "normal_slope": DEFAULT_NORMAL_SLOPE,
-           "normal_contact": None, "pressure_law": None,
-           "clamping_csv": None, "element": None, "substeps": 50, "solver": "builtin",
-           "timeout": None, "threads": 1, "reuse": False},
+               **_READING_DEFAULTS,
+               **_table_defaults("increments", "tip_amplitude", "centre_amplitude", "ratio",
+                                 "levels", "phase", "tip_preset", "centre_preset",
+                                 "samples_per_cycle"),
+               "tip_symmetry": TIP_SYMMETRY, "work_energy": DEFAULT_WORK_STRAIN_ENERGY,
+               "solver": next(iter(SOLVERS["planar"]))},
+    "fe": {**_MODEL_DEFAULTS, "mesh": DEFAULT_MESH, "stick_slope": DEFAULT_STICK_SLOPE,
+           "normal_slope": DEFAULT_NORMAL_SLOPE,
+           **_table_defaults("normal_contact", "pressure_law", "clamping_csv", "element",
+                             "substeps", "timeout", "threads", "reuse"),
+           "solver": next(iter(SOLVERS["fe"]))},
 }
 
 

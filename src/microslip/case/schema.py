@@ -47,6 +47,7 @@ __all__ = [
     "JOINT_MODELS",
     "JOINT_USES",
     "KEYS",
+    "MESH_LOAD_KEYS",
     "PAIRINGS",
     "PRESSURE_LAWS",
     "SECTIONS",
@@ -123,7 +124,17 @@ SECTIONS = {
     "load": "uniaxial load case (read by loop, fe, sweep, validate)",
     "load.planar": "planar load case (read by planar)",
     "structure": "a structure from a file with its joints (read by modal and frf)",
-    "mesh": "a mesh of your own clamp, its sets, and [[load]] tables (read by fe)",
+    "mesh": "a mesh of your own part: its sets, contact, density, mode, response set and "
+            "[[mesh.load]] tables (read by fe, validate, modal, frf, reduce, report)",
+}
+
+#: The keys of a ``[[mesh.load]]`` table: name -> (default, None if required; meaning).
+MESH_LOAD_KEYS: dict[str, tuple[Any, str]] = {
+    "set": (None, "a set of the mesh (element faces or nodes) that carries the load"),
+    "direction": (None, "[DX, DY, DZ], global axes (normalised)"),
+    "amplitude": (None, "A, N: the load is F(t) = A sin(2 pi t + phase), A in total over "
+                        "the set"),
+    "phase_deg": (0.0, "the phase, degrees (default 0)"),
 }
 
 def _meaning(opt: Option) -> str:

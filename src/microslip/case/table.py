@@ -17,9 +17,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from pathlib import Path
+from collections.abc import Sequence
 from typing import Any
 
 from ..conventions import (
@@ -32,12 +30,38 @@ from ..conventions import (
     PAIRINGS,
     TRANSVERSE,
 )
-from ..errors import ParameterError
-from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, is_mesh_spec
+from ..fe.constants import DEFAULT_NORMAL_SLOPE
+from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS
+from .checks import (
+    PRESSURE_LAWS,
+    Check,
+    Option,
+    choice,
+    exponent,
+    interval,
+    mesh_file,
+    mesh_level,
+    mesh_or_file,
+    mesh_text,
+    number,
+    positive,
+    pressure_text,
+    set_name,
+    text,
+    whole,
+)
+from .runflags import DEFAULT_ROM_MODES, MAX_ROM_MODES, RUN_OPTIONS
 
 __all__ = [
     "CASE_DESTS",
+    "DEFAULT_ROM_MODES",
+    "MAX_MODE",
+    "MAX_ROM_MODES",
     "MESH_HELP",
+    "MODES_KEY",
+    "MODE_BOX",
+    "MODE_MESH",
+    "MODE_STRUCTURE",
     "OPTIONS",
     "PRESSURE_LAWS",
     "SOLVERS",
@@ -48,215 +72,25 @@ __all__ = [
     "choice",
     "exponent",
     "interval",
+    "mesh_file",
     "mesh_level",
+    "mesh_or_file",
     "mesh_text",
+    "mode_options",
     "number",
     "positive",
     "pressure_text",
+    "set_name",
     "text",
     "whole",
 ]
 
-#: Clamping pressure laws (as ``--pressure-law`` and ``clamping.pressure`` take them).
-PRESSURE_LAWS = ("uniform", "parabolic", "power:N[:EDGE]", "table:FILE.csv")
-
-Check = Callable[[str, Any], Any]
-
-
-# --- argparse types ------------------------------------------------------------------------
-
-def number(text: str) -> float:
-    """argparse type: any float syntax (validation of the range happens in the model)."""
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-
-
-def mesh_level(text: str) -> str:
-    """argparse type: a mesh level of :mod:`microslip.meshlevels` or ``NXxNYxNZ``."""
-    if is_mesh_spec(text):
-        return text
-    raise argparse.ArgumentTypeError(
-        f"unknown mesh {text!r}; choose one of {', '.join(LEVELS)} or NXxNYxNZ")
-
-
-def mesh_or_file(text: str) -> str:
-    """argparse type of ``fe --mesh``: a mesh level, ``NXxNYxNZ``, or a mesh file that exists
-    (``.inp`` or a format meshio reads: :mod:`microslip.fe.meshfile`)."""
-    if is_mesh_spec(text):
-        return text
-    if Path(text).is_file():
-        return text
-    raise argparse.ArgumentTypeError(
-        f"unknown mesh {text!r}: neither a level ({', '.join(LEVELS)}), NXxNYxNZ, nor an "
-        "existing mesh file (.inp, .msh, .vtu, ...)")
-
-
-def mesh_file(text: str) -> str:
-    """argparse type: a mesh file that exists (``modal --mesh``)."""
-    if Path(text).is_file():
-        return text
-    raise argparse.ArgumentTypeError(f"no mesh file {text!r} (.inp, .msh, .vtu, ...)")
-
-
-def set_name(text: str) -> str:
-    """argparse type: a non-empty set name of a mesh file."""
-    if not text.strip():
-        raise argparse.ArgumentTypeError("a set name must not be empty")
-    return text
-
-
-# --- case-value checks ---------------------------------------------------------------------
-
-def _u(unit: str) -> str:
-    return f" ({unit})" if unit else ""
-
-
-def _number(name: str, value: Any, unit: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ParameterError(f"case key {name} must be a number{_u(unit)}, got {value!r}")
-    x = float(value)
-    if not math.isfinite(x):
-        raise ParameterError(f"case key {name} must be finite{_u(unit)}, got {value!r}")
-    return x
-
-
-def positive(unit: str = "", upper: float = math.inf) -> Check:
-    """A check: a finite number in (0, upper)."""
-    def check(name: str, value: Any) -> float:
-        x = _number(name, value, unit)
-        if not 0.0 < x < upper:
-            rng = "> 0" if upper == math.inf else f"in (0, {upper:g})"
-            raise ParameterError(f"case key {name} must be {rng}{_u(unit)}, got {value!r}")
-        return x
-    return check
-
-
-def interval(low: float, high: float, unit: str = "", closed: bool = False) -> Check:
-    """A check: a finite number in [low, high), or [low, high] if ``closed``."""
-    def check(name: str, value: Any) -> float:
-        x = _number(name, value, unit)
-        if not (low <= x < high or (closed and x == high)):
-            raise ParameterError(f"case key {name} must be in [{low:g}, {high:g}"
-                                 f"{']' if closed else ')'}{_u(unit)}, got {value!r}")
-        return x
-    return check
-
-
-def text(name: str, value: Any) -> str:
-    """A check: a string."""
-    if not isinstance(value, str):
-        raise ParameterError(f"case key {name} must be a string, got {value!r}")
-    return value
-
-
-def choice(options: tuple[str, ...], later: tuple[str, ...] = ()) -> Check:
-    """A check: one of ``options``; names in ``later`` are planned but refused for now."""
-    def check(name: str, value: Any) -> str:
-        s = text(name, value)
-        if s in later:
-            raise ParameterError(f"case key {name} = {s!r} is not yet available; accepted now: "
-                                 f"{', '.join(options)} (planned: {', '.join(later)})")
-        if s not in options:
-            raise ParameterError(f"case key {name} must be one of {', '.join(options)}, "
-                                 f"got {s!r}")
-        return s
-    return check
-
-
-def pressure_text(name: str, value: Any) -> str:
-    """A check: a pressure law as ``--pressure-law`` takes it (uniform, parabolic,
-    power:N[:EDGE], table:FILE.csv); the law itself is built when a command reads it."""
-    s = text(name, value)
-    if s in ("uniform", "parabolic") or (s.startswith(("power:", "table:")) and len(s) > 6):
-        return s
-    raise ParameterError(f"case key {name} must be one of {', '.join(PRESSURE_LAWS)}, "
-                         f"got {s!r}")
-
-
-def mesh_text(name: str, value: Any) -> str:
-    """A check: a mesh level or ``NXxNYxNZ``, as ``--mesh`` takes it."""
-    s = text(name, value)
-    if is_mesh_spec(s):
-        return s
-    raise ParameterError(f"case key {name} must be one of {', '.join(LEVELS)} or NXxNYxNZ, "
-                         f"got {s!r}")
-
-
-def whole(low: int, high: int) -> Check:
-    """A check: a whole number in [low, high]."""
-    def check(name: str, value: Any) -> int:
-        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-            raise ParameterError(f"case key {name} must be a whole number in [{low}, {high}], "
-                                 f"got {value!r}")
-        return int(value)
-    return check
-
-
-def exponent(name: str, value: Any) -> float:
-    """A check: Segalman's chi, in (-1, 0]."""
-    x = _number(name, value, "")
-    if not -1.0 < x <= 0.0:
-        raise ParameterError(f"case key {name} must be in (-1, 0], got {value!r}")
-    return x
-
-
-# --- the table -----------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class Option:
-    """One option of the command line and, where it has one, its case-file key.
-
-    Attributes
-    ----------
-    name : str
-        argparse destination; the flag is ``--`` plus the name with dashes.
-    help : str
-        What it is (the command-line help and the case file's comment).
-    unit, range : str
-        Unit ("" if none) and allowed range, as the help and the template print them.
-    type : callable or None
-        argparse type (None: a string; with ``choices``).
-    metavar : str or None
-        argparse metavar.
-    choices : tuple of str or None
-        Allowed values of a name option.
-    key : str or None
-        Dotted case-file key (``geometry.length``), None if the case file has none.
-    joint_key : str or None
-        Key of a ``[[joint]]`` table (``stiffness``), None if none.
-    check : callable or None
-        Check of a case value (``check(dotted_key, value) -> value``).
-    scope : str
-        Which commands read ``key``: ``all``, ``load`` (the uniaxial load case), ``planar``
-        (the planar one) or ``mesh`` (a mesh of the user's own: ``fe``).
-    case_default : object
-        The default a case file documents for ``key`` (None: none).
-    case_note : str
-        What the case file adds to the meaning (how the key combines with others).
-    """
-
-    name: str
-    help: str
-    unit: str = ""
-    range: str = ""
-    type: Callable[[str], Any] | None = number
-    metavar: str | None = None
-    choices: tuple[str, ...] | None = None
-    key: str | None = None
-    joint_key: str | None = None
-    check: Check | None = None
-    scope: str = "all"
-    case_default: Any = None
-    case_note: str = ""
-
-    @property
-    def flag(self) -> str:
-        return "--" + self.name.replace("_", "-")
-
-
 _FROM_PRESET = "from preset"
+
+#: Normal contact laws of a mesh's base (``fixed``: the built-in solver's default).
+NORMAL_CONTACTS = ("fixed", "penalty")
+#: Highest mode number ``--mode`` takes (a mesh's eigen-solve computes that many).
+MAX_MODE = 50
 
 #: --mesh help: the mesh levels of :mod:`microslip.meshlevels`.
 MESH_HELP = (
@@ -309,7 +143,7 @@ _OPTIONS: tuple[Option, ...] = (
     Option("phase", "phase of the centre force ahead of the tip force", "degrees",
            "[-360, 360]", metavar="DEG", key="load.planar.phase_deg",
            check=interval(-360.0, 360.0, "degrees", closed=True), scope="planar",
-           case_default=0.0),
+           case_default=0.0, default=0.0),
     # the finite-element model
     Option("mesh", MESH_HELP, "", f"{' | '.join(LEVELS)} | NXxNYxNZ", type=mesh_level,
            metavar="LEVEL"),
@@ -317,7 +151,7 @@ _OPTIONS: tuple[Option, ...] = (
     Option("mesh_file", "a mesh of your own clamp: .inp, .msh, .vtu, ...; hexahedra with "
            "named sets", "", "path", type=None, metavar="FILE",
            key="mesh.file", check=text, scope="mesh", case_note="relative to the case file; "
-           "its loads are [[load]] tables: set, direction = [DX, DY, DZ], amplitude (N), "
+           "its loads are [[mesh.load]] tables: set, direction = [DX, DY, DZ], amplitude (N), "
            "phase_deg"),
     Option("contact_set", "set of the mesh on the rigid base (node set or element-face "
            "surface)", "", "a set name of the mesh file", type=set_name, metavar="NAME",
@@ -329,22 +163,32 @@ _OPTIONS: tuple[Option, ...] = (
     Option("density", "density of the body of the mesh (aluminium 2700, steel 7850)",
            "kg/m^3", "> 0", metavar="KG/M3", key="mesh.density", check=positive("kg/m^3"),
            scope="mesh", case_note="with it, report adds the damping of the structure's mode"),
-    Option("mode", "the structure's mode whose damping is studied, 1 the lowest stuck mode",
-           "", "[1, 50]", type=int, metavar="N", key="mesh.mode", check=whole(1, 50),
-           scope="mesh", case_default=1),
+    Option("mode", "the structure's mode followed, 1-based by stuck frequency (1: the lowest "
+           "stuck mode)", "", f"[1, {MAX_MODE}]", type=int, metavar="N", key="mesh.mode",
+           check=whole(1, MAX_MODE), scope="mesh", case_default=1),
     Option("response_set", "set of the mesh whose mean displacement along the mode is the "
            "amplitude", "", "a set name of the mesh file", type=set_name, metavar="NAME",
            key="mesh.response_set", check=text, scope="mesh"),
+    Option("normal_contact", "normal contact of the contact set on its base: fixed, the "
+           "clamping step's normal forces (u_z = 0, the paper's reading); penalty, the linear "
+           "pressure-overclosure law of normal_slope, lift-off allowed", "",
+           " | ".join(NORMAL_CONTACTS), type=None, choices=NORMAL_CONTACTS,
+           key="mesh.normal_contact", check=choice(NORMAL_CONTACTS), scope="mesh",
+           case_default="fixed", case_note="CalculiX takes penalty only (its default)"),
+    Option("normal_slope", "penalty normal stiffness per area (slope of the pressure-"
+           "overclosure law)", "N/mm^3", "> 0", metavar="N/MM3", key="mesh.normal_slope",
+           check=positive("N/mm^3"), scope="mesh", case_default=DEFAULT_NORMAL_SLOPE,
+           case_note="with normal_contact = \"penalty\""),
     # mesh convergence of the user's own mesh (fe --mesh FILE, modal --mesh FILE; issue 29)
     Option("refine", "subdivide every hexahedron of the mesh N times in each direction (N^3 "
            "children, sets carried) before the run, N in [1, 8]", "", "[1, 8]", type=int,
            metavar="N", scope="mesh"),
     Option("convergence", "run the mesh and its refinements x2 and report Richardson's "
            "estimate of the converged values, the observed order and the given mesh's "
-           "discretisation error", "", "", type=None, scope="mesh"),
-    Option("levels", "with --convergence: meshes run, the given one and 1 or 2 refinements x2 "
+           "discretisation error", "", "", type=None, action="store_true", scope="mesh"),
+    Option("mesh_levels", "with --convergence: meshes run, the given one and 1 or 2 refinements x2 "
            "(3 observes the order, 2 assumes the element's)", "", "2 | 3", type=int,
-           metavar="N", choices=None, scope="mesh"),
+           metavar="N", choices=None, spelling="--levels", scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",
@@ -388,7 +232,8 @@ _OPTIONS: tuple[Option, ...] = (
 )
 
 #: Option name -> :class:`Option`.
-OPTIONS: dict[str, Option] = {o.name: o for o in _OPTIONS}
+OPTIONS: dict[str, Option] = {o.name: o for o in (*_OPTIONS, *RUN_OPTIONS)}
+assert len(OPTIONS) == len(_OPTIONS) + len(RUN_OPTIONS), "an option is in the table twice"
 
 #: Case key -> (argparse destination, which load case reads it: "all", "load" or "planar").
 #: ``load.amplitude_fraction`` also gives the amplitude (resolved after the parse).
@@ -415,37 +260,95 @@ def _help(opt: Option, default: Any, note: str, help_text: str | None) -> str:
     body = opt.help if help_text is None else help_text
     unit = f", {opt.unit}" if opt.unit else ""
     rng = f", {opt.range}" if opt.range and opt.choices is None and opt.type is number else ""
-    shown = "" if default is None or default is argparse.SUPPRESS else f" (default {default:g})" \
-        if isinstance(default, float) else f" (default {default})"
+    hidden = default is None or default is argparse.SUPPRESS or isinstance(default, bool) \
+        or default == []
+    value = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else default
+    shown = "" if hidden else f" (default {default:g})" if isinstance(default, float) \
+        else f" (default {value})"
     return f"{body}{unit}{rng}{shown}{'; ' + note if note else ''}"
 
 
-def add_option(group: Any, name: str, *, default: Any = None, note: str = "",
-               help: str | None = None, **extra: Any) -> argparse.Action:
+#: The modes of a command that :func:`add_option` records (``mode=``): a mesh of the user's
+#: own (``--mesh FILE``), the built-in box (``fe``, ``validate`` without a mesh file), a
+#: structure file or one mode (``modal``, ``frf`` without ``--mesh``).
+MODE_MESH, MODE_BOX, MODE_STRUCTURE = "mesh", "box", "structure"
+
+#: The parser default under which :func:`add_option` records the mode an option belongs to
+#: (``mode="mesh"``): destination -> mode, for :func:`mode_options`.
+MODES_KEY = "option_modes"
+
+
+def mode_options(args: argparse.Namespace, mode: str) -> tuple[str, ...]:
+    """The destinations of the options that ``add_option(..., mode=mode)`` added to the
+    command of ``args``: the options that do something in that mode only."""
+    modes: dict[str, str] = getattr(args, MODES_KEY, {})
+    return tuple(d for d, m in modes.items() if m == mode)
+
+
+#: ``add_option``'s "no default of the command's own": the option's table default.
+_TABLE_DEFAULT: Any = object()
+
+
+def add_option(group: Any, name: str, *, default: Any = _TABLE_DEFAULT, note: str = "",
+               help: str | None = None, flag: str | None = None, mode: str | None = None,
+               **extra: Any) -> argparse.Action:
     """Add the option ``name`` of :data:`OPTIONS` to a parser or argument group.
 
-    ``default`` is the command's default (shown in the help), ``note`` a command-specific
-    sentence after the shared help, ``help`` a replacement of the shared help text; ``extra``
-    goes to ``add_argument`` (``action="append"``, ``required=True``, ...). ``--solver`` is
-    not here: :func:`add_solver` documents what it means per command.
+    ``default`` is the command's default if it has its own (else the table's,
+    :attr:`Option.default`; shown in the help), ``note`` a command-specific
+    sentence after the shared help, ``help`` a replacement of the shared help text, ``flag``
+    another spelling (``case new --mesh`` for ``mesh_file``), ``mode`` the mode of the
+    command the option belongs to (``"mesh"``: with ``--mesh FILE`` only; the command refuses
+    it in its other modes, :func:`mode_options`); ``extra`` goes to ``add_argument``
+    (``required=True``, the choices of a library registry, ...).
+    ``--solver`` is not here: :func:`add_solver` documents what it means per command.
     """
     opt = OPTIONS[name]
-    kwargs: dict[str, Any] = {"dest": opt.name, "default": default,
-                              "help": _help(opt, default, note, help)}
-    if opt.choices is not None:
-        kwargs["choices"] = list(opt.choices)
-    elif opt.metavar is not None:  # a flag (store_true) has none
-        kwargs["metavar"] = opt.metavar
-    if opt.type is not None:
-        kwargs["type"] = opt.type
+    if default is _TABLE_DEFAULT:
+        default = opt.default
+    kwargs: dict[str, Any] = {"dest": opt.name, "help": _help(opt, default, note, help)}
+    if opt.action == "store_true":
+        kwargs["action"] = "store_true"
+        kwargs["default"] = False if default is None else default
+    else:
+        kwargs["default"] = default
+        if opt.action is not None:
+            kwargs["action"] = opt.action
+        if opt.nargs is not None:
+            kwargs["nargs"] = opt.nargs
+        if opt.choices is not None:
+            kwargs["choices"] = list(opt.choices)
+        elif opt.metavar is not None:
+            kwargs["metavar"] = opt.metavar
+        if opt.type is not None:
+            kwargs["type"] = opt.type
     kwargs.update(extra)
-    return group.add_argument(opt.flag, **kwargs)
+    action = group.add_argument(flag or opt.flag, **kwargs)
+    if mode is not None:
+        _record_mode(group, action.dest, mode)
+    return action
 
 
-def add_solver(group: Any, command: str, choices: Sequence[str] | None = None) -> argparse.Action:
-    """``--solver`` of ``command``, its choices and what each means (:data:`SOLVERS`)."""
-    meaning = SOLVERS[command]
+def _record_mode(group: Any, dest: str, mode: str) -> None:
+    """Record that the option ``dest`` of ``group``'s parser belongs to ``mode``."""
+    modes = dict(group.get_default(MODES_KEY) or {})
+    modes[dest] = mode
+    group.set_defaults(**{MODES_KEY: modes})
+
+
+def add_solver(group: Any, command: str, choices: Sequence[str] | None = None,
+               meaning: dict[str, str] | None = None, mode: str | None = None,
+               note: str = "") -> argparse.Action:
+    """``--solver`` of ``command``, its choices and what each means (:data:`SOLVERS`, or
+    ``meaning`` from a library registry: ``modal --mesh``'s solvers), the first the default.
+    With ``mode`` (:func:`add_option`) the option belongs to that mode only and defaults to
+    nothing (the command takes the first where it applies)."""
+    meaning = SOLVERS[command] if meaning is None else meaning
     names = list(meaning if choices is None else choices)
-    return group.add_argument(
-        "--solver", choices=names, default=names[0],
-        help="; ".join(f"{k}: {meaning[k]}" for k in names) + f" (default {names[0]})")
+    action = group.add_argument(
+        "--solver", choices=names, default=names[0] if mode is None else None,
+        help="; ".join(f"{k}: {meaning[k]}" for k in names) + f" (default {names[0]})"
+        + (f"; {note}" if note else ""))
+    if mode is not None:
+        _record_mode(group, action.dest, mode)
+    return action

@@ -12,9 +12,9 @@ from __future__ import annotations
 from typing import Any
 
 from ..params import PRESETS
-from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, SECTIONS, Key
+from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, MESH_LOAD_KEYS, SECTIONS, Key
 
-__all__ = ["TEMPLATE_PRESET", "TEMPLATE_VALUES", "template"]
+__all__ = ["TEMPLATE_PRESET", "TEMPLATE_VALUES", "mesh_template", "template"]
 
 #: The preset the template starts from.
 TEMPLATE_PRESET = "table1"
@@ -76,6 +76,9 @@ def template() -> str:
         if section:
             lines.append(f"[{section}]  # {what}")
         lines.extend(_line(k) for k in KEYS if k.section == section)
+    lines += ["# the loads of the mesh: [[mesh.load]] tables (set, direction, amplitude, "
+              "phase_deg);", "# microslip case new --mesh MESHFILE FILE.toml writes a case "
+              "of your own mesh"]
     lines.extend(_joints())
     return "\n".join(lines) + "\n"
 
@@ -109,3 +112,87 @@ def _joints() -> list[str]:
     out.append("# Example (uncomment):")
     out.extend(f"#   {line}".rstrip() for line in JOINT_EXAMPLE)
     return out
+
+
+# -- the template of a mesh of the user's own ------------------------------------------------
+
+#: Sections a mesh case holds besides [mesh]: the clamp's values the mesh does not give (its
+#: geometry is the mesh's).
+MESH_CLAMP_SECTIONS = ("material", "contact", "clamping")
+#: Keys of those sections a mesh's commands do not read (the box's pressure law).
+MESH_UNUSED_KEYS = ("clamping.pressure",)
+#: Set names taken as a role's value when the mesh has them (else the role is left to fill).
+ROLE_GUESSES = {"contact_set": ("contact", "base", "bottom"), "clamp_set": ("clamp", "top"),
+                "response_set": ("response", "tip")}
+
+
+def _mesh_line(key: Key, value: Any, active: bool, note: str) -> str:
+    unit = f"{key.unit}, " if key.unit else ""
+    shown = "" if value is None else _toml(value)
+    return (f"# {key.meaning}; {unit}{key.range}; {note}\n"
+            f"{'' if active else '# '}{key.name} = {shown}".rstrip())
+
+
+def mesh_template(mesh_file: str, node_sets: tuple[str, ...], surfaces: tuple[str, ...]
+                  ) -> str:
+    """The text of a case file of a mesh of the user's own: the [mesh] section with the
+    file (as given, relative to the case file), its sets (listed from the file; a role's
+    value where the file has a set of the usual name, :data:`ROLE_GUESSES`), the contact,
+    density, mode and response set, an example of its ``[[mesh.load]]`` tables, and the
+    clamp values the mesh does not give (:data:`MESH_CLAMP_SECTIONS`, set to the
+    :data:`TEMPLATE_PRESET` values as an example to edit). No preset and no [geometry]: the
+    mesh gives the geometry."""
+    base = PRESETS[TEMPLATE_PRESET][0].as_dict()
+    names = (*node_sets, *(s for s in surfaces if s not in node_sets))
+    listed = ", ".join(names) if names else "none"
+    lines = [
+        "# microslip case file (TOML) of your own part: the mesh and its clamp. Units: N, mm,",
+        "# MPa, N/mm^3, kg/m^3, degrees. Use it with --case FILE.toml on fe, validate, modal,",
+        "# frf, reduce and report (docs/casefile.md, docs/ownmesh.md); options on the command",
+        "# line override the file. The mesh gives the geometry: no preset, no [geometry].",
+        "",
+        _mesh_line(_KEY["name"], "", True, "default: none"),
+    ]
+    for section in MESH_CLAMP_SECTIONS:
+        lines += ["", f"[{section}]  # {SECTIONS[section]}"]
+        for key in KEYS:
+            if key.section != section or key.dotted in MESH_UNUSED_KEYS:
+                continue
+            if key.dotted in CLAMP_KEYS:
+                value = base[CLAMP_KEYS[key.dotted]]
+                note = f"no default: set to {TEMPLATE_PRESET}'s {value:g} as an example, edit it"
+            else:
+                value, note = key.default, f"default: {key.default:g}"
+            lines.append(_mesh_line(key, value, True, note))
+    lines += ["", f"[mesh]  # {SECTIONS['mesh']}",
+              f"# sets of {mesh_file}: node sets: {', '.join(node_sets) or 'none'}; "
+              f"element-face surfaces: {', '.join(surfaces) or 'none'}"]
+    roles = {role: next((n for n in guesses if n in names), None)
+             for role, guesses in ROLE_GUESSES.items()}
+    for key in KEYS:
+        if key.section != "mesh":
+            continue
+        role = key.name
+        if key.dotted == "mesh.file":
+            lines.append(_mesh_line(key, mesh_file, True, "required"))
+        elif role in ROLE_GUESSES:
+            hit = roles[role]
+            note = f"one of: {listed}" + ("" if role == "response_set" else "; required")
+            lines.append(_mesh_line(key, hit if hit is not None else "", hit is not None,
+                                    note))
+        elif key.default is None:
+            lines.append(_mesh_line(key, None, False, "default: none"))
+        else:
+            shown = _toml(key.default) if isinstance(key.default, str) else \
+                format(key.default, "g")
+            lines.append(_mesh_line(key, key.default, False, f"default: {shown}"))
+    loaded = next((n for n in names if n not in roles.values()), "SET")
+    lines += ["", "# [[mesh.load]] tables: the loads of the mesh (fe, validate), one table "
+              "each:", *(f"#   {name}: {what}" for name, (_, what) in MESH_LOAD_KEYS.items()),
+              "# Example (uncomment; two loads at 90 degrees make a planar load):",
+              "# [[mesh.load]]", f'# set = "{loaded}"', "# direction = [1.0, 0.0, 0.0]",
+              "# amplitude = 100.0", "# phase_deg = 0.0"]
+    return "\n".join(lines) + "\n"
+
+
+_KEY = {k.dotted: k for k in KEYS}

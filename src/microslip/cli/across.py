@@ -26,11 +26,13 @@ from .joint import clamp_from_args, describe_joint, elements_from_args
 __all__ = ["across_from_args", "across_joint", "add_across_options", "describe_across"]
 
 
-def add_across_options(group: Any) -> None:
-    """``--transverse``, ``--pairing`` and ``--fe-mesh`` in the argument group ``group``."""
-    add_option(group, "transverse", note="the second --joint-dof; default: --joint in both")
-    add_option(group, "pairing")
-    add_option(group, "fe_mesh")
+def add_across_options(group: Any, mode: str | None = None) -> None:
+    """``--transverse``, ``--pairing`` and ``--fe-mesh`` in the argument group ``group`` (in
+    ``mode`` only, if given)."""
+    add_option(group, "transverse", note="the second --joint-dof; default: --joint in both",
+               mode=mode)
+    add_option(group, "pairing", mode=mode)
+    add_option(group, "fe_mesh", mode=mode)
 
 
 def _usage(message: str) -> Exception:

@@ -41,18 +41,27 @@ PARAM_FLAGS = tuple((OPTIONS[f.name].flag[2:], f.name, OPTIONS[f.name].unit)
                     for f in dataclasses.fields(ClampParams))
 
 
-def add_params(parser: argparse.ArgumentParser, default_preset: str | None = None) -> None:
+#: The clamp's values a mesh of the user's own gives itself (its geometry).
+GEOMETRY = ("length", "width", "thickness")
+
+
+def add_params(parser: argparse.ArgumentParser,
+               default_preset: str | None = OPTIONS["preset"].default,
+               mode: str | None = None) -> None:
+    """``--preset``, the seven clamp flags and ``--amplitude``; with ``mode`` the preset, the
+    geometry and the amplitude belong to that mode only (:func:`~microslip.case.table.
+    add_option`): the box's, which a mesh of the user's own replaces."""
     g = parser.add_argument_group("clamped zone (override the preset's values)")
-    g.add_argument("--preset", choices=sorted(PRESETS), default=default_preset,
-                   help=f"paper parameter set (default {default_preset})")
-    add_clamp_flags(g)
-    add_option(g, "amplitude", note="default: the preset's")
+    add_option(g, "preset", choices=sorted(PRESETS), default=default_preset, mode=mode)
+    add_clamp_flags(g, mode)
+    add_option(g, "amplitude", note="default: the preset's", mode=mode)
 
 
-def add_clamp_flags(group: Any) -> None:
-    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude)."""
+def add_clamp_flags(group: Any, geometry_mode: str | None = None) -> None:
+    """The seven clamp flags of :data:`PARAM_FLAGS` (without --preset and --amplitude); the
+    geometry's in ``geometry_mode`` only, if given."""
     for _, field, _ in PARAM_FLAGS:
-        add_option(group, field)
+        add_option(group, field, mode=geometry_mode if field in GEOMETRY else None)
 
 
 def clamp_overrides(args: argparse.Namespace) -> dict[str, float]:
@@ -67,36 +76,30 @@ def params_from_args(args: argparse.Namespace, fallback_amplitude: float | None 
     return run.clamp_from_options(vars(args), fallback_amplitude)
 
 
-def add_model_options(parser: argparse.ArgumentParser, centre_default: str = "physical",
+def add_model_options(parser: argparse.ArgumentParser,
+                      centre_default: str = OPTIONS["centre_reading"].default,
                       centre_why: str = "") -> None:
     """Flags of :class:`ModelOptions`; ``centre_why`` explains a non-default centre reading."""
     g = parser.add_argument_group("reading of the paper (docs/interpretation.md)")
-    g.add_argument("--no-corrections", action="store_true",
-                   help="switch off the Poisson and length updates (rigid-foundation limit)")
-    g.add_argument("--poisson", choices=POISSON_MODES, default="consistent",
-                   help="Poisson update of the cross-section (default consistent)")
-    g.add_argument("--no-length-update", action="store_true",
-                   help="keep the clamped length constant (no L + delta)")
-    g.add_argument("--centre-reading", choices=CENTRE_READINGS, default=centre_default,
-                   help="centre model: physical (F/2 per half, a = F/2q, macroslip at mu F_N) "
-                        "or paper (Eq. 11 as printed, macroslip at 2 mu F_N); default "
-                        f"{centre_default}{centre_why}")
-    g.add_argument("--paper-literal", action="store_true",
-                   help="every equation as printed (Eqs 6-7 total force, Eq. 15 sign, Eq. 11)")
+    add_option(g, "no_corrections")
+    add_option(g, "poisson", choices=POISSON_MODES)
+    add_option(g, "no_length_update")
+    add_option(g, "centre_reading", choices=CENTRE_READINGS, default=centre_default,
+               note=centre_why.lstrip(",; ") if centre_why else "")
+    add_option(g, "paper_literal")
 
 
 def model_options(args: argparse.Namespace) -> ModelOptions:
     return run.model_options_from(vars(args))
 
 
-def add_strain_energy(parser: argparse.ArgumentParser, default: str = DEFAULT_STRAIN_ENERGY,
-                      why: str = "") -> None:
-    parser.add_argument(
-        "--strain-energy", choices=list(STRAIN_ENERGY), default=default,
-        help="definition of U in eta = W_d/(2 pi U): "
-        + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items())
-        + f" (default {default}{why})",
-    )
+def add_strain_energy(parser: argparse.ArgumentParser,
+                      default: str = DEFAULT_STRAIN_ENERGY,
+                      why: str = "", mode: str | None = None) -> None:
+    add_option(parser, "strain_energy", choices=list(STRAIN_ENERGY), default=default, mode=mode,
+               help="definition of U in eta = W_d/(2 pi U): "
+               + "; ".join(f"{k}: {v[1]}" for k, v in STRAIN_ENERGY.items()),
+               note=why.lstrip(",; ") if why else "")
 
 
 def check_plot(path: str | None) -> None:

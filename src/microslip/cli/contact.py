@@ -33,9 +33,7 @@ def add_contact_options(p: argparse.ArgumentParser) -> None:
                "stiffness in series with the body's shear lag); inf or omitted: the paper's "
                "rigid foundation")
     add_option(g, "pressure_law", help=_LAW_HELP)
-    g.add_argument("--no-shear-lag", action="store_true",
-                   help="leave out the body's through-thickness shear compliance (then a very "
-                        "large --stick-slope gives the rigid foundation exactly)")
+    add_option(g, "no_shear_lag")
 
 
 def contact_from_args(args: argparse.Namespace, params: ClampParams) -> Contact | None:

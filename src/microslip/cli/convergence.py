@@ -12,28 +12,28 @@ import argparse
 import sys
 from typing import Any
 
-from ..case.table import add_option
+from ..case.table import MODE_MESH, add_option
 from ..errors import ParameterError
 
 __all__ = ["CONVERGENCE_OPTIONS", "add_convergence_options", "check_convergence",
            "frequency_convergence", "mesh_convergence"]
 
 #: The destinations of this module's options (refused without a mesh file).
-CONVERGENCE_OPTIONS = ("refine", "convergence", "levels")
+CONVERGENCE_OPTIONS = ("refine", "convergence", "mesh_levels")
 
 
 def add_convergence_options(g: Any, refine: bool = True) -> None:
     """``--convergence``, ``--levels`` (and ``--refine``) on the argument group ``g``."""
     if refine:
-        add_option(g, "refine", default=None)
-    add_option(g, "convergence", action="store_true", default=None)
-    add_option(g, "levels", default=None, choices=[2, 3])
+        add_option(g, "refine", default=None, mode=MODE_MESH)
+    add_option(g, "convergence", default=None, mode=MODE_MESH)
+    add_option(g, "mesh_levels", default=None, choices=[2, 3], mode=MODE_MESH)
 
 
 def check_convergence(args: argparse.Namespace, files: tuple[str, ...] = ()) -> None:
     """``--levels`` needs ``--convergence``; with it the options ``files`` (``fe``'s
     ``--out``, ``--plot``: the files of one mesh) are refused."""
-    if getattr(args, "levels", None) is not None and not args.convergence:
+    if getattr(args, "mesh_levels", None) is not None and not args.convergence:
         raise ParameterError("--levels applies with --convergence only")
     if getattr(args, "convergence", False):
         bad = [f"--{d}" for d in files if getattr(args, d, None) is not None]
@@ -51,7 +51,7 @@ def mesh_convergence(args: argparse.Namespace, case: Any) -> tuple[dict[str, Any
     ``discretisation_error_estimate`` added, and the lines of the text table."""
     from ..fe.convergence import converge_own_mesh
 
-    study = converge_own_mesh(case, args.levels or 2, args.solver,
+    study = converge_own_mesh(case, args.mesh_levels or 2, args.solver,
                               progress=None if args.json else _progress)
     out = dict(study.first.summary)
     out["solver_converged"] = all(lv.solver_converged for lv in study.levels)
@@ -84,7 +84,7 @@ def frequency_convergence(study: Any, out: dict[str, Any]) -> list[str]:
     from ..fe.convergence import converge_stuck_frequencies
 
     found = converge_stuck_frequencies(study.model, args.density,
-                                       len(out["linear_frequencies_Hz"]), args.levels or 2)
+                                       len(out["linear_frequencies_Hz"]), args.mesh_levels or 2)
     out.update(found.summary())
     out["warnings"] = [*out.get("warnings", []), *found.warnings()]
     levels = found.frequencies_Hz

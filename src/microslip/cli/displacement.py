@@ -10,19 +10,23 @@ import argparse
 from collections.abc import Callable
 from typing import Any
 
-from .common import number
+from ..case.table import OPTIONS, add_option
 
 __all__ = ["DISPLACEMENT_HELP", "add_displacement_option", "check_exclusive"]
 
-DISPLACEMENT_HELP = ("displacement amplitude d0 of the loaded section, mm: the force amplitude "
-                     "is the one whose first loading reaches d0 (instead of --amplitude)")
+#: The shared help of ``--displacement-amplitude`` (the option table's).
+DISPLACEMENT_HELP = OPTIONS["displacement_amplitude"].help
 
 
-def add_displacement_option(parser: Any, help: str = DISPLACEMENT_HELP, nargs: Any = None,
-                            metavar: Any = "MM") -> None:
-    """Add ``--displacement-amplitude`` to a parser or argument group."""
-    parser.add_argument("--displacement-amplitude", type=number, nargs=nargs, metavar=metavar,
-                        help=help)
+def add_displacement_option(parser: Any, help: str | None = None, nargs: Any = None,
+                            metavar: Any = None, note: str = "", mode: str | None = None
+                            ) -> None:
+    """Add ``--displacement-amplitude`` to a parser or argument group (``help``: another
+    meaning, ``note``: a sentence of this command after the shared help, ``mode``: the mode
+    of the command it belongs to)."""
+    add_option(parser, "displacement_amplitude", help=help, note=note, mode=mode,
+               **({} if nargs is None else {"nargs": nargs}),
+               **({} if metavar is None else {"metavar": metavar}))
 
 
 def check_exclusive(args: argparse.Namespace, *others: str) -> bool:

@@ -15,7 +15,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
-from ..case.table import add_option, add_solver, mesh_or_file
+from ..case.table import MODE_BOX, add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe import SOLVERS
@@ -27,10 +27,9 @@ from .common import (
     add_params,
     add_strain_energy,
     check_output_dir,
-    number,
     print_json,
 )
-from .displacement import DISPLACEMENT_HELP, add_displacement_option, fe_displacement_force
+from .displacement import add_displacement_option, fe_displacement_force
 from .ownmesh import add_own_mesh_options, is_mesh_file, refuse_mesh_options, run_own_mesh
 
 __all__ = ["add_parser", "run"]
@@ -45,53 +44,47 @@ def add_parser(sub: Any) -> None:
         "substeps), run it, and report the loop, W_d, U and eta. The built-in solver "
         "(default) needs nothing else; --solver calculix needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
-    p.add_argument("--model", choices=list(LOAD_CASES),
-                   help="the box's load case (required unless --mesh is a file): "
-                   + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
-    add_params(p, default_preset="table1")
-    add_displacement_option(p, DISPLACEMENT_HELP + "; a root-find on the force, one run per "
-                            "step (docs/report.md)")
+    add_option(p, "model", choices=list(LOAD_CASES), mode=MODE_BOX,
+               help="the box's load case (required unless --mesh is a file): "
+               + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))
+    add_params(p, mode=MODE_BOX)
+    add_displacement_option(p, note="a root-find on the force, one run per step "
+                            "(docs/report.md)", mode=MODE_BOX)
     g = p.add_argument_group("finite-element model (docs/validation.md)")
     add_option(g, "mesh", default=DEFAULT_MESH, type=mesh_or_file, metavar="LEVEL|FILE",
                note="or a mesh file of your own clamp (.inp, .msh, .vtu, ...; hexahedra with "
                "named sets): then give --contact-set, --clamp-set and --load (docs/ownmesh.md)")
     add_option(g, "stick_slope", default=DEFAULT_STICK_SLOPE)
-    g.add_argument("--normal-slope", type=number, default=DEFAULT_NORMAL_SLOPE,
-                   metavar="N/MM3", help="slope of the linear pressure-overclosure law, "
-                   f"N/mm^3 (default {DEFAULT_NORMAL_SLOPE:g}); calculix, and builtin with "
-                   "--normal-contact penalty")
-    g.add_argument("--normal-contact", choices=list(NORMAL_CONTACTS), default=None,
-                   help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items())
-                   + " (default fixed; docs/solver.md)")
-    add_option(g, "pressure_law", note="builtin: on the top face; power:N[:EDGE] or "
-               "table:FILE.csv (columns x_mm,pressure) as the 1-D commands take it")
-    g.add_argument("--clamping-csv", metavar="FILE",
-                   help="builtin: write the interface pressure after clamping (x_mm,pressure "
-                        "in MPa, the mean over the width per section), ready for "
-                        "--pressure-law table:FILE of loop, planar and sweep")
-    g.add_argument("--element", choices=[e for s in SOLVERS.values() for e in s.elements],
-                   default=None,
-                   help="calculix: 20-node brick, reduced (C3D20R, default) or full "
-                        "integration (C3D20); builtin: 8-node brick with incompatible modes "
-                        "(C3D8I, default) or plain (C3D8)")
-    g.add_argument("--substeps", type=int, default=50, metavar="N",
-                   help="equal substeps over t = 0..1.25 s, a multiple of 5 (default 50)")
+    add_option(g, "normal_slope", default=DEFAULT_NORMAL_SLOPE,
+               note="calculix, and builtin with --normal-contact penalty")
+    add_option(g, "normal_contact",
+               help="builtin: " + "; ".join(f"{k}: {v}" for k, v in NORMAL_CONTACTS.items()),
+               note="default fixed; docs/solver.md")
+    add_option(g, "pressure_law", mode=MODE_BOX, note="builtin: on the top face; "
+               "power:N[:EDGE] or table:FILE.csv (columns x_mm,pressure) as the 1-D commands "
+               "take it")
+    add_option(g, "clamping_csv", mode=MODE_BOX, note="ready for --pressure-law table:FILE "
+               "of loop, planar and sweep")
+    add_option(g, "element", mode=MODE_BOX,
+               choices=[e for s in SOLVERS.values() for e in s.elements],
+               help="calculix: 20-node brick, reduced (C3D20R, default) or full integration "
+                    "(C3D20); builtin: 8-node brick with incompatible modes (C3D8I, default) "
+                    "or plain (C3D8)")
+    add_option(g, "substeps")
     add_own_mesh_options(p)
     s = p.add_argument_group("solver")
     add_solver(s, "fe", list(SOLVERS))
-    s.add_argument("--timeout", type=number, metavar="S",
-                   help="stop the solver after S seconds (default 120 s + 0.15 s per DOF)")
-    s.add_argument("--threads", type=int, default=1, metavar="N",
-                   help="OpenMP threads of the solver (default 1)")
-    s.add_argument("--out", metavar="DIR",
-                   help="write result.json and the VTU series (displacement, contact status "
-                        "and slip of every increment, fe_<model>.pvd for ParaView) into DIR; "
-                        "calculix keeps its job files there too (default: nothing written)")
-    s.add_argument("--reuse", action="store_true",
-                   help="if DIR already holds a successful run of the identical deck, read it")
-    s.add_argument("--no-vtu", action="store_true", help="do not write the VTU files")
-    add_strain_energy(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_option(s, "timeout", note="default 120 s + 0.15 s per DOF")
+    add_option(s, "threads", help="OpenMP threads of the solver")
+    add_option(s, "out", metavar="DIR",
+               help="write result.json and the VTU series (displacement, contact status and "
+                    "slip of every increment, fe_<model>.pvd for ParaView) into DIR; calculix "
+                    "keeps its job files there too (default: nothing written)")
+    add_option(s, "reuse", mode=MODE_BOX,
+               help="if DIR already holds a successful run of the identical deck, read it")
+    add_option(s, "no_vtu")
+    add_strain_energy(p, mode=MODE_BOX)
+    add_option(p, "json")
     add_case_option(p)
     p.set_defaults(func=run)
 

@@ -9,7 +9,7 @@ from ..case.table import add_option
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..fit import FIT_PARAMETERS, FitResult, fit_loops, read_loop_csv
 from ..models.interface import LOADINGS
-from .common import add_params, number, params_from_args, print_json
+from .common import add_params, params_from_args, print_json
 
 __all__ = ["add_parser"]
 
@@ -23,21 +23,16 @@ def add_parser(sub: Any) -> None:
         "force_N,displacement_mm in sampling order (as microslip writes loops); loops are "
         "centred first. The clamp options give the known values and the starting guesses.")
     p.add_argument("loops", nargs="+", metavar="LOOP.csv", help="measured loop(s)")
-    p.add_argument("--model", choices=list(LOADINGS), required=True,
-                   help="where the load acts: tip (end face) or centre (mid-length)")
-    add_params(p, default_preset="table1")
-    p.add_argument("--fit", nargs="+", choices=list(FIT_PARAMETERS),
-                   default=["friction", "stick_slope"], metavar="NAME",
-                   help="parameters to identify (default friction stick_slope); from "
-                   f"{', '.join(FIT_PARAMETERS)}")
+    add_option(p, "model", choices=list(LOADINGS), required=True)
+    add_params(p)
+    add_option(p, "fit", choices=list(FIT_PARAMETERS), default=["friction", "stick_slope"],
+               metavar="NAME", note=f"from {', '.join(FIT_PARAMETERS)}")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE,
                note="the known value or the starting guess of the fit")
-    p.add_argument("--confidence", type=number, default=0.95, metavar="X",
-                   help="confidence level of the intervals, in [0.5, 1) (default 0.95)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="write a figure of the measured loops against the fitted model "
-                        "(.png, .pdf or .svg)")
+    add_option(p, "confidence")
+    add_option(p, "json")
+    add_option(p, "plot", help="write a figure of the measured loops against the fitted model "
+                               "(.png, .pdf or .svg)")
     p.set_defaults(func=run)
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..case.table import add_option
 from ..dynamics.assemble import joint_orbits, mode_load
 from ..dynamics.files import read_structure
 from ..dynamics.modal import epmc
@@ -17,7 +18,6 @@ from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_respo
 from ..dynamics.structure import Structure
 from ..errors import ParameterError
 from ..progress import progress
-from .common import number
 from .contact import report_warnings
 from .frfmesh import (
     MESH_RANGE,
@@ -27,6 +27,7 @@ from .frfmesh import (
     run_frf_mesh,
 )
 from .structure import (
+    NOT_MESH,
     across_warnings,
     add_balance_options,
     add_structure_options,
@@ -56,26 +57,16 @@ def add_parser(sub: Any) -> None:
     add_balance_options(p)
     add_frf_mesh_options(p)
     g = p.add_argument_group("excitation and output")
-    g.add_argument("--force", type=number, action="append", required=True, metavar="N",
-                   help="excitation amplitude, N (repeat for several curves): a modal force "
-                        "on --mode, or a force on each --excitation DOF; with --mesh the "
-                        "total force on --load-set")
-    g.add_argument("--excitation", type=int, nargs="+", metavar="I",
-                   help="--structure: forced DOFs (0-based), each by F cos(2 pi f t) "
-                        "(default: the modal force of --mode)")
-    g.add_argument("--frequency-range", nargs=2, type=number, metavar=("MIN", "MAX"),
-                   help=f"excitation frequencies, Hz (default {RANGE_MARGIN:g} x the "
-                        f"joint-removed to {1 / RANGE_MARGIN:g} x the stuck frequency; with "
-                        f"--mesh {MESH_RANGE[0]:g} to {MESH_RANGE[1]:g} x the mode's stuck "
-                        "frequency)")
-    g.add_argument("--step", type=number, default=DEFAULT_STEP, metavar="S",
-                   help="largest continuation step, relative to the frequency range and "
-                        f"the peak amplitude (default {DEFAULT_STEP:g})")
-    g.add_argument("--json", action="store_true", help="print one JSON object")
-    g.add_argument("--csv", metavar="FILE.csv", help="write every curve's points as CSV")
-    g.add_argument("--plot", metavar="FILE.png",
-                   help="write the curves with the backbone (extended periodic motion "
-                        "concept) over them")
+    add_option(g, "force", required=True, note="with --mesh the total force on --load-set")
+    add_option(g, "excitation", note="default: the modal force of --mode", mode=NOT_MESH)
+    add_option(g, "frequency_range", note=f"default {RANGE_MARGIN:g} x the joint-removed to "
+               f"{1 / RANGE_MARGIN:g} x the stuck frequency; with --mesh {MESH_RANGE[0]:g} to "
+               f"{MESH_RANGE[1]:g} x the mode's stuck frequency")
+    add_option(g, "step", default=DEFAULT_STEP)
+    add_option(g, "json")
+    add_option(g, "csv", help="write every curve's points as CSV")
+    add_option(g, "plot", help="write the curves with the backbone (extended periodic motion "
+                               "concept) over them")
     p.set_defaults(func=run)
 
 

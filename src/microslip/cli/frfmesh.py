@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from ..case.table import MODE_MESH, add_option, add_solver, mode_options
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
@@ -60,12 +61,6 @@ DEFAULT_MESH_HARMONICS = 3
 #: Default sweep: these fractions of the mode's stuck frequency (the friction softens the
 #: peak below the stuck frequency; the range keeps it inside).
 MESH_RANGE = (0.8, 1.05)
-#: Options of frf --mesh only (destinations).
-FRF_MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-                 "response_set", "solver", "rom_modes", "backbone", "load_set",
-                 "load_direction")
-#: Options of frf's structure file that do nothing with a mesh.
-NOT_WITH_FRF_MESH = ("excitation",)
 DAMPING_DEFINITION = ("zeta = F_modal / (2 m omega^2 a_peak): the linear single-mode peak "
                       "a_peak = F_modal / (2 zeta m omega^2) solved for zeta, with the stuck "
                       "mode's modal force F_modal and mass m (mass-normalised: m = 1) "
@@ -77,25 +72,19 @@ def add_frf_mesh_options(p: argparse.ArgumentParser) -> None:
     """The mesh structure's options (:mod:`.meshstructure`), the load and the solver."""
     g = p.add_argument_group("the structure of your own mesh (--mesh FILE; docs/ownmesh.md)")
     add_mesh_structure_options(g)
-    g.add_argument("--load-set", metavar="NAME", default=None,
-                   help="--mesh: node set that carries the force F (N, each --force), spread "
-                        "equally over its nodes (default: the response set)")
-    g.add_argument("--load-direction", metavar="DX,DY,DZ", default=None,
-                   help="--mesh: direction of the force, global axes (default: the "
-                        "response set's motion in the mode)")
-    g.add_argument("--solver", choices=[*FRF_MESH_SOLVERS, ALL], default=None,
-                   help="--mesh: " + "; ".join(f"{k}: {v.help}"
-                                               for k, v in FRF_MESH_SOLVERS.items())
-                   + f"; {ALL}: both on the same forces and frequencies, the whole joint's "
-                   "peaks against the ROM's"
-                   + f" (default rom; --harmonics defaults to {DEFAULT_MESH_HARMONICS} "
-                   "with --mesh)")
+    add_option(g, "load_set", note="default: the response set", mode=MODE_MESH)
+    add_option(g, "load_direction", note="default: the response set's motion in the mode",
+               mode=MODE_MESH)
+    add_solver(g, "frf", meaning={**{k: v.help for k, v in FRF_MESH_SOLVERS.items()},
+                                  ALL: "both on the same forces and frequencies, the whole "
+                                       "joint's peaks against the ROM's"}, mode=MODE_MESH,
+               note=f"--mesh only, where --harmonics defaults to {DEFAULT_MESH_HARMONICS}")
     add_reduced_model_options(g)
 
 
 def refuse_frf_mesh_options(args: argparse.Namespace) -> None:
     """Without --mesh, the mesh's options given on the command line are refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in FRF_MESH_ONLY if given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_MESH) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to frf --mesh FILE only; remove "
                              "them")
@@ -200,10 +189,12 @@ def _load_direction(args: argparse.Namespace, mode: Any) -> np.ndarray:
 
 
 def _check(args: argparse.Namespace) -> None:
-    check_mesh_structure(args, NOT_WITH_FRF_MESH)
+    check_mesh_structure(args)
     if args.response_set is None:
-        raise ParameterError(f"--mesh {args.mesh} needs --response-set NAME (the amplitude is "
-                             "its mean displacement along the mode)")
+        from .main import UsageError  # a required option left out: a usage mistake
+
+        raise UsageError(f"--mesh {args.mesh} needs --response-set NAME (the amplitude is its "
+                         "mean displacement along the mode)")
     solver = args.solver or "rom"
     for dest in dict.fromkeys(o for s in FRF_MESH_SOLVERS.values() for o in s.options):
         if given(args, dest) and solver != ALL and dest not in FRF_MESH_SOLVERS[solver].options:

@@ -27,7 +27,7 @@ from ..errors import ParameterError
 from ..jointspec import JointSpec, series_stiffness
 from ..models import MODELS
 from ..params import ClampParams
-from .common import add_model_options, add_params, model_options, number, params_from_args
+from .common import add_model_options, add_params, model_options, params_from_args
 
 __all__ = ["JOINTS", "add_joint_options", "add_parser", "clamp_from_args", "describe_joint",
            "elements_from_args", "joint_from_args", "run", "spec_from_args"]
@@ -67,19 +67,22 @@ _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", 
           "beta": "--beta", "stick_slope": "--stick-slope", "elements": "--elements"}
 
 
-def add_joint_options(parser: argparse.ArgumentParser, required: bool = True) -> None:
+def add_joint_options(parser: argparse.ArgumentParser, required: bool = True,
+                      mode: str | None = None) -> None:
     """``--joint`` and its parameters, with the clamp's options for the tip and centre joints;
-    ``required=False`` where another source may give the joint (``modal --mesh``)."""
+    ``required=False`` where another source may give the joint (``modal --mesh``), ``mode``
+    the mode of the command the joint belongs to (the clamp's material, friction and force
+    serve a mesh as well)."""
     g = parser.add_argument_group("joint (units N, mm, N/mm)")
-    add_option(g, "joint", required=required, choices=list(JOINTS),
+    add_option(g, "joint", required=required, choices=list(JOINTS), mode=mode,
                **({} if required else {"note": "required but with --mesh"}))
     for name in ("joint_stiffness", "slip_force", "chi", "beta"):
-        add_option(g, name)
+        add_option(g, name, mode=mode)
     add_option(g, "stick_slope", note="tip, centre: series spring = slope x width x length "
                "(instead of --joint-stiffness)")
-    add_option(g, "elements")
+    add_option(g, "elements", mode=mode)
     before = len(parser._actions)
-    add_params(parser, default_preset="table1")
+    add_params(parser, mode=mode)
     add_model_options(parser)
     clamp = []
     for action in parser._actions[before:]:
@@ -143,16 +146,12 @@ def add_parser(sub: Any) -> None:
         "relative displacement, versus displacement or force amplitude.")
     add_joint_options(p)
     r = p.add_argument_group("amplitudes (one of)")
-    r.add_argument("--amplitude-range", nargs=2, type=number, metavar=("MIN", "MAX"),
-                   help="displacement amplitudes, mm (geometric spacing)")
-    r.add_argument("--force-range", nargs=2, type=number, metavar=("MIN", "MAX"),
-                   help="force amplitudes, N, below the macroslip force (geometric spacing)")
-    p.add_argument("--amplitudes", type=int, default=20, metavar="N",
-                   help="number of amplitudes (default 20)")
-    p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES, metavar="N",
-                   help=f"time samples per period of the quadrature (default {DEFAULT_SAMPLES})")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="write a figure of K_eq, D_eq and eta")
+    add_option(r, "amplitude_range", help="displacement amplitudes, mm (geometric spacing)")
+    add_option(r, "force_range")
+    add_option(p, "amplitudes")
+    add_option(p, "samples", default=DEFAULT_SAMPLES, note="of the quadrature")
+    add_option(p, "json")
+    add_option(p, "plot", help="write a figure of K_eq, D_eq and eta")
     p.set_defaults(func=run)
 
 

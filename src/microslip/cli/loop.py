@@ -7,6 +7,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_loop, loop_inputs, loop_json, portion_text
+from ..case.table import add_option
 from ..io import check_writable, write_loop_csv
 from ..models import MODELS, Contact, get_model
 from .common import (
@@ -27,18 +28,16 @@ def add_parser(sub: Any) -> None:
     p = sub.add_parser("loop", help="hysteresis loop and damping of the tip or centre model",
                        description="Run the tip (Eqs 2-10) or centre (Eqs 11-18) model to an "
                        "amplitude, complete the loop with Masing's rule, report W_d, U and eta.")
-    p.add_argument("--model", choices=list(MODELS), required=True)
-    add_params(p, default_preset="table1")
+    add_option(p, "model", choices=list(MODELS), required=True)
+    add_params(p)
     add_displacement_option(p)
-    p.add_argument("--increments", type=int, default=1000, metavar="N",
-                   help="number of force increments of the first loading (default 1000)")
+    add_option(p, "increments")
     add_model_options(p)
     add_strain_energy(p)
     add_contact_options(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="write a figure of loop and backbone")
-    p.add_argument("--csv", metavar="FILE.csv",
-                   help="write the loop as CSV (force_N,displacement_mm: what fit reads)")
+    add_option(p, "json")
+    add_option(p, "plot", help="write a figure of loop and backbone")
+    add_option(p, "csv", help="write the loop as CSV (force_N,displacement_mm: what fit reads)")
     add_case_option(p)
     p.set_defaults(func=run)
 

@@ -13,15 +13,23 @@ import argparse
 from dataclasses import dataclass
 from typing import Any
 
-from ..case.table import add_option, mesh_file, number
+from ..case.table import (
+    DEFAULT_ROM_MODES,
+    MAX_MODE,
+    MODE_MESH,
+    MODE_STRUCTURE,
+    add_option,
+    mesh_file,
+    mode_options,
+)
 from ..errors import ParameterError
+from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
 from .ownmesh import given
 
 __all__ = [
     "DEFAULT_ROM_MODES",
     "MAX_MODE",
-    "NOT_WITH_MESH",
     "REQUIRED",
     "MeshModes",
     "add_mesh_structure_options",
@@ -32,19 +40,8 @@ __all__ = [
     "mesh_modes",
 ]
 
-#: Destinations of the one-mode / structure-file / joint options: refused with --mesh.
-NOT_WITH_MESH = ("frequency", "stuck_frequency", "modal_mass", "damping_ratio",
-                 "participation", "structure", "joint_dof", "coupling", "joint",
-                 "joint_stiffness", "slip_force", "chi", "beta", "elements", "preset",
-                 "length", "width", "thickness", "method", "transverse", "pairing",
-                 "fe_mesh")
-#: Highest mode number ``--mode`` takes with --mesh (the eigen-solve computes that many).
-MAX_MODE = 50
 #: The clamp's values and the density a mesh structure needs: destination -> flag.
 REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
-#: Fixed-interface modes of the ROM unless --rom-modes says (the cantilever's stuck
-#: frequencies then equal the full FE's to about 1e-6).
-DEFAULT_ROM_MODES = 60
 #: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
 #: named here so that the parser does not import the FE; a test holds the two equal).
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")
@@ -73,35 +70,24 @@ def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None
     ``--normal-slope``, ``--density`` and ``--response-set`` on the argument group ``g``
     (``response_help``: what the command does with the response set, if not the
     amplitude's set)."""
-    g.add_argument("--mesh", metavar="FILE", type=mesh_file,
-                   help="a hexahedral mesh of your structure with its clamp (.inp, .msh, "
-                        ".vtu, ...): its modes and the damping its clamp gives them")
-    add_option(g, "contact_set")
-    add_option(g, "clamp_set")
-    g.add_argument("--normal-contact", choices=["fixed", "penalty"], default=None,
-                   help="fixed: the clamping step's normal forces; penalty: --normal-slope, "
-                        "lift-off allowed (default fixed)")
-    g.add_argument("--normal-slope", type=number, default=None, metavar="N/MM3",
-                   help="penalty normal stiffness per area, N/mm^3 (default 1e5)")
-    g.add_argument("--density", type=number, default=None, metavar="KG/M3",
-                   help="density of the body, kg/m^3 (aluminium 2700, steel 7850)")
-    g.add_argument("--response-set", metavar="NAME", default=None,
-                   help=response_help or "set whose mean displacement along the mode is the "
-                                         "amplitude (amplitude_mm)")
+    add_option(g, "mesh_file", flag="--mesh", dest="mesh", type=mesh_file, mode=MODE_MESH,
+               help="a hexahedral mesh of your structure with its clamp (.inp, .msh, .vtu, "
+                    "...): its modes and the damping its clamp gives them")
+    for name in ("contact_set", "clamp_set"):
+        add_option(g, name, mode=MODE_MESH)
+    add_option(g, "normal_contact", note="default fixed", mode=MODE_MESH)
+    add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
+    add_option(g, "density", mode=MODE_MESH)
+    add_option(g, "response_set", help=response_help, mode=MODE_MESH)
 
 
 def add_reduced_model_options(g: Any) -> None:
     """``--rom-modes`` and ``--backbone``: the reduced models of ``modal --mesh`` and ``frf
     --mesh`` (the contact-node ROM, ``rom``, and the whole joint built on it, ``joint``)."""
-    g.add_argument("--rom-modes", type=int, default=None, metavar="N",
-                   help=f"rom, joint: fixed-interface modes kept (default {DEFAULT_ROM_MODES}"
-                        "; the ROM's stuck frequencies then equal the full FE's to about "
-                        "1e-6)")
-    g.add_argument("--backbone", choices=list(BACKBONE_NAMES), default=None,
-                   help="joint: the whole joint's backbone, the FE's own first loading by "
-                        "the mode (fe, default), the same with work-equivalent "
-                        "displacements (work), or the paper's 1-D clamp model on the "
-                        "contact patch (tip, centre)")
+    add_option(g, "rom_modes", mode=MODE_MESH,
+               note=f"rom, joint; default {DEFAULT_ROM_MODES}: the ROM's stuck frequencies "
+               "then equal the full FE's to about 1e-6")
+    add_option(g, "backbone", choices=list(BACKBONE_NAMES), mode=MODE_MESH, note="default fe")
 
 
 def check_density(density: float) -> float:
@@ -114,7 +100,9 @@ def check_density(density: float) -> float:
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:
     """Refuse, in one line, the one-mode and structure-file options (and ``not_with``), a
     missing clamp value, set or density, and --normal-slope without penalty contact."""
-    bad = [f"--{d.replace('_', '-')}" for d in (*NOT_WITH_MESH, *not_with) if given(args, d)]
+    # the one-mode, structure-file and joint options (added with mode="structure")
+    bad = [f"--{d.replace('_', '-')}" for d in (*mode_options(args, MODE_STRUCTURE), *not_with)
+           if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} not used with --mesh (the mesh gives the "
                              "structure, its contact the joint)")
@@ -123,7 +111,9 @@ def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = (
         if getattr(args, dest, None) is None:
             missing.insert(0, f"--{dest.replace('_', '-')} NAME")
     if missing:
-        raise ParameterError(f"--mesh {args.mesh} needs {', '.join(missing)}")
+        from .main import UsageError  # a required option left out: a usage mistake
+
+        raise UsageError(f"--mesh {args.mesh} needs {', '.join(missing)}")
     if args.normal_contact != "penalty" and args.normal_slope is not None:
         raise ParameterError("--normal-slope needs --normal-contact penalty")
 
@@ -134,12 +124,13 @@ def mesh_model(args: argparse.Namespace, sets: tuple[str, ...] = ()) -> Any:
     :class:`~microslip.fe.builtin.meshmodel.MeshModel`."""
     from ..fe.builtin.meshmodel import build_mesh_model
     from ..fe.constants import DEFAULT_NORMAL_SLOPE
-    from ..fe.meshcheck import check_roles
+    from ..fe.meshcheck import check_roles, check_set
     from ..fe.meshfile import read_mesh
 
     mesh = read_mesh(args.mesh)
-    check_roles(mesh, args.contact_set, args.clamp_set,
-                [*([args.response_set] if args.response_set else []), *sets])
+    if args.response_set:  # named as what it is (not "the set of a load")
+        check_set(mesh, args.response_set, "response set")
+    check_roles(mesh, args.contact_set, args.clamp_set, sets)
     return build_mesh_model(
         mesh, contact_set=args.contact_set, clamp_set=args.clamp_set,
         normal_force=float(args.normal_force), modulus=float(args.modulus),

@@ -12,9 +12,9 @@ from typing import Any
 
 import numpy as np
 
+from ..case.table import add_option
 from ..dynamics.modal import METHODS, energy_method
 from ..errors import ParameterError
-from .common import number
 from .contact import report_warnings
 from .modalmesh import (
     ALL,
@@ -24,6 +24,7 @@ from .modalmesh import (
     run_modal_mesh,
 )
 from .structure import (
+    NOT_MESH,
     across_warnings,
     add_balance_options,
     add_structure_options,
@@ -48,17 +49,13 @@ def add_parser(sub: Any) -> None:
     add_balance_options(p)
     add_modal_mesh_options(p)
     g = p.add_argument_group("amplitudes and output")
-    g.add_argument("--amplitude-range", nargs=2, type=number, metavar=("MIN", "MAX"),
-                   help="modal amplitudes, mm (geometric spacing); required but with --mesh, "
-                        "where the default runs from first slip to near gross sliding")
-    g.add_argument("--amplitudes", type=int, default=20, metavar="N",
-                   help="number of amplitudes (default 20)")
-    g.add_argument("--method", choices=list(METHODS), default="epmc",
-                   help="epmc (default) or energy")
-    g.add_argument("--json", action="store_true", help="print one JSON object")
-    g.add_argument("--csv", metavar="FILE.csv", help="write the table as CSV")
-    g.add_argument("--plot", metavar="FILE.png",
-                   help="write a figure of frequency and damping ratio vs amplitude")
+    add_option(g, "amplitude_range", help="modal amplitudes, mm (geometric spacing); required "
+               "but with --mesh, where the default runs from first slip to near gross sliding")
+    add_option(g, "amplitudes")
+    add_option(g, "method", choices=list(METHODS), default="epmc", mode=NOT_MESH)
+    add_option(g, "json")
+    add_option(g, "csv")
+    add_option(g, "plot", help="write a figure of frequency and damping ratio vs amplitude")
     p.set_defaults(func=run)
 
 

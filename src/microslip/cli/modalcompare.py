@@ -38,6 +38,11 @@ SHARED = ("mesh", "mode", "label", "density_kg_m3", "linear_frequencies_Hz",
           "free_frequencies_Hz", "modes")
 #: The solver every other is judged against.
 TRUTH = "fe"
+#: The [mesh] keys of a case that describe its structure (every mesh key of the option
+#: table but the file and the mode, which the command line names itself), in the table's
+#: order: the sets, the contact law, the density and the response set.
+CASE_STRUCTURE_KEYS = tuple(k for k, (_, scope) in CASE_DESTS.items()
+                            if scope == "mesh" and k not in ("mesh.file", "mesh.mode"))
 #: Amplitudes of the structure section of ``microslip report`` (first slip to near gross
 #: sliding).
 REPORT_AMPLITUDES = 6
@@ -83,10 +88,10 @@ def case_argv(case: Case, amplitudes: int = REPORT_AMPLITUDES) -> list[str] | No
         return None
     argv = ["modal", "--mesh", str(v["mesh.file"]), "--solver", ALL, "--json",
             "--amplitudes", str(amplitudes), "--mode", str(case.get("mesh.mode"))]
-    for key in ("mesh.contact_set", "mesh.clamp_set", "mesh.density", "mesh.response_set",
-                "material.modulus", "material.poisson_ratio", "contact.friction",
-                "contact.stick_slope", "clamping.normal_force"):
-        value = case.get(key)
+    for key in (*CASE_STRUCTURE_KEYS, "material.modulus", "material.poisson_ratio",
+                "contact.friction", "contact.stick_slope", "clamping.normal_force"):
+        # the [mesh] keys as the file gives them (the command's defaults otherwise)
+        value = case.values.get(key) if key in CASE_STRUCTURE_KEYS else case.get(key)
         if value is not None:
             argv += [OPTIONS[CASE_DESTS[key][0]].flag,
                      str(value)]  # a float's shortest repr: the same number back

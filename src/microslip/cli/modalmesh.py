@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..case.table import MODE_MESH, add_option, add_solver, mode_options
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .convergence import add_convergence_options, check_convergence, frequency_convergence
@@ -33,11 +34,7 @@ from .ownmesh import given, verb
 __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 
 # The mesh structure's options, checks, model and modes: cli.meshstructure (shared with
-# frf --mesh).
-#: Options of --mesh only.
-MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-             "response_set", "solver", "workers", "rom_modes", "backbone", "convergence",
-             "levels")
+# frf --mesh). The options of --mesh only are those added with mode=MODE_MESH.
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
 
@@ -45,16 +42,14 @@ ALL = "all"
 def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("the structure of your own mesh (--mesh FILE; docs/ownmesh.md)")
     add_mesh_structure_options(g)
-    g.add_argument("--solver", choices=[*MESH_SOLVERS, ALL], default=None,
-                   help="; ".join(f"{k}: {v.help}" for k, v in MESH_SOLVERS.items())
-                   + f"; {ALL}: every one of them side by side, with a verdict on each "
-                   "against the full FE (default fe)")
+    add_solver(g, "modal", meaning={**{k: v.help for k, v in MESH_SOLVERS.items()},
+                                    ALL: "every one of them side by side, with a verdict on "
+                                         "each against the full FE"}, mode=MODE_MESH)
     add_reduced_model_options(g)
+    add_option(g, "workers", note="default 1", mode=MODE_MESH)
+    add_option(g, "scheduler", help="a Dask scheduler (tcp://HOST:8786) to run the amplitudes "
+                                    "on", mode=MODE_MESH)
     add_convergence_options(g, refine=False)
-    g.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="local processes for the amplitudes (independent runs; default 1)")
-    g.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="a Dask scheduler (tcp://HOST:8786) to run the amplitudes on")
 
 
 def _nulls(values: Any) -> list[float | None]:
@@ -66,7 +61,7 @@ def _nulls(values: Any) -> list[float | None]:
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """Without --mesh, the mesh's options given on the command line are refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in (*MESH_ONLY, "scheduler") if given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_MESH) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to modal --mesh FILE only; remove "
                              "them")

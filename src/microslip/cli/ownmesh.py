@@ -11,7 +11,7 @@ import argparse
 import sys
 from typing import Any
 
-from ..case.table import add_option, number
+from ..case.table import MODE_BOX, MODE_MESH, add_option, mode_options
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import check_output_dir, check_plot, print_json
@@ -19,13 +19,6 @@ from .common import check_output_dir, check_plot, print_json
 __all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
            "refuse_mesh_options", "run_own_mesh", "verb"]
 
-#: Options of a mesh file only (destinations).
-MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_cycles",
-             "cycles", "plot", "refine", "convergence", "levels")
-#: Options of the built-in box only: refused with a mesh file.
-BOX_ONLY = ("model", "preset", "length", "width", "thickness", "amplitude",
-            "displacement_amplitude", "pressure_law", "clamping_csv", "element", "reuse",
-            "strain_energy")
 #: Clamp values a mesh run needs (the mesh gives the geometry): destination -> flag.
 REQUIRED = {"normal_force": "--normal-force N", "friction": "--friction X",
             "modulus": "--modulus MPA", "poisson_ratio": "--poisson-ratio X"}
@@ -45,31 +38,24 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
 
     g = p.add_argument_group("your own mesh (--mesh FILE; docs/ownmesh.md)")
     if validate:
-        g.add_argument("--normal-contact", choices=["penalty"], default=None,
-                       help="CalculiX takes penalty normal contact only (the default)")
-        g.add_argument("--normal-slope", type=number, default=None, metavar="N/MM3",
-                       help="penalty normal stiffness per area, N/mm^3 (default 1e5)")
-        g.add_argument("--substeps", type=int, default=50, metavar="N",
-                       help="substeps over 1.25 cycles, a multiple of 5 (default 50)")
-    add_option(g, "contact_set")
-    add_option(g, "clamp_set")
-    g.add_argument("--load", action="append", metavar="SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]",
-                   help="a load F(t) = A sin(2 pi t + phase) on a set, as a uniform traction "
-                        "of total force A (N) along (DX, DY, DZ); repeat for several loads "
-                        "(planar: two loads at 90 degrees)")
-    g.add_argument("--history", choices=list(HISTORIES), default=None,
-                   help="; ".join(f"{k}: {v}" for k, v in HISTORIES.items())
-                   + " (default settle)")
-    g.add_argument("--settle-tol", type=number, default=None, metavar="X",
-                   help="builtin: relative change of W per cycle that counts as settled "
-                        "(default 1e-3)")
-    g.add_argument("--max-cycles", type=int, default=None, metavar="N",
-                   help="builtin: at most N cycles before W settles (default 10)")
+        add_option(g, "normal_contact", choices=["penalty"], mode=MODE_MESH,
+                   note="CalculiX takes penalty normal contact only (the default)")
+        add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
+        add_option(g, "substeps", help="substeps over 1.25 cycles, a multiple of 5",
+                   mode=MODE_MESH)
+    add_option(g, "contact_set", mode=MODE_MESH)
+    add_option(g, "clamp_set", mode=MODE_MESH)
+    add_option(g, "load", mode=MODE_MESH)
+    add_option(g, "history", choices=list(HISTORIES), mode=MODE_MESH,
+               help="; ".join(f"{k}: {v}" for k, v in HISTORIES.items()),
+               note="default settle")
+    add_option(g, "settle_tol", note="default 1e-3", mode=MODE_MESH)
+    add_option(g, "max_cycles", note="default 10", mode=MODE_MESH)
     if not validate:
-        g.add_argument("--cycles", type=int, default=None, metavar="N",
-                       help="calculix: cycles to run (default 3; compare cycle_work_Nmm)")
-        g.add_argument("--plot", metavar="FILE.png",
-                       help="draw each load's loop over the settled cycle")
+        add_option(g, "cycles", help="calculix: cycles to run",
+                   note="default 3; compare cycle_work_Nmm", mode=MODE_MESH)
+        add_option(g, "plot", help="draw each load's loop over the settled cycle",
+                   mode=MODE_MESH)
         from .convergence import add_convergence_options
 
         add_convergence_options(g)
@@ -88,7 +74,7 @@ def given(args: argparse.Namespace, dest: str) -> bool:
 
 def refuse_mesh_options(args: argparse.Namespace) -> None:
     """The box's run: a mesh file's option given on the command line is refused."""
-    bad = [f"--{d.replace('_', '-')}" for d in MESH_ONLY if given(args, d)]
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_MESH) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to --mesh FILE only (a mesh of your "
                              f"own), not to the box --mesh {args.mesh}; remove them")
@@ -98,7 +84,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
-    bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if given(args, d)]
+    # the box's options (added with mode=MODE_BOX): refused with a mesh file
+    bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_BOX) if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} the mesh gives the geometry and --load the "
@@ -110,7 +97,9 @@ def mesh_case(args: argparse.Namespace) -> Any:
     if not args.load:
         missing.append("--load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
     if missing:
-        raise ParameterError(f"--mesh {args.mesh} needs {', '.join(missing)}")
+        from .main import UsageError  # a required option left out: a usage mistake
+
+        raise UsageError(f"--mesh {args.mesh} needs {', '.join(missing)}")
     for dest in ("cycles", "plot", "settle_tol", "max_cycles", "history"):
         if not hasattr(args, dest):
             setattr(args, dest, None)

@@ -36,7 +36,6 @@ from .common import (
     check_plot,
     clamp_overrides,
     increments_option,
-    number,
     print_json,
     refuse_inapplicable,
 )
@@ -76,20 +75,15 @@ def add_parser(sub: Any) -> None:
     add_option(g, "ratio", note="the amplitudes follow from the paper's levels (2000 N tip, "
                "4000 N centre per level)")
     add_displacement_option(g, PLANAR_HELP, nargs=2, metavar=("TIP_MM", "CENTRE_MM"))
-    g.add_argument("--levels", choices=list(LEVEL_SCHEMES), default="base",
-                   help="level pairs for --ratio: "
-                        + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
-                        + " (default base)")
-    add_option(g, "phase", default=0.0,
+    add_option(g, "levels", choices=list(LEVEL_SCHEMES),
+               help="level pairs for --ratio: "
+               + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items()))
+    add_option(g, "phase",
                note="0: the paper's loading; 90: the ellipse of Fig. 1")
     m = p.add_argument_group("clamped zones")
-    m.add_argument("--tip-preset", choices=sorted(PRESETS), default="table2-tip",
-                   help="parameters of the tip model (default table2-tip)")
-    m.add_argument("--centre-preset", choices=sorted(PRESETS), default="table2-centre",
-                   help="parameters of the centre model (default table2-centre)")
-    m.add_argument("--tip-symmetry", type=int, default=TIP_SYMMETRY, metavar="K",
-                   help="tip models in parallel in the whole clamp (default 2: the paper's "
-                        "tip model is one symmetric half)")
+    add_option(m, "tip_preset", choices=sorted(PRESETS))
+    add_option(m, "centre_preset", choices=sorted(PRESETS))
+    add_option(m, "tip_symmetry", default=TIP_SYMMETRY)
     c = p.add_argument_group(
         "one's own clamp (overrides the zones' values; the tip zone is one of --tip-symmetry "
         "symmetric parts of the contact width, so it takes width w/K; with --solver fe, the "
@@ -98,29 +92,23 @@ def add_parser(sub: Any) -> None:
     add_model_options(p)
     add_contact_options(p)
     add_strain_energy(p)
-    p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
-                   default=DEFAULT_WORK_STRAIN_ENERGY,
-                   help="U of the combined motion in the work-based eta: "
-                        + "; ".join(f"{k}: {v[1]}" for k, v in WORK_STRAIN_ENERGY.items())
-                        + f" (default {DEFAULT_WORK_STRAIN_ENERGY})")
-    p.add_argument("--increments", type=int, default=1000, metavar="N",
-                   help="force increments of each first loading (default 1000)")
-    p.add_argument("--samples-per-cycle", type=int, default=2048, metavar="N",
-                   help="samples of the work-based cycle (default 2048)")
+    add_option(p, "work_energy", choices=list(WORK_STRAIN_ENERGY),
+               default=DEFAULT_WORK_STRAIN_ENERGY,
+               help="U of the combined motion in the work-based eta: "
+               + "; ".join(f"{k}: {v[1]}" for k, v in WORK_STRAIN_ENERGY.items()))
+    add_option(p, "increments")
+    add_option(p, "samples_per_cycle")
     add_solver(p, "planar", SOLVERS)
     f = p.add_argument_group("--solver fe (docs/solver.md)")
-    f.add_argument("--preset", choices=sorted(PRESETS), default="table1",
-                   help="the clamped body (default table1: the paper's FE bar)")
+    add_option(f, "preset", choices=sorted(PRESETS), default="table1",
+               help="the clamped body", note="table1 is the paper's FE bar")
     add_option(f, "mesh", note=f"default {DEFAULT_MESH}")
-    f.add_argument("--cycles", type=int, default=6, metavar="N",
-                   help="most load cycles per run, until W per cycle settles (default 6)")
-    f.add_argument("--increments-per-cycle", type=int, default=256, metavar="N",
-                   help="load increments per cycle (default 256)")
-    f.add_argument("--cycle-tolerance", type=number, default=1e-3, metavar="X",
-                   help="relative change of W per cycle taken as settled (default 1e-3)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--plot", metavar="FILE.png",
-                   help="write a figure of the loops and the load path")
+    add_option(f, "cycles", default=6, help="most load cycles per run, until W per cycle "
+                                             "settles")
+    add_option(f, "increments_per_cycle")
+    add_option(f, "cycle_tolerance")
+    add_option(p, "json")
+    add_option(p, "plot", help="write a figure of the loops and the load path")
     add_case_option(p)
     p.set_defaults(func=run)
 

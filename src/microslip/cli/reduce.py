@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
-from ..case.table import add_option, number
+from ..case.table import DEFAULT_ROM_MODES, MAX_ROM_MODES, add_option
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
 from .common import print_json
@@ -32,8 +32,6 @@ __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts"
 
 #: Stuck frequencies compared with the full FE's.
 COMPARE = 6
-#: Most fixed-interface modes ``--rom-modes`` takes.
-MAX_ROM_MODES = 2000
 #: Largest relative error of the compared frequencies before a warning.
 WARN_ERROR = 1e-3
 #: Values the command needs: destination -> flag.
@@ -64,24 +62,18 @@ def add_parser(sub: Any) -> None:
     add_option(g, "poisson_ratio")
     add_mesh_structure_options(g, "a set of the mesh: each stuck mode is labelled by the "
                                   "direction (global x, y, z) of its mean displacement")
-    r = p.add_argument_group("the reduced model (one of --rom-modes, --cutoff-frequency)")
-    r.add_argument("--rom-modes", type=int, default=None, metavar="N",
-                   help=f"fixed-interface modes kept in the reduced model, the lowest N, in "
-                        f"[1, {MAX_ROM_MODES}]")
-    r.add_argument("--cutoff-frequency", type=number, default=None, metavar="HZ",
-                   help="keep every fixed-interface mode below HZ, Hz, > 0")
+    r = p.add_argument_group("the reduced model (--rom-modes or --cutoff-frequency)")
+    add_option(r, "rom_modes", note=f"default {DEFAULT_ROM_MODES} unless --cutoff-frequency "
+               "is given")
+    add_option(r, "cutoff_frequency")
     o = p.add_argument_group("output")
-    o.add_argument("--out", metavar="FILE.npz", default=None,
-                   help="the structure file to write (.npz; written to a temporary name and "
-                        "renamed)")
-    o.add_argument("--json", action="store_true", help="print one JSON object")
-    add_case_option(p)
-    for action in p._actions:
-        if action.dest == "case":
-            action.help = ("a case file with the clamp ([material], [contact], [clamping]) and "
-                           "[mesh] file, contact_set, clamp_set (docs/casefile.md); the density "
-                           "and the ROM's options come from the command line; options given "
-                           "here win")
+    add_option(o, "out", metavar="FILE.npz", help="the structure file to write (.npz; written "
+               "to a temporary name and renamed)")
+    add_option(o, "json")
+    add_case_option(p, "a case file with the clamp ([material], [contact], [clamping]) and "
+                    "[mesh] (file, contact_set, clamp_set, normal_contact, normal_slope, "
+                    "density, response_set; docs/casefile.md); the ROM's options come from the "
+                    "command line; options given here win")
     p.set_defaults(func=run)
 
 
@@ -91,17 +83,23 @@ def mode_counts(modes: int) -> list[int]:
 
 
 def _check(args: argparse.Namespace) -> None:
+    from .main import UsageError
+
     missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
     if args.mesh is None:
         missing.insert(0, "--mesh FILE")
     if args.out is None:
         missing.append("--out FILE.npz")
-    if missing:
-        raise ParameterError(f"reduce needs {', '.join(missing)}")
+    if missing:  # a usage mistake, as argparse's own "required" (exit 2)
+        raise UsageError("microslip reduce: the following arguments are required: "
+                         f"{', '.join(missing)}")
     check_density(args.density)
-    if (args.rom_modes is None) == (args.cutoff_frequency is None):
-        raise ParameterError("give one of --rom-modes N (fixed-interface modes) and "
-                             "--cutoff-frequency HZ, not both and not neither")
+    if args.rom_modes is not None and args.cutoff_frequency is not None:
+        raise UsageError("microslip reduce: argument --cutoff-frequency: not allowed with "
+                         "argument --rom-modes (give one: the modes kept by count or by "
+                         "frequency)")
+    if args.rom_modes is None and args.cutoff_frequency is None:
+        args.rom_modes = DEFAULT_ROM_MODES  # the default the help promises
     if args.rom_modes is not None and not 1 <= args.rom_modes <= MAX_ROM_MODES:
         raise ParameterError(f"--rom-modes must be in [1, {MAX_ROM_MODES}], got "
                              f"{args.rom_modes}")

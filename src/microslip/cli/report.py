@@ -22,23 +22,22 @@ def add_parser(sub: Any) -> None:
         "against finite elements with the validity warnings, and the planar coupling where "
         "the case gives a ratio; write them with every input and its unit into one HTML page "
         "that needs no network (docs/report.md). Units: N, mm, MPa, N·mm.")
-    p.add_argument("--case", dest="report_case", required=True, metavar="FILE.toml",
-                   help="the case file (microslip case new FILE.toml writes a template)")
-    p.add_argument("--out", metavar="FILE.html",
-                   help="the page to write (needed unless --json is given)")
-    p.add_argument("--json", action="store_true",
-                   help="print every number of the page as one JSON object (its one_d, fe and "
-                        "planar objects are those of loop, fe and planar --case --json)")
-    p.add_argument("--increments", type=int, default=1000, metavar="N",
-                   help="force increments of each 1-D first loading (default 1000)")
+    # the report's --case is its subject, read by the report itself (not the case defaults
+    # of the parse, :func:`microslip.case.options.parse_args`): its own destination
+    add_option(p, "case", dest="report_case", required=True,
+               help="the case file (microslip case new FILE.toml writes a template; "
+                    "microslip case new --mesh MESHFILE FILE.toml a case of your own part)")
+    add_option(p, "out", metavar="FILE.html",
+               help="the page to write (needed unless --json is given)")
+    add_option(p, "json", help="print every number of the page as one JSON object (its one_d, "
+               "fe and planar objects are those of loop, fe and planar --case --json)")
+    add_option(p, "increments", note="of each 1-D first loading")
     g = p.add_argument_group("finite-element runs")
-    g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
-                   help="FE solver (default builtin)")
+    add_option(g, "fe_solver", choices=list(SOLVERS))
     add_option(g, "mesh", default=DEFAULT_MESH, help="FE mesh")
-    g.add_argument("--substeps", type=int, default=50, metavar="N",
-                   help="substeps of each FE run, a multiple of 5 (default 50)")
-    g.add_argument("--no-fe", action="store_true", help="leave the FE runs out (faster)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_option(g, "substeps", note="of each FE run")
+    add_option(g, "no_fe")
+    add_option(p, "no_progress")
     p.set_defaults(func=run)
 
 
@@ -69,6 +68,12 @@ def run(args: argparse.Namespace) -> int:
                               fe_solver=args.fe_solver, mesh=args.mesh, substeps=args.substeps,
                               fe_points=not args.no_fe)
     case = load_case(args.report_case)
+    if "mesh.file" in case.values and "mesh.density" not in case.values:
+        from ..case.options import warn
+
+        warn(f"case {args.report_case}: its mesh {case.values['mesh.file']} has no density "
+             "([mesh] density, kg/m^3): the report leaves the structure out and describes the "
+             "bar of the case's clamp (its preset and [geometry]), not the mesh")
     def structure() -> dict[str, Any] | None:  # the case's own mesh, every solver
         return case_comparison(case)
 

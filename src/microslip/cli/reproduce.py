@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..case.table import add_option
 from ..conventions import DEFAULT_MESH
 from ..planar import LEVEL_SCHEMES, PAPER_STRAIN_ENERGY, WORK_STRAIN_ENERGY
 from ..planar.loadpath import DEFAULT_WORK_STRAIN_ENERGY
@@ -33,32 +34,23 @@ def add_parser(sub: Any) -> None:
         description="Write Figs 1, 10, 11, 12 (and 8-9 with the finite-element validation), "
         "the data behind them as CSV, and report.md with the readings in force, the results "
         "and a point-by-point check of the paper's claims. Units: N, mm, N·mm.")
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created)")
-    p.add_argument("--fe", action=argparse.BooleanOptionalAction, default=None,
-                   help="run the finite elements: the CalculiX validation for Figs 8-9 (by "
-                        "default when ccx is available) and the coupled 2-D friction study "
-                        "with the built-in solver (by default always; --no-fe skips both)")
-    p.add_argument("--fe-mesh", choices=list(FE_MESHES), default=DEFAULT_MESH,
-                   help="mesh of the finite-element validation (default coarse)")
-    p.add_argument("--increments", type=int, default=1000, metavar="N",
-                   help="force increments of each first loading (default 1000)")
-    p.add_argument("--levels", choices=list(LEVEL_SCHEMES), default="base",
-                   help="how R maps onto the paper's amplitude levels: "
-                        + "; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items())
-                        + " (default base)")
+    add_option(p, "out", required=True, metavar="DIR", help="output directory (created)")
+    add_option(p, "fe", note="the CalculiX validation for Figs 8-9 (by default when ccx is "
+               "available) and the coupled 2-D friction study with the built-in solver (by "
+               "default always; --no-fe skips both)")
+    add_option(p, "fe_mesh", choices=list(FE_MESHES), default=DEFAULT_MESH, type=None,
+               help="mesh of the finite-element validation")
+    add_option(p, "increments")
+    add_option(p, "levels", choices=list(LEVEL_SCHEMES),
+               note="; ".join(f"{k}: {v}" for k, v in LEVEL_SCHEMES.items()))
     add_strain_energy(p, PAPER_STRAIN_ENERGY, ", the paper's Eq. 22; secant is reported beside it")
-    p.add_argument("--work-energy", choices=list(WORK_STRAIN_ENERGY),
-                   default=DEFAULT_WORK_STRAIN_ENERGY,
-                   help="U of the combined motion in the work-based eta "
-                        f"(default {DEFAULT_WORK_STRAIN_ENERGY})")
+    add_option(p, "work_energy", choices=list(WORK_STRAIN_ENERGY),
+               default=DEFAULT_WORK_STRAIN_ENERGY)
     add_model_options(p, "paper", " here, because the paper's top centre level 16000 N equals "
                                   "mu F_N")
-    p.add_argument("--structure-study", action=argparse.BooleanOptionalAction, default=None,
-                   help="the damping of the cantilever example's two bending modes from its "
-                        "mesh: full FE, contact-node ROM and whole joint side by side "
-                        "(structure/; about a minute; by default with the finite elements, "
-                        "so --no-fe skips it too)")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
+    add_option(p, "structure_study", note="structure/; about a minute; by default with the "
+               "finite elements, so --no-fe skips it too")
+    add_option(p, "quiet")
     p.set_defaults(func=run)
 
 

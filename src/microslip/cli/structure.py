@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
-from ..case.table import add_option
+from ..case.table import MAX_MODE, MODE_STRUCTURE, add_option
 from ..conventions import CLAMP_MODELS
 from ..dynamics.assemble import (
     PlacedJoint,
@@ -38,7 +38,6 @@ from .across import (
     add_across_options,
     describe_across,
 )
-from .common import number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
@@ -55,6 +54,11 @@ ACROSS_WARNING = (
     "give {fix} to take the FE's first loading across")
 
 
+#: The mode of ``modal`` and ``frf`` that a mesh of the user's own replaces: one mode, a
+#: structure file, their joint and the box's geometry (:func:`add_structure_options`; with
+#: ``--mesh`` these options are refused, :func:`~.meshstructure.check_mesh_structure`).
+NOT_MESH = MODE_STRUCTURE
+
 #: Harmonics of the balance unless --harmonics is given.
 DEFAULT_HARMONICS = 7
 
@@ -66,35 +70,21 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     and the joint's options."""
     g = parser.add_argument_group("structure: one mode (units Hz, kg)")
     given = g.add_mutually_exclusive_group()
-    given.add_argument("--frequency", type=number, metavar="HZ",
-                       help="natural frequency with the joint removed, Hz")
-    given.add_argument("--stuck-frequency", type=number, metavar="HZ",
-                       help="natural frequency with the joint stuck (as measured at low "
-                            "amplitude), Hz; the frequency with the joint removed follows "
-                            "from the joint's initial stiffness")
-    g.add_argument("--modal-mass", type=number, metavar="KG", help="modal mass, kg")
-    g.add_argument("--damping-ratio", type=number, metavar="X",
-                   help="linear viscous damping ratio, c = 2 X m (2 pi f), in [0, 1) "
-                        "(default 0)")
-    g.add_argument("--participation", type=number, metavar="X",
-                   help="joint displacement per unit modal displacement, != 0 (default 1)")
+    add_option(given, "frequency", mode=NOT_MESH)
+    add_option(given, "stuck_frequency", mode=NOT_MESH)
+    add_option(g, "modal_mass", mode=NOT_MESH)
+    add_option(g, "damping_ratio", note="default 0", mode=NOT_MESH)
+    add_option(g, "participation", note="default 1", mode=NOT_MESH)
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
-    add_option(f, "structure", note="see docs/dynamics.md")
-    f.add_argument("--joint-dof", type=int, nargs="+", action="append", metavar="I",
-                   help="a joint between DOF I (0-based) and the ground, or I J between two "
-                        "DOFs; give it twice for a two-directional joint (one per "
-                        "direction); replaces the file's joints")
-    f.add_argument("--mode", type=int, metavar="N",
-                   help="mode followed and reported, 1-based by stuck frequency (default 1)")
-    add_option(f, "coupling", note="default circular")
-    add_across_options(f)
-    add_joint_options(parser, required=False)
-    add_case_option(parser)
-    for action in parser._actions:
-        if action.dest == "case":
-            action.help = ("a case file with [structure] file and [[joint]] tables: several "
-                           "joints, each with its own model (docs/casefile.md); or a clamp "
-                           "for --joint tip|centre")
+    add_option(f, "structure", note="see docs/dynamics.md", mode=NOT_MESH)
+    add_option(f, "joint_dof", mode=NOT_MESH)
+    add_option(f, "mode", note="default 1; with --mesh FILE the mode whose damping is studied")
+    add_option(f, "coupling", note="default circular", mode=NOT_MESH)
+    add_across_options(f, NOT_MESH)
+    add_joint_options(parser, required=False, mode=NOT_MESH)
+    add_case_option(parser, "a case file with [structure] file and [[joint]] tables: several "
+                    "joints, each with its own model; or a clamp for --joint tip|centre; or "
+                    "a [mesh] of your own part (docs/casefile.md); options given here win")
 
 
 def structure_from_args(args: argparse.Namespace) -> Structure:
@@ -132,10 +122,31 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
     across = across_from_args(args, np.asarray(joints))
     own = (matrices.laws is not None or matrices.contacts is not None) and \
         np.array_equal(np.asarray(joints), matrices.joints)
-    given = None if own and args.joint is None else joint_from_args(args)
+    if own:
+        _refuse_own_law(args)
+    given = None if own else joint_from_args(args)
     structure = from_matrices(matrices, np.asarray(joints), given,
                               args.coupling or "circular", across, args.pairing)
     return with_output(structure, modal_output(structure, mode_from_args(args)))
+
+
+#: Options of the joint that a structure file's own joint laws replace (refused with them).
+JOINT_LAW_OPTIONS = ("joint", "joint_stiffness", "slip_force", "chi", "beta", "elements",
+                     "stick_slope", "transverse", "pairing", "fe_mesh", "coupling")
+
+
+def _refuse_own_law(args: argparse.Namespace) -> None:
+    """The joints of a structure file that carry their own law (``reduce``'s ROM: a circular
+    Jenkins element or a 3-D contact element per contact node) take no joint, no coupling and
+    no joint across: such an option would change nothing, so it is refused in one line."""
+    given: frozenset[str] = getattr(args, "given_options", frozenset())
+    bad = [f"--{d.replace('_', '-')}" for d in JOINT_LAW_OPTIONS if d in given]
+    if not bad and args.coupling is not None:
+        bad = [f"[structure] coupling of case {args.case}"]
+    if bad:
+        raise ParameterError(f"{', '.join(bad)} changes nothing here: the joints of "
+                             f"{args.structure} carry their own law (each contact node's "
+                             "circular Coulomb element); remove it")
 
 
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
@@ -166,8 +177,10 @@ def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[Placed
 
 
 def mode_from_args(args: argparse.Namespace) -> int:
-    """The followed mode, 0-based."""
+    """The followed mode, 0-based (``--mode`` is 1-based, in the option table's range)."""
     mode = 1 if getattr(args, "mode", None) is None else args.mode
+    if not 1 <= mode <= MAX_MODE:
+        raise ParameterError(f"--mode must be in [1, {MAX_MODE}], got {mode}")
     return int(mode) - 1
 
 
@@ -243,12 +256,9 @@ def describe_contacts(structure: Structure) -> dict[str, Any]:
 def add_balance_options(parser: argparse.ArgumentParser) -> None:
     """``--harmonics`` and ``--samples``."""
     g = parser.add_argument_group("harmonic balance")
-    g.add_argument("--harmonics", type=int, metavar="H",
-                   help=f"harmonics, 1 = single-harmonic (describing-function) balance "
-                        f"(default {DEFAULT_HARMONICS})")
-    g.add_argument("--samples", type=int, default=DEFAULT_HB_SAMPLES, metavar="N",
-                   help=f"time samples per period of the alternating frequency-time scheme "
-                        f"(default {DEFAULT_HB_SAMPLES})")
+    add_option(g, "harmonics", note=f"default {DEFAULT_HARMONICS}")
+    add_option(g, "samples", default=DEFAULT_HB_SAMPLES,
+               note="of the alternating frequency-time scheme")
 
 
 def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:

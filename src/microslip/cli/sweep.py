@@ -9,6 +9,8 @@ from typing import Any
 import numpy as np
 
 from ..case.options import add_case_option
+from ..case.runflags import positive_int
+from ..case.table import add_option
 from ..conventions import CLAMP_MODELS
 from ..errors import ParameterError
 from ..models import MODELS
@@ -22,14 +24,13 @@ from .common import (
     clamp_overrides,
     increments_option,
     model_options,
-    number,
     params_from_args,
     planar_zones,
     refuse_inapplicable,
     warn_cost,
 )
 from .contact import add_contact_options, contact_from_args
-from .displacement import DISPLACEMENT_HELP, add_displacement_option, sweep_displacement_force
+from .displacement import add_displacement_option, sweep_displacement_force
 from .sweep_fe import RUNNERS as FE_RUNNERS
 from .sweep_fe import add_options as add_fe_sweep_options
 
@@ -54,26 +55,6 @@ distributions: normal:MEAN:SD, lognormal:MEAN:SD (of the quantity, always > 0),
 """
 
 
-def _positive_int(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {n}")
-    return n
-
-
-def _seed(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if not 0 <= n < 2**63:
-        raise argparse.ArgumentTypeError(f"must be in [0, 2^63), got {n}")
-    return n
-
-
 def add_parser(sub: Any) -> None:
     p = sub.add_parser(
         "sweep", help="parameter study: damping over grids and random samples",
@@ -82,53 +63,40 @@ def add_parser(sub: Any) -> None:
         "parameters, or the force ratio R of the planar model. Writes CSV or NetCDF (by the "
         "extension) and a summary plot; runs locally or on a Dask cluster (--scheduler).",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--model", choices=[*MODELS, "planar"], required=True)
+    add_option(p, "model", choices=[*MODELS, "planar"], required=True,
+               note="planar: the paper's planar coupling over the force ratio R")
     add_params(p, default_preset=None)
     for action in p._actions:
         if action.dest == "preset":
             action.help = ("paper parameter set (default table1; --model planar uses "
                            "table2-tip and table2-centre)")
     g = p.add_argument_group("what to sweep")
-    g.add_argument("--amplitude-range", nargs=2, type=number, metavar=("A", "B"),
-                   help="--cases amplitudes evenly spaced from A to B N, both included "
-                        "(the first axis)")
-    g.add_argument("--ratio-range", nargs=2, type=number, metavar=("A", "B"),
-                   help="planar: --cases force ratios R from A to B, geometrically spaced")
-    g.add_argument("--cases", type=_positive_int, metavar="N",
-                   help="number of points of --amplitude-range or --ratio-range (default 100)")
-    g.add_argument("--grid", action="append", default=[], metavar="NAME=SPEC",
-                   help="a grid axis, e.g. friction=0.4:0.8:5 or E=70000,210000 (repeatable)")
-    g.add_argument("--sample", action="append", default=[], metavar="NAME=DIST:A:B",
-                   help="a randomly drawn parameter, e.g. friction=normal:0.8:0.05 "
-                        "(repeatable)")
-    g.add_argument("--samples", type=_positive_int, default=1000, metavar="M",
-                   help="draws per grid point with --sample (default 1000)")
-    g.add_argument("--seed", type=_seed, metavar="S",
-                   help="seed of the random draws; the same seed writes the same file "
-                        "(default: a fresh seed, printed)")
-    g.add_argument("--levels", default="base", metavar="SCHEME",
-                   help="planar: how R maps to the amplitudes (microslip.planar."
-                        "LEVEL_SCHEMES; default base)")
-    add_displacement_option(g, DISPLACEMENT_HELP + ", for the base clamp (no swept clamp "
-                            "parameters)")
-    p.add_argument("--increments", type=int, default=1000, metavar="N",
-                   help="force increments of each first loading (default 1000)")
+    add_option(g, "amplitude_range", metavar=("A", "B"),
+               help="--cases amplitudes evenly spaced from A to B N, both included (the first "
+                    "axis)")
+    add_option(g, "ratio_range")
+    add_option(g, "cases", note="default 100")
+    add_option(g, "grid", default=[])
+    add_option(g, "sample", default=[])
+    add_option(g, "samples", type=positive_int, default=1000, metavar="M",
+               help="draws per grid point with --sample")
+    add_option(g, "seed", note="default: a fresh seed, printed")
+    add_option(g, "levels",
+               note="planar: how R maps to the amplitudes (microslip.planar.LEVEL_SCHEMES)")
+    add_displacement_option(g, note="for the base clamp (no swept clamp parameters)")
+    add_option(p, "increments")
     add_model_options(p)
     add_contact_options(p)
     add_strain_energy(p)
     o = p.add_argument_group("output and execution")
-    o.add_argument("--out", metavar="FILE", help="write FILE.csv or FILE.nc (NetCDF)")
-    o.add_argument("--plot", metavar="FILE.png", help="summary plot of eta against the "
-                   "swept parameter")
-    o.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run on this dask.distributed scheduler (e.g. tcp://host:8786)")
-    o.add_argument("--chunk-size", type=_positive_int, default=65536, metavar="N",
-                   help="cases per chunk / Dask task (default 65536)")
-    o.add_argument("--threads", type=_positive_int, metavar="N",
-                   help="threads of a local run (default: all cores)")
-    o.add_argument("--retries", type=int, default=3, metavar="N",
-                   help="retries of a failed Dask task (default 3)")
-    o.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_option(o, "out", metavar="FILE", help="write FILE.csv or FILE.nc (NetCDF)")
+    add_option(o, "plot", help="summary plot of eta against the swept parameter")
+    add_option(o, "scheduler")
+    add_option(o, "chunk_size")
+    add_option(o, "threads", type=positive_int, default=None, help="threads of a local run",
+               note="default: all cores")
+    add_option(o, "retries")
+    add_option(o, "no_progress")
     add_fe_sweep_options(p)
     add_case_option(p)
     p.set_defaults(func=run)

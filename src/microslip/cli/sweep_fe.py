@@ -29,12 +29,10 @@ def add_options(parser: argparse.ArgumentParser) -> None:
 
     g = parser.add_argument_group("--solver fe: finite-element amplitude sweep (docs/report.md)")
     add_solver(g, "sweep")
-    g.add_argument("--fe-solver", choices=list(SOLVERS), default="builtin",
-                   help="the FE solver of --solver fe (default builtin)")
+    add_option(g, "fe_solver", choices=list(SOLVERS),
+               note="with --solver fe")
     add_option(g, "mesh", default=DEFAULT_MESH, note="--solver fe")
-    g.add_argument("--substeps", type=int, default=50, metavar="N",
-                   help="substeps of each FE run over t = 0..1.25 s, a multiple of 5 "
-                        "(default 50)")
+    add_option(g, "substeps", note="of each FE run")
 
 
 def _check(args: argparse.Namespace) -> None:

@@ -7,11 +7,11 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
-from ..case.table import add_option, mesh_or_file
+from ..case.table import MODE_BOX, add_option, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
-from .common import add_params, check_output_dir, number, params_from_args, print_json
+from .common import add_params, check_output_dir, params_from_args, print_json
 from .ownmesh import add_own_mesh_options, is_mesh_file, mesh_case, refuse_mesh_options
 
 __all__ = ["add_parser", "run"]
@@ -25,27 +25,22 @@ def add_parser(sub: Any) -> None:
         "with the analytical models and the closed forms, and write fig08_contact_status.png, "
         "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
         "bash scripts/setup.sh or apt-get install calculix-ccx.")
-    p.add_argument("--out", metavar="DIR", required=True, help="output directory")
-    add_params(p, default_preset="table1")
+    add_option(p, "out", metavar="DIR", required=True, help="output directory")
+    add_params(p, mode=MODE_BOX)
     add_option(p, "mesh", action="append", type=mesh_or_file, metavar="LEVEL|FILE",
                note="repeat for several; or one mesh file of your own clamp (.inp, .msh, "
                ".vtu, ...) with --contact-set, --clamp-set and --load: the built-in solver "
                "against CalculiX on it (docs/ownmesh.md)")
     add_own_mesh_options(p, validate=True)
-    p.add_argument("--model", choices=list(LOAD_CASES), action="append",
-                   help="load case, repeat for several (default: tip and centre)")
+    add_option(p, "model", choices=list(LOAD_CASES), action="append", mode=MODE_BOX,
+               note="repeat for several (default: tip and centre)")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
-    p.add_argument("--timeout", type=number, metavar="S",
-                   help="time-out of each solver run, s (default 120 s + 0.15 s per DOF)")
-    p.add_argument("--threads", type=int, default=1, metavar="N",
-                   help="OpenMP threads of each solver run (default 1)")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run the jobs on this dask.distributed scheduler (default: locally)")
-    p.add_argument("--reuse", action="store_true",
-                   help="read job directories that already hold a run of the identical deck")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--json", action="store_true",
-                   help="print the table rows and the files as JSON")
+    add_option(p, "timeout", note="of each solver run (default 120 s + 0.15 s per DOF)")
+    add_option(p, "threads", help="OpenMP threads of each solver run")
+    add_option(p, "scheduler", note="default: locally")
+    add_option(p, "reuse", mode=MODE_BOX)
+    add_option(p, "no_progress")
+    add_option(p, "json", help="print the table rows and the files as JSON")
     add_case_option(p)
     p.set_defaults(func=run)
 
@@ -85,9 +80,12 @@ def _run_mesh(args: argparse.Namespace) -> int:
     if len(args.mesh) != 1:
         raise ParameterError("give one --mesh FILE (a mesh of your own) to validate, not "
                              f"{len(args.mesh)} meshes")
-    if args.model:
+    if "model" in getattr(args, "given_options", ()):
         raise ParameterError("--model applies to the box (--mesh LEVEL); with --mesh FILE "
                              "--load gives the loads")
+    if args.normal_contact not in (None, "penalty"):  # a case's [mesh] normal_contact
+        raise ParameterError(f"mesh.normal_contact = {args.normal_contact!r}: validate runs "
+                             "CalculiX, which takes penalty normal contact only")
     args.mesh = args.mesh[0]
     args.solver = "calculix"
     case = mesh_case(args)

@@ -140,6 +140,11 @@ def _structure(data: ReportData) -> str:
     """The damping of the structure's mode on the case's mesh: every solver side by side, the
     verdicts, the figure; or what the case lacks for it."""
     out = data.structure
+    if out is None and "mesh.file" in data.case.values:
+        return (f'<p class="note">The case\'s mesh {_e(str(data.case.values["mesh.file"]))} '
+                "has no density ([mesh] density, kg/m^3): its structure is not reported, and "
+                "the sections above describe the bar of the case's clamp (its preset and "
+                "[geometry]), not this mesh.</p>")
     if out is None:
         return ('<p class="note">The case gives no mesh of the structure with its density '
                 "([mesh] file, density; mode and response_set optional): no structure to "
