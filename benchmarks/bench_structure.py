@@ -97,9 +97,9 @@ def _reset_peak() -> None:
 def child(row: str, counts: tuple[int, int, int]) -> dict[str, Any]:
     """Run one row in this process; its time (s), the model's set-up (s), peak RSS (MB)."""
     from microslip.dynamics.modal_odd import epmc_odd
-    from microslip.fe.builtin.modes import linear_modes
-    from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
-    from microslip.fe.builtin.reduce import build_rom, rom_structure
+    from microslip.meshdynamics.modes import linear_modes
+    from microslip.meshdynamics.qsma import qsma, qsma_amplitudes
+    from microslip.meshdynamics.reduce import build_rom, rom_structure
 
     t0 = time.perf_counter()
     model = _model(counts, "penalty" if row == "epmc3d" else "fixed")

@@ -31,11 +31,11 @@ import time
 import numpy as np
 
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
-from microslip.fe.builtin.reduce import build_rom
-from microslip.fe.builtin.wholejoint import build_whole_joint, whole_joint_epmc
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import linear_modes
+from microslip.meshdynamics.qsma import qsma, qsma_amplitudes
+from microslip.meshdynamics.reduce import build_rom
+from microslip.meshdynamics.wholejoint import build_whole_joint, whole_joint_epmc
 
 RHO = 2700.0
 HARMONICS, SAMPLES = 7, 64

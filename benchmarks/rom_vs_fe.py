@@ -32,10 +32,10 @@ import numpy as np
 from microslip.dynamics.modal import ModalCurve, epmc, quasi_static
 from microslip.dynamics.modal_odd import epmc_odd
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import Mode, linear_modes
-from microslip.fe.builtin.qsma import QSMACurve, qsma, qsma_amplitudes
-from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import Mode, linear_modes
+from microslip.meshdynamics.qsma import QSMACurve, qsma, qsma_amplitudes
+from microslip.meshdynamics.reduce import build_rom, rom_structure
 
 E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6
 #: The issue's targets: frequency (first harmonic) and damping ratio, relative.

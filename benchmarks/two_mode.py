@@ -21,8 +21,8 @@ import argparse
 import time
 from pathlib import Path
 
-from microslip.fe.builtin.twomode import TwoModeCase, check_points, two_mode_study
 from microslip.fe.meshfile import read_mesh
+from microslip.meshdynamics.twomode import TwoModeCase, check_points, two_mode_study
 
 MESH = Path(__file__).resolve().parents[1] / "examples" / "post_on_plate.inp"
 

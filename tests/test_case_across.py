@@ -33,9 +33,9 @@ from microslip.dynamics.operators2d import (
 )
 from microslip.dynamics.operators2d import PAIRINGS as OPERATOR_PAIRINGS
 from microslip.dynamics.response import frequency_response
-from microslip.dynamics.spec import TRANSVERSE, transverse_operator
 from microslip.dynamics.structure import JointLink, Structure
 from microslip.errors import ParameterError
+from microslip.meshdynamics.spec import TRANSVERSE, transverse_operator
 
 if sys.version_info >= (3, 11):
     import tomllib

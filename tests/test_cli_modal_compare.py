@@ -20,7 +20,7 @@ from microslip.cli.modalcompare import SHARED
 from microslip.cli.modalmesh import MESH_SOLVERS
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
-from microslip.fe.verdict_modal import Targets, loglog_interp, modal_verdict
+from microslip.meshdynamics.verdict_modal import Targets, loglog_interp, modal_verdict
 
 BASE = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "2000",
         "--friction", "0.5", "--stick-slope", "1e4", "--modulus", "70000",

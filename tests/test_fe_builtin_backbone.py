@@ -13,11 +13,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from microslip import preset
-from microslip.dynamics.fe_check import cycle_work
 from microslip.errors import ParameterError
 from microslip.fe.builtin.backbone import HULL_TOLERANCE, concave_majorant, fe_backbone
 from microslip.fe.builtin.study import coupling_study, model_for
 from microslip.fe.constants import DEFAULT_STICK_SLOPE
+from microslip.meshdynamics.fe_check import cycle_work
 
 MESH = (8, 2, 1)
 

@@ -249,7 +249,7 @@ def frf_study(args: argparse.Namespace) -> FrfStudy:
 def _rom(study: FrfStudy) -> ForcedModel:
     """The contact-node ROM (:func:`microslip.fe.builtin.reduce.build_rom`), its load F d .
     mean(T_node) over the load set's nodes (T the Craig-Bampton basis)."""
-    from ..fe.builtin.reduce import build_rom, rom_structure
+    from ..meshdynamics.reduce import build_rom, rom_structure
 
     args, mode = study.args, study.mode
     modes = args.rom_modes or DEFAULT_ROM_MODES
@@ -274,7 +274,7 @@ def _load_rows(study: FrfStudy, rom: Any, modes: int) -> np.ndarray:
     built again with the load set as its response set; the fixed-interface modes are unique
     up to sign, so each modal coordinate's sign is aligned on the first build's mass
     coupling, and the two builds' matrices must then agree to 1e-8."""
-    from ..fe.builtin.reduce import build_rom
+    from ..meshdynamics.reduce import build_rom
 
     other = build_rom(study.model, study.args.density, modes=modes,
                       response_set=study.load_set)
@@ -301,8 +301,8 @@ def _joint(study: FrfStudy) -> ForcedModel:
     """The whole-joint model (:func:`microslip.fe.builtin.wholejoint.build_whole_joint`) on
     the contact-node ROM: its load is the ROM's carried through the interface reduction T
     (T^T f), its mode the stuck one nearest the full FE's."""
-    from ..fe.builtin.reduce import build_rom
-    from ..fe.builtin.wholejoint import build_whole_joint
+    from ..meshdynamics.reduce import build_rom
+    from ..meshdynamics.wholejoint import build_whole_joint
 
     args, mode = study.args, study.mode
     modes = args.rom_modes or DEFAULT_ROM_MODES

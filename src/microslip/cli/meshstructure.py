@@ -152,7 +152,7 @@ def mesh_model(args: argparse.Namespace, sets: tuple[str, ...] = ()) -> Any:
 def mesh_modes(args: argparse.Namespace, model: Any) -> tuple[int, Any, Any]:
     """(the --mode number, 1-based and checked; the stuck and the free linear modes, at least
     six and up to that mode, described by the response set)."""
-    from ..fe.builtin.modes import linear_modes
+    from ..meshdynamics.modes import linear_modes
 
     number = 1 if args.mode is None else args.mode
     if not 1 <= number <= MAX_MODE:

@@ -15,7 +15,7 @@ from typing import Any
 
 from ..case.model import Case
 from ..case.table import CASE_DESTS, OPTIONS
-from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
+from ..meshdynamics.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
 from .modalmesh import (
     ALL,

@@ -89,7 +89,7 @@ def _grid(args: argparse.Namespace, model: Any, modes: Any, number: int) -> tupl
     coordinate)."""
     import numpy as np
 
-    from ..fe.builtin.qsma import qsma_amplitudes
+    from ..meshdynamics.qsma import qsma_amplitudes
 
     mode = modes.select(number)
     scale = float(np.linalg.norm(modes.response_motion[number - 1])) / (
@@ -212,7 +212,7 @@ BASE_COLUMNS = {"amplitude_mm": ("a (mm)", "{:12.5g}"), "frequency_Hz": ("f (Hz)
 
 def _fe(study: MeshStudy) -> MeshCurve:
     """Quasi-static modal analysis of the full frictional FE at the grid's modal forces."""
-    from ..fe.builtin.qsma import qsma
+    from ..meshdynamics.qsma import qsma
 
     args = study.args
 
@@ -247,7 +247,7 @@ def _rom(study: MeshStudy) -> MeshCurve:
 
     from ..dynamics.modal import epmc
     from ..dynamics.modal_odd import epmc_odd
-    from ..fe.builtin.reduce import build_rom, rom_structure
+    from ..meshdynamics.reduce import build_rom, rom_structure
     from .structure import balance_from_args
 
     args, mode = study.args, study.mode
@@ -278,8 +278,8 @@ def _joint(study: MeshStudy) -> MeshCurve:
     first loading."""
     import numpy as np
 
-    from ..fe.builtin.reduce import build_rom
-    from ..fe.builtin.wholejoint import build_whole_joint, whole_joint_epmc
+    from ..meshdynamics.reduce import build_rom
+    from ..meshdynamics.wholejoint import build_whole_joint, whole_joint_epmc
     from .structure import balance_from_args
 
     args, mode = study.args, study.mode

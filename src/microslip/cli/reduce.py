@@ -113,8 +113,8 @@ def _check(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..fe.builtin.reduce import build_rom, convergence, full_mass, write_rom
     from ..io import check_writable
+    from ..meshdynamics.reduce import build_rom, convergence, full_mass, write_rom
 
     _check(args)
     check_writable(args.out, (".npz",), "--out")

@@ -141,7 +141,7 @@ def structure_from_args(args: argparse.Namespace) -> Structure:
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
     """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
     coupling wins over --coupling (or [structure] coupling), which wins over circular."""
-    from ..dynamics.spec import joint_operator, transverse_operator
+    from ..meshdynamics.spec import joint_operator, transverse_operator
     from .common import model_options
 
     specs = args.case_joints
@@ -209,7 +209,7 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
             return {**out, "joint": describe_contacts(structure)}
         if not specs:
             return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
-        from ..dynamics.spec import joint_operator, transverse_operator
+        from ..meshdynamics.spec import joint_operator, transverse_operator
         from .common import model_options
 
         opts = model_options(args)

@@ -53,8 +53,8 @@ def joint_fe_study(*, mesh: Any = None, ratios: Sequence[float] = JOINT_FE_RATIO
                    ) -> tuple[dict[str, list[Any]], list[Any]]:
     """Columns of ``joint2d_vs_fe.csv`` and the comparisons (one per ratio that ran);
     ``mesh`` default :data:`JOINT_FE_MESH`."""
-    from ..dynamics.fe_check import cycle_work, fe_comparison
     from ..fe.builtin.study import amplitudes_for_ratio
+    from ..meshdynamics.fe_check import cycle_work, fe_comparison
 
     params = preset("table1")
     peak = PEAK_FRACTION * params.macroslip_force

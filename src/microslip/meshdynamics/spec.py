@@ -17,11 +17,11 @@ from typing import TYPE_CHECKING
 
 from ..conventions import CLAMP_MODELS, DEFAULT_MESH
 from ..conventions import TRANSVERSE as TRANSVERSE_NAMES
+from ..dynamics.distributions import clamp_joint, iwan4_segalman
+from ..dynamics.operators import IwanOperator, jenkins
 from ..errors import ParameterError
 from ..jointspec import JointSpec
 from ..params import ClampParams
-from .distributions import clamp_joint, iwan4_segalman
-from .operators import IwanOperator, jenkins
 
 if TYPE_CHECKING:
     from ..options import ModelOptions

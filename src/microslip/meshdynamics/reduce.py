@@ -43,14 +43,14 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
-from ...blas import single_threaded_blas
-from ...errors import ParameterError
-from .meshmodel import MeshModel
+from ..blas import single_threaded_blas
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel
 from .modes import modal_mass, modal_stiffness, shift_inverse
 
 if TYPE_CHECKING:
-    from ...dynamics.files import MatrixFile
-    from ...dynamics.structure import Structure
+    from ..dynamics.files import MatrixFile
+    from ..dynamics.structure import Structure
 
 __all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_arrays", "rom_matrices",
            "rom_structure", "stuck_frequencies_full", "write_rom"]
@@ -400,7 +400,7 @@ def rom_matrices(rom: Rom) -> MatrixFile:
     """The ROM as the matrices of a structure file (SI: kg, N/m; no damping), its joints
     one per contact node with their own laws: lambda A_i and mu N_i (``fixed``: 2-D
     Jenkins), or lambda A_i, k_n A_i, N_i and mu (``penalty``: 3-D contact elements)."""
-    from ...dynamics.files import MatrixFile, check_matrices
+    from ..dynamics.files import MatrixFile, check_matrices
 
     m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
                              np.zeros_like(rom.mass))
@@ -424,7 +424,7 @@ def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
     default, the response set's mean displacement along global y (the contact plane's
     in-plane bending of the cantilever), else the first coordinate. The same structure as
     :func:`write_rom`'s file read back (:func:`~microslip.dynamics.assemble.from_matrices`)."""
-    from ...dynamics.assemble import from_matrices, with_output
+    from ..dynamics.assemble import from_matrices, with_output
 
     mats = rom_matrices(rom)
     s = from_matrices(mats, mats.joints, None, "circular")  # every joint has its own law

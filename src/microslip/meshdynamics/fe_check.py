@@ -29,17 +29,17 @@ from typing import Any
 import numpy as np
 
 from ..conventions import DEFAULT_MESH
+from ..dynamics.assemble import PlacedJoint, from_joints
+from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint
+from ..dynamics.files import MatrixFile
+from ..dynamics.operators import IwanOperator
+from ..dynamics.operators2d import PAIRINGS
+from ..dynamics.structure import Structure
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..jointspec import series_stiffness
 from ..named import result
 from ..params import ClampParams
-from .assemble import PlacedJoint, from_joints
-from .distributions import DEFAULT_ELEMENTS, clamp_joint
-from .files import MatrixFile
-from .operators import IwanOperator
-from .operators2d import PAIRINGS
-from .structure import Structure
 
 __all__ = ["FEComparison", "cycle_work", "fe_comparison", "orbit_work", "reduced_bar"]
 

@@ -37,12 +37,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import MacroslipError, ParameterError
-from ..errors import NonConvergenceError
-from ..hexmesh import HexMesh
-from ..result import STICK
-from .meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
-from .meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
+from ..errors import MacroslipError, ParameterError
+from ..fe.builtin.meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
+from ..fe.builtin.meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
+from ..fe.errors import NonConvergenceError
+from ..fe.hexmesh import HexMesh
+from ..fe.result import STICK
 from .modes import Mode, modal_stiffness, response_nodes, shift_inverse
 
 __all__ = [
@@ -484,7 +484,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
             progress(done, total, spent / done * (total - done))
 
     if scheduler is not None:
-        from ...cluster import map_on_cluster
+        from ..cluster import map_on_cluster
 
         recipe = _Recipe.of(model)
         payloads = [(recipe, mode, float(f), history) for f in q]
