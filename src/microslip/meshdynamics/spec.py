@@ -70,10 +70,9 @@ def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperato
     """The FE's first loading of the centre force across the bar as a 1-D joint (cached:
     an FE run, the same for the structure and its description)."""
     from ..fe.builtin import fe_backbone
+    from .febackbone import backbone_operator
 
-    op: IwanOperator = fe_backbone(clamp, "centre", mesh=mesh,
-                                   stick_slope=stick_slope).operator()
-    return op
+    return backbone_operator(fe_backbone(clamp, "centre", mesh=mesh, stick_slope=stick_slope))
 
 
 #: Transverse name (:data:`microslip.conventions.TRANSVERSE`) -> the 1-D joint across a bar:
