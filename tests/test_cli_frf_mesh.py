@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 
 from microslip.cli import frfmesh
-from microslip.cli.frfmesh import FrfMeshSolver, stuck_response
 from microslip.cli.main import main
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import read_mesh, write_inp
+from microslip.meshdynamics.frfstudy import FrfMeshSolver, stuck_response
 from microslip.meshdynamics.modes import linear_modes, modal_mass, modal_stiffness
 from microslip.meshdynamics.reduce import build_rom, rom_structure
 
@@ -244,7 +244,7 @@ def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[s
 
 
 def test_peak_comparison_is_relative_to_the_reference() -> None:
-    from microslip.cli.frfmesh import peak_comparison
+    from microslip.meshdynamics.frfstudy import peak_comparison
 
     ref = {"force_N": 3.0, "peak_amplitude_mm": 0.02, "peak_frequency_Hz": 1600.0,
            "damping_ratio": 0.05}

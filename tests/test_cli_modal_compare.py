@@ -16,10 +16,9 @@ import numpy as np
 import pytest
 
 from microslip.cli.main import main
-from microslip.cli.modalcompare import SHARED
-from microslip.cli.modalmesh import MESH_SOLVERS
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
+from microslip.meshdynamics.modalstudy import MESH_SOLVERS, SHARED
 from microslip.meshdynamics.verdict_modal import Targets, loglog_interp, modal_verdict
 
 BASE = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "2000",

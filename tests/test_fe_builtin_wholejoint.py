@@ -218,7 +218,7 @@ def test_work_backbone_does_the_interface_s_whole_work(model, modes) -> None:  #
 def test_command_line_names_every_backbone() -> None:
     """The parser's --backbone choices are the library's backbones (named twice so that the
     command line starts without importing the FE)."""
-    from microslip.cli.meshstructure import BACKBONE_NAMES
+    from microslip.meshdynamics.case import BACKBONE_NAMES
     from microslip.meshdynamics.wholejoint import BACKBONES
 
     assert tuple(BACKBONES) == BACKBONE_NAMES

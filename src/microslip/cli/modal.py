@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         if args.solver == ALL:
             from .modalcompare import run_modal_all
 
-            return run_modal_all(mesh_study(args))
+            return run_modal_all(mesh_study(args), args)
         return run_modal_mesh(args)
     refuse_mesh_options(args)
     if args.amplitude_range is None:

@@ -25,7 +25,7 @@ from ..case.table import add_option, number
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
 from .common import print_json
-from .meshstructure import add_mesh_structure_options, check_density, mesh_model
+from .meshstructure import add_mesh_structure_options, check_density, structure_case
 from .ownmesh import REQUIRED as MESH_REQUIRED
 
 __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts", "run"]
@@ -118,7 +118,9 @@ def run(args: argparse.Namespace) -> int:
 
     _check(args)
     check_writable(args.out, (".npz",), "--out")
-    model = mesh_model(args)
+    from ..meshdynamics.case import clamped
+
+    model = clamped(structure_case(args))
     t0 = time.perf_counter()
     mass = full_mass(model, args.density)
     rom = build_rom(model, args.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,

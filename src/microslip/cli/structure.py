@@ -27,7 +27,7 @@ from ..dynamics.assemble import (
     with_output,
 )
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
-from ..dynamics.hb import DEFAULT_HB_SAMPLES
+from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
 from ..dynamics.operators2d import PAIRINGS
 from ..dynamics.operators3d import Contact3D
 from ..dynamics.structure import Structure, free_frequency, one_mode
@@ -38,7 +38,7 @@ from .across import (
     add_across_options,
     describe_across,
 )
-from .common import number
+from .common import flagged, number
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
@@ -55,8 +55,6 @@ ACROSS_WARNING = (
     "give {fix} to take the FE's first loading across")
 
 
-#: Harmonics of the balance unless --harmonics is given.
-DEFAULT_HARMONICS = 7
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
@@ -255,13 +253,8 @@ def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
     """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
     if args.harmonics is None:
         args.harmonics = DEFAULT_HARMONICS
-    if not 1 <= args.harmonics <= 256:
-        raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
-    low = 2 * args.harmonics + 2
-    if not low <= args.samples <= 65536:
-        raise ParameterError(f"--samples must be in [{low}, 65536] for {args.harmonics} "
-                             f"harmonics, got {args.samples}")
-    return int(args.harmonics), int(args.samples)
+    with flagged():
+        return check_balance(args.harmonics, args.samples)
 
 
 def headline(structure: Structure, mode: int) -> str:

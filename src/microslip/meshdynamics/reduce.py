@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -93,6 +94,9 @@ class Rom:
         (N; |t_i| <= mu N_i). With ``penalty`` normal contact the 3-D elements start their
         cycles from it (it does not shake down when N varies); with ``fixed`` it shakes down
         and is not used.
+    outputs : dict of str to ndarray, shape (3, n)
+        The same rows for every other set named in ``build_rom``'s ``output_sets`` (a load
+        set, say), from the same build: one basis, no sign to align.
     """
 
     mass: FloatArray = field(repr=False)
@@ -107,6 +111,7 @@ class Rom:
     output: FloatArray | None = field(repr=False)
     build_s: float
     stick_force: FloatArray | None = field(default=None, repr=False)
+    outputs: dict[str, FloatArray] = field(default_factory=dict, repr=False)
 
     @property
     def dofs(self) -> int:
@@ -212,7 +217,7 @@ def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None
 
 def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = None,
               cutoff_hz: float | None = None, response_set: str | None = None,
-              mass: sp.csr_matrix | None = None) -> Rom:
+              mass: sp.csr_matrix | None = None, output_sets: Sequence[str] = ()) -> Rom:
     """Craig-Bampton ROM of ``model`` with every contact node's dofs kept.
 
     Parameters
@@ -229,6 +234,9 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
         A node set whose mean displacement is the ROM's output rows.
     mass : sparse matrix, optional
         The full mass (:func:`full_mass`), if already built.
+    output_sets : sequence of str, optional
+        More node sets whose mean displacement rows the ROM carries (:attr:`Rom.outputs`),
+        computed in the same pass as the response set's.
 
     Returns
     -------
@@ -245,6 +253,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     b, per_node = _boundary(model)
     inner = np.setdiff1d(np.arange(model.dof), b)
     rows = None if response_set is None else _response_rows(model, response_set, b, inner)
+    others = [s for s in dict.fromkeys(output_sets) if s != response_set]
+    more = [_response_rows(model, s, b, inner) for s in others]
     k_ii = k_full[inner][:, inner].tocsc()
     m_ii = m_full[inner][:, inner].tocsc()
     k_ib = k_full[inner][:, b]
@@ -259,8 +269,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                                  "is above it): raise the cut-off")
         phi = phi / np.max(np.abs(phi), axis=0) * np.sign(
             phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])])
-        k_psi, m_psi, psi_m_psi, m_psi_phi, psi_rows = _constraint_modes(
-            lu, k_ib.tocsc(), m_ib.tocsc(), m_ii, phi, rows)
+        k_psi, m_psi, psi_m_psi, m_psi_phi, psi_rows, psi_more = _constraint_modes(
+            lu, k_ib.tocsc(), m_ib.tocsc(), m_ii, phi, rows, more)
     mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
     del lu, k_ii, m_ii  # the factor (on the 50k-DOF cantilever 0.8 GB) before the rest
     k_bb = k_full[b][:, b].toarray() + k_psi
@@ -276,13 +286,16 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     k_r[:nb, :nb] = 0.5 * (k_bb + k_bb.T)
     k_r[nb:, nb:] = np.diag(mu * (2.0 * np.pi * freq) ** 2)
     out = None if rows is None else _output(model, rows, psi_rows, phi)
+    outputs = {s: _output(model, r, sums, phi)
+               for s, r, sums in zip(others, more, psi_more, strict=True)}
     kn = (np.zeros_like(model.contact_stiffness) if model.normal is None
           else np.asarray(model.normal.stiffness, dtype=float))
     return Rom(mass=m_r, stiffness=k_r, boundary=b, per_node=per_node,
                interface_frequencies=freq, contact_stiffness=model.contact_stiffness.copy(),
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
-               build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model))
+               build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model),
+               outputs=outputs)
 
 
 def clamped_stick_force(model: MeshModel) -> FloatArray:
@@ -309,13 +322,16 @@ class _Rows:
 
 
 def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix,
-                      m_ii: sp.csc_matrix, phi: FloatArray, rows: _Rows | None
-                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+                      m_ii: sp.csc_matrix, phi: FloatArray, rows: _Rows | None,
+                      more: Sequence[_Rows] = ()
+                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
+                                 list[FloatArray]]:
     """The constraint modes Psi = -K_ii^-1 K_ib (n_i, n_b) in the reduced matrices, ``BLOCK``
     columns of Psi at a time: K_bi Psi, M_bi Psi, Psi^T M_ii Psi (n_b, n_b), (M_ii Psi)^T
     Phi (n_b, n_m) and the sums of Psi's rows of the response set (3, n_b; zeros without
-    one). Psi^T M_ii Psi is taken column block by column block as -K_bi K_ii^-1 (M_ii Psi_j)
-    (K_ii symmetric), one more solve per block instead of holding all of Psi."""
+    one; ``more``: the same for each of more sets). Psi^T M_ii Psi is taken column block
+    by column block as -K_bi K_ii^-1 (M_ii Psi_j) (K_ii symmetric), one more solve per
+    block instead of holding all of Psi."""
     n_b = k_ib.shape[1]
     k_bi = k_ib.T.tocsr()
     m_bi = m_ib.T.tocsr()
@@ -324,6 +340,7 @@ def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix
     psi_m_psi = np.empty((n_b, n_b))
     m_psi_phi = np.empty((n_b, phi.shape[1]))
     sums = np.zeros((3, n_b))
+    more_sums = [np.zeros((3, n_b)) for _ in more]
     for j in range(0, n_b, BLOCK):
         cols = slice(j, j + BLOCK)
         psi = -lu.solve(k_ib[:, cols].toarray())
@@ -332,11 +349,14 @@ def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix
         if rows is not None:
             for c in range(3):
                 sums[c, cols] = psi[rows.interior[c]].sum(axis=0)
+        for r, s in zip(more, more_sums, strict=True):
+            for c in range(3):
+                s[c, cols] = psi[r.interior[c]].sum(axis=0)
         mp = m_ii @ psi
         del psi
         m_psi_phi[cols] = mp.T @ phi
         psi_m_psi[:, cols] = -(k_bi @ lu.solve(mp))
-    return k_psi, m_psi, psi_m_psi, m_psi_phi, sums
+    return k_psi, m_psi, psi_m_psi, m_psi_phi, sums, more_sums
 
 
 def _response_rows(model: MeshModel, name: str, b: IntArray, inner: IntArray) -> _Rows:
