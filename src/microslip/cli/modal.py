@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from ..dynamics.modal import METHODS, energy_method
+from ..dynamics.modal import METHODS, MODAL_COORDINATE, energy_method
 from ..errors import ParameterError
 from .common import number
 from .contact import report_warnings
@@ -107,7 +107,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json({"structure": describe_structure(structure, args), "method": curve.method,
                     "harmonics": curve.harmonics, "samples": curve.samples,
-                    "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
+                    "amplitude_mm": curve.amplitude, "amplitude_coordinate": MODAL_COORDINATE,
+                    "frequency_Hz": curve.frequency,
                     "damping_ratio": curve.damping_ratio,
                     "energy_method": None if three_d else {
                         "frequency_Hz": energy.frequency,
@@ -116,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "
           f"{curve.samples} samples")
-    print(f"{'a (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")
+    print(f"{'q (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")  # the modal coordinate
     for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
         print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
     return 0

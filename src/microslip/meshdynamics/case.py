@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from .modes import Mode, Modes
     from .reduce import Rom
 
-__all__ = ["AMPLITUDE_COORDINATES", "BACKBONE_NAMES", "DEFAULT_ROM_MODES", "MAX_AMPLITUDES",
+__all__ = ["BACKBONE_NAMES", "DEFAULT_ROM_MODES", "MAX_AMPLITUDES",
            "MAX_MODE", "PreparedStructure", "StructureCase", "amplitude_grid", "prepare",
            "structure_rom"]
 
@@ -41,13 +41,6 @@ DEFAULT_ROM_MODES = 60
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")
 #: Most amplitudes of one grid.
 MAX_AMPLITUDES = 200
-#: What ``amplitude_mm`` measures: the response set's mean displacement along the mode
-#: (a mesh study), or the modal coordinate (a structure file, a one-mode structure).
-AMPLITUDE_COORDINATES = {
-    "response_set": "the first harmonic of the response set's mean displacement along the "
-                    "mode's direction, mm",
-    "modal": "the first harmonic of the modal coordinate of the mode (mass-normalised), mm",
-}
 
 
 @dataclass(frozen=True)

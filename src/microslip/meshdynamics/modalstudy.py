@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
+from ..dynamics.modal import RESPONSE_SET_COORDINATE
 from ..errors import ParameterError
 from .case import (
     MAX_AMPLITUDES,
@@ -286,7 +287,7 @@ def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, 
     prepared = study.prepared
     return {"mesh": study.case.mesh_name, "solver": solver, "mode": study.number,
             "label": study.mode.label, "density_kg_m3": study.case.density,
-            "amplitude_coordinate": "response_set",
+            "amplitude_coordinate": RESPONSE_SET_COORDINATE,
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
             "modes": prepared.stuck.summary(), **curve.values, **curve.extra,
