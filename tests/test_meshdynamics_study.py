@@ -101,7 +101,8 @@ def test_the_command_line_builds_the_case_once(mesh: str) -> None:
 def test_modal_all_builds_the_rom_once(mesh: str, builds: list, capsys: pytest.CaptureFixture[str]
                                        ) -> None:
     assert main(["modal", "--mesh", mesh, *FLAGS, "--mode", "2", "--amplitudes", "1",
-                 "--amplitude-range", "1e-4", "1e-4", "--rom-modes", "10", "--harmonics", "1", "--solver", "all", "--json"]) == 0
+                 "--amplitude-range", "1e-4", "1e-4", "--rom-modes", "10", "--harmonics",
+                 "1", "--solver", "all", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert list(out["solvers"]) == ["fe", "rom", "joint"]
     assert out["amplitude_coordinate"] == "response_set"
