@@ -2,7 +2,7 @@
 
 :class:`StructureCase` holds what the user states (the mesh, its clamp, the density, the
 mode, the response set and the reduced models' settings), validated once;
-:func:`prepare` reads the mesh, clamps it and computes its stuck and free linear modes
+:func:`prepare_structure` reads the mesh, clamps it and computes its stuck and free linear modes
 (:class:`PreparedStructure`); :func:`amplitude_grid` is the one amplitude grid every modal
 solver runs on and :func:`structure_rom` the contact-node ROM, built once per study with
 the rows of every output set. Units: mm, N, MPa, kg/m^3, Hz.
@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from .reduce import Rom
 
 __all__ = ["BACKBONE_NAMES", "DEFAULT_ROM_MODES", "MAX_AMPLITUDES",
-           "MAX_MODE", "PreparedStructure", "StructureCase", "amplitude_grid", "prepare",
+           "MAX_MODE", "PreparedStructure", "StructureCase", "amplitude_grid", "prepare_structure",
            "structure_rom"]
 
 #: Highest mode number a mesh study takes (the eigen-solve computes that many).
@@ -151,7 +151,7 @@ def clamped(case: StructureCase, sets: Sequence[str] = ()) -> MeshModel:
     return clamped_model(read_structure_mesh(case, sets), case.clamp)
 
 
-def prepare(case: StructureCase, sets: Sequence[str] = ()) -> PreparedStructure:
+def prepare_structure(case: StructureCase, sets: Sequence[str] = ()) -> PreparedStructure:
     """Clamp the case's mesh (:func:`clamped`; ``sets``: more node sets to check, a load
     set, say) and compute its stuck and free linear modes."""
     from .modes import linear_modes

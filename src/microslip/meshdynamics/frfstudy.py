@@ -28,7 +28,7 @@ import numpy as np
 
 from ..dynamics.hb import DEFAULT_HB_SAMPLES, check_balance
 from ..errors import ParameterError
-from .case import PreparedStructure, StructureCase, prepare, set_rows, structure_rom
+from .case import PreparedStructure, StructureCase, prepare_structure, set_rows, structure_rom
 
 __all__ = ["DAMPING_DEFINITION", "DEFAULT_MESH_HARMONICS", "FRF_MESH_SOLVERS", "MESH_RANGE",
            "REFERENCE", "ForcedModel", "FrfMeshSolver", "FrfSettings", "FrfStudy",
@@ -187,7 +187,7 @@ def prepare_frf(case: StructureCase, load_set: str | None = None,
                                  f"all 0, got {load_direction!r}")
         direction = np.asarray(d / np.linalg.norm(d))
     name = load_set or case.response_set
-    prepared = prepare(case, (name,) if load_set else ())
+    prepared = prepare_structure(case, (name,) if load_set else ())
     mode = prepared.mode
     sets = prepared.model.mesh.node_sets
     if name not in sets:

@@ -26,7 +26,7 @@ from .case import (
     PreparedStructure,
     StructureCase,
     amplitude_grid,
-    prepare,
+    prepare_structure,
     structure_rom,
 )
 from .verdict_modal import modal_verdict
@@ -256,7 +256,7 @@ def prepare_modal(case: StructureCase, settings: ModalSettings | None = None) ->
     """Clamp the case's mesh, compute its stuck and free modes and the amplitude grid:
     everything the solvers share."""
     settings = ModalSettings() if settings is None else settings
-    prepared = prepare(case)
+    prepared = prepare_structure(case)
     forces, amplitudes = amplitude_grid(prepared, settings.amplitudes,
                                         settings.amplitude_range)
     return ModalStudy(prepared=prepared, settings=settings, forces=forces,
