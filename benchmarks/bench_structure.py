@@ -58,13 +58,12 @@ MEMORY_MB = 2048.0
 
 
 def _model(counts: tuple[int, int, int], normal: str = "fixed") -> Any:
-    from microslip.fe.builtin.meshmodel import build_mesh_model
+    from microslip.fe.clamp import MeshClamp, clamped_model
     from microslip.fe.examples import cantilever_mesh
 
-    return build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                            clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                            normal_contact=normal, normal_slope=1e6)
+    return clamped_model(cantilever_mesh(*counts), MeshClamp(
+        "contact", "clamp", normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
+        friction=0.5, stick_slope=1e4, normal_contact=normal, normal_slope=1e6))
 
 
 def _peak_mb() -> float:

@@ -30,11 +30,16 @@ import time
 
 import numpy as np
 
-from microslip.fe.builtin.meshmodel import build_mesh_model
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import cantilever_mesh
-from microslip.meshdynamics.modes import linear_modes
-from microslip.meshdynamics.qsma import qsma, qsma_amplitudes
-from microslip.meshdynamics.reduce import build_rom
+from microslip.meshdynamics.case import (
+    PreparedStructure,
+    StructureCase,
+    amplitude_grid,
+    prepare_structure,
+    structure_rom,
+)
+from microslip.meshdynamics.qsma import qsma
 from microslip.meshdynamics.wholejoint import build_whole_joint, whole_joint_epmc
 
 RHO = 2700.0
@@ -49,26 +54,24 @@ def _pct(x: float, ref: float) -> str:
     return f"{100 * (x / ref - 1):+8.1f}"
 
 
-def compare(model: object, number: int, count: int) -> None:
-    modes = linear_modes(model, RHO, 6, "stuck", "response")  # type: ignore[arg-type]
-    mode = modes.select(number)
-    scale = float(np.linalg.norm(modes.response_motion[number - 1])) / (
-        2 * math.pi * mode.frequency_Hz) ** 2
-    forces = qsma_amplitudes(model, mode, count)  # type: ignore[arg-type]
+def compare(prepared: PreparedStructure, count: int) -> None:
+    """The full FE's QSMA on the study's grid (:func:`amplitude_grid`) against the whole
+    joint's variants, all on the library's prepared structure and its one ROM."""
+    model, mode, number = prepared.model, prepared.mode, prepared.number
+    forces, linear = amplitude_grid(prepared, count)
     t0 = time.perf_counter()
-    fe = qsma(model, mode, forces)  # type: ignore[arg-type]
+    fe = qsma(model, mode, forces)
     t_fe = time.perf_counter() - t0
     # at equal amplitude: the FE's own (its softening makes it exceed the linear map q r /
     # omega^2); a failed FE point keeps the linear map
-    amplitudes = np.where(np.isfinite(fe.amplitude_mm), fe.amplitude_mm, forces * scale)
-    rom = build_rom(model, RHO, modes=60, response_set="response")  # type: ignore[arg-type]
+    amplitudes = np.where(np.isfinite(fe.amplitude_mm), fe.amplitude_mm, linear)
+    rom = structure_rom(prepared)
     assert rom.output is not None
     out = mode.direction @ rom.output
     curves, joints, times = {}, {}, {}
     for name, (torsion, backbone) in VARIANTS.items():
         t0 = time.perf_counter()
-        wj = build_whole_joint(rom, model, mode, out, torsion=torsion,  # type: ignore[arg-type]
-                               backbone=backbone)
+        wj = build_whole_joint(rom, model, mode, out, torsion=torsion, backbone=backbone)
         curves[name], failed = whole_joint_epmc(wj, amplitudes, HARMONICS, SAMPLES,
                                                 mode.frequency_Hz)
         for w in failed:
@@ -109,13 +112,16 @@ def main() -> None:
     p.add_argument("--quick", action="store_true", help="12x3x1 mesh, 4 amplitudes")
     args = p.parse_args()
     counts = (12, 3, 1) if args.quick else (24, 6, 2)
-    model = build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
-    print(f"cantilever {'x'.join(map(str, counts))}: {model.dof} dofs, "
-          f"{model.contact_nodes.size} contact nodes")
+    clamp = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                      poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
+    mesh = cantilever_mesh(*counts)
     for number in (2, 1):
-        compare(model, number, 4 if args.quick else 8)
+        prepared = prepare_structure(StructureCase(mesh, clamp, density=RHO, mode=number,
+                                                   response_set="response", rom_modes=60))
+        model = prepared.model
+        print(f"cantilever {'x'.join(map(str, counts))}: {model.dof} dofs, "
+              f"{model.contact_nodes.size} contact nodes")
+        compare(prepared, 4 if args.quick else 8)
 
 
 if __name__ == "__main__":
