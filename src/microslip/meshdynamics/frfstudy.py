@@ -287,14 +287,14 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
                ) -> dict[str, tuple[ForcedModel, list[Any]]]:
     """Each named solver's model and its curves, one per force (N); the ROM is built once.
     ``each(name, forces)`` may wrap the forces' iteration (a progress bar)."""
-    from ..dynamics.response import frequency_response
+    from ..dynamics.response import DEFAULT_STEP, frequency_response
 
     bad = [s for s in solvers if s not in FRF_MESH_SOLVERS]
     if bad or not solvers:
         raise ParameterError(f"unknown frf solver {bad[0] if bad else None!r}; choose from "
                              f"{', '.join(FRF_MESH_SOLVERS)}")
     frange = frequency_range(study, settings)
-    step = {} if settings.step is None else {"step": settings.step}
+    step = DEFAULT_STEP if settings.step is None else settings.step
     rom = study_rom(study)
     runs = {}
     for name in solvers:
@@ -302,7 +302,7 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
         levels = forces if each is None else each(name, forces)
         runs[name] = (forced, [
             frequency_response(forced.structure, f, forced.load, frange, settings.harmonics,
-                               settings.samples, odd=forced.odd, **step)
+                               settings.samples, step, odd=forced.odd)
             for f in levels])
     return runs
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -144,7 +144,7 @@ def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from .qsma import qsma
 
     model = study.prepared.model
-    curve = qsma(model, study.mode, study.forces, workers=study.settings.workers,
+    curve = qsma(model, study.mode, cast(Any, study.forces), workers=study.settings.workers,
                  scheduler=study.settings.scheduler, progress=progress)
     s = curve.summary()
     columns = {"amplitude_mm": BASE_COLUMNS["amplitude_mm"],

@@ -14,14 +14,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ..fe.clamp import MeshClamp
+
 __all__ = ["STRUCTURE_CLAMP", "STRUCTURE_MODES", "structure_study"]
 
-#: The cantilever's clamp and material (N, MPa, N/mm^3), as
-#: :class:`microslip.fe.clamp.MeshClamp`'s keywords; density 2700 kg/m^3, response set
+#: The cantilever's clamp and material (N, MPa, N/mm^3); density 2700 kg/m^3, response set
 #: ``response``.
-STRUCTURE_CLAMP = {"contact_set": "contact", "clamp_set": "clamp", "normal_force": 2000.0,
-                   "friction": 0.5, "stick_slope": 1e4, "modulus": 70000.0,
-                   "poisson_ratio": 0.33}
+STRUCTURE_CLAMP = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
 STRUCTURE_DENSITY = 2700.0
 STRUCTURE_RESPONSE = "response"
 #: Out-of-plane and in-plane bending.
@@ -34,7 +34,6 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
                     amplitudes: int = STRUCTURE_AMPLITUDES) -> tuple[list[Path], list[str]]:
     """Write ``structure/`` in ``stage``: the mesh (``counts`` elements), ``mode<N>.json`` and
     ``mode<N>.png`` per mode; return the files and the report's lines (Markdown)."""
-    from ..fe.clamp import MeshClamp
     from ..fe.examples import cantilever_mesh
     from ..fe.meshfile import write_inp
     from ..io import write_json
@@ -55,7 +54,7 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
     for number in STRUCTURE_MODES:
         if echo is not None:
             echo(f"structure: mode {number} of the cantilever, every model")
-        case = StructureCase(str(mesh), MeshClamp(**STRUCTURE_CLAMP),
+        case = StructureCase(str(mesh), STRUCTURE_CLAMP,
                              density=STRUCTURE_DENSITY, mode=number,
                              response_set=STRUCTURE_RESPONSE)
         out = modal_study(case, ModalSettings(amplitudes=amplitudes))
