@@ -73,7 +73,7 @@ def test_the_structure_case_is_validated() -> None:
     clamp = MeshClamp(**CLAMP)  # type: ignore[arg-type]
     case = StructureCase("x.inp", clamp, density=2700, mode=2)
     assert case.density == 2700.0 and isinstance(case.density, float)
-    for kw, message in [({"density": 0.0}, "density must be finite and > 0 kg/m^3"),
+    for kw, message in [({"density": 0.0}, "density must be > 0 kg/m^3 and finite"),
                         ({"mode": 51}, "mode must be in [1, 50]"),
                         ({"rom_modes": 0}, "rom_modes must be >= 1"),
                         ({"backbone": "glue"}, "unknown backbone 'glue'")]:

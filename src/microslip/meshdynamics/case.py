@@ -82,7 +82,7 @@ class StructureCase:
         except (TypeError, ValueError):
             rho = math.nan
         if not (math.isfinite(rho) and rho > 0.0):
-            raise ParameterError(f"density must be finite and > 0 kg/m^3, got "
+            raise ParameterError(f"density must be > 0 kg/m^3 and finite, got "
                                  f"{self.density!r}")
         object.__setattr__(self, "density", rho)
         if isinstance(self.mode, bool) or not isinstance(self.mode, int | np.integer) or not (
