@@ -7,11 +7,11 @@ The cantilever example (:func:`microslip.fe.examples.cantilever_mesh` 24x6x2, C3
 E 70000 MPa, nu 0.33, density 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N/mm^3,
 ``fixed`` normal contact; response set ``response`` (the tip). For the in-plane bending
 (mode 2) and the out-of-plane bending (mode 1), on the modal forces of the full FE's grid
-(:func:`~microslip.fe.builtin.qsma.qsma_amplitudes`, first slip to near gross sliding):
+(:func:`~microslip.meshdynamics.qsma.qsma_amplitudes`, first slip to near gross sliding):
 
 * ``fe``: quasi-static modal analysis of the full frictional FE (the truth);
 * ``joint``: EPMC (7 harmonics) on the whole-joint model
-  (:mod:`microslip.fe.builtin.wholejoint`) as ``--solver joint`` builds it (torsion joint
+  (:mod:`microslip.meshdynamics.wholejoint`) as ``--solver joint`` builds it (torsion joint
   ``iwan``, the rotation's own first-loading curve); ``stuckT`` the same with the classical
   linear torsion spring; ``work`` with the work-equivalent backbone (``--backbone work``);
   at the FE's own amplitudes (equal amplitude: the response set's first harmonic along the

@@ -3,7 +3,7 @@
 On the cantilever example (``microslip.fe.examples.cantilever_mesh``; E 70000 MPa, nu 0.33,
 rho 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N/mm^3), per mode (default: 2, the
 lowest bending in the contact plane, and 1, the lowest out of it) and per amplitude of the
-full FE's grid (first slip to near gross sliding, :func:`~microslip.fe.builtin.qsma.
+full FE's grid (first slip to near gross sliding, :func:`~microslip.meshdynamics.qsma.
 qsma_amplitudes`), measured in one run:
 
 * ``FE``: the full FE's QSMA (frequency from the loop's first harmonic, zeta = W / (2 pi a^2

@@ -1,5 +1,5 @@
 """The Table 1 bar reduced to its joint against the built-in FE at the same motion
-(microslip.dynamics.fe_check; figures at the coarse and medium meshes in docs/dynamics.md)."""
+(microslip.meshdynamics.fe_check; figures at the coarse and medium meshes in docs/dynamics.md)."""
 
 from __future__ import annotations
 

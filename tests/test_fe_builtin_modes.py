@@ -1,4 +1,4 @@
-"""Linear modes of a clamped mesh (fe.builtin.modes, issue 23): closed forms, orthogonality,
+"""Linear modes of a clamped mesh (meshdynamics.modes, issue 23): closed forms, orthogonality,
 the frames, the labels, ParaView output, bad input, and CalculiX on the same mesh."""
 
 from __future__ import annotations

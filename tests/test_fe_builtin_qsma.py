@@ -1,4 +1,4 @@
-"""Quasi-static modal analysis of the full FE (fe.builtin.qsma, issue 23): the first-harmonic
+"""Quasi-static modal analysis of the full FE (meshdynamics.qsma, issue 23): the first-harmonic
 and secant stiffness of a Jenkins loop, the linear limit, a two-Jenkins closed form on a tiny
 mesh, the amplitude grid, local processes and progress."""
 

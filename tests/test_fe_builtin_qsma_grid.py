@@ -1,6 +1,6 @@
 """The quasi-static modal analysis's amplitude grid on a mode that hardly slips (its top must
 run cyclically, not only on the first loading) and the per-node slip pattern of a point
-(fe.builtin.qsma, issue 23)."""
+(meshdynamics.qsma, issue 23)."""
 
 from __future__ import annotations
 

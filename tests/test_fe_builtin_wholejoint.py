@@ -1,4 +1,4 @@
-"""The whole-joint model (fe.builtin.wholejoint): the reduction to the interface's rigid
+"""The whole-joint model (meshdynamics.wholejoint): the reduction to the interface's rigid
 motion, the joint from the FE's first loading, EPMC on it, and its measured error against the
 full FE on the 12x3x1 cantilever."""
 

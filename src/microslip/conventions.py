@@ -62,7 +62,7 @@ DEFAULT_COUPLING = "circular"
 PAIRINGS: tuple[str, ...] = ("ordered", "spatial")
 
 #: What a two-directional tip or centre joint may be across (its second direction), the keys
-#: of :data:`microslip.dynamics.spec.TRANSVERSE`: the clamp's other 1-D model, or the built-in
+#: of :data:`microslip.meshdynamics.spec.TRANSVERSE`: the clamp's other 1-D model, or the built-in
 #: FE's first loading of the centre force across the bar.
 TRANSVERSE: tuple[str, ...] = (*CLAMP_MODELS, "fe")
 

@@ -3,7 +3,7 @@ as a structure file that ``modal --structure`` and ``frf --structure`` read.
 
 Craig-Bampton with the contact nodes' dofs kept and fixed-interface modes chosen by count
 (``--rom-modes``) or frequency (``--cutoff-frequency``), each contact node its own law
-(:mod:`microslip.fe.builtin.reduce`). Before the file is written the ROM's lowest six stuck
+(:mod:`microslip.meshdynamics.reduce`). Before the file is written the ROM's lowest six stuck
 frequencies are compared with the full FE's for a few mode counts up to the chosen one, so
 that the user sees whether the modes suffice. The file is written to a temporary name and
 renamed: never half-written. This module parses and prints. Units: Hz, s, kg/m^3, N, mm.

@@ -225,7 +225,7 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
 def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
                  samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
     """Frequency and damping ratio by quasi-static modal analysis (Lacayo and Allen 2019) on
-    the structure, the method :mod:`microslip.fe.builtin.qsma` applies to the full FE.
+    the structure, the method :mod:`microslip.meshdynamics.qsma` applies to the full FE.
 
     Notes
     -----
