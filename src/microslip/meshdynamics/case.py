@@ -27,9 +27,18 @@ if TYPE_CHECKING:
     from .modes import Mode, Modes
     from .reduce import Rom
 
-__all__ = ["BACKBONE_NAMES", "DEFAULT_ROM_MODES", "MAX_AMPLITUDES",
-           "MAX_MODE", "PreparedStructure", "StructureCase", "amplitude_grid", "prepare_structure",
-           "structure_rom"]
+__all__ = [
+    "BACKBONE_NAMES",
+    "DEFAULT_ROM_MODES",
+    "MAX_AMPLITUDES",
+    "MAX_MODE",
+    "OnStructure",
+    "PreparedStructure",
+    "StructureCase",
+    "amplitude_grid",
+    "prepare_structure",
+    "structure_rom",
+]
 
 #: Highest mode number a mesh study takes (the eigen-solve computes that many).
 MAX_MODE = 50
@@ -129,6 +138,25 @@ class PreparedStructure:
     def mode(self) -> Mode:
         """The studied stuck mode (:class:`~microslip.meshdynamics.modes.Mode`)."""
         return self.stuck.select(self.number)
+
+
+class OnStructure:
+    """What a study on a :class:`PreparedStructure` (its ``prepared``) reads of it: the case,
+    the mode number and the studied stuck mode."""
+
+    prepared: PreparedStructure
+
+    @property
+    def case(self) -> StructureCase:
+        return self.prepared.case
+
+    @property
+    def number(self) -> int:
+        return self.prepared.number
+
+    @property
+    def mode(self) -> Mode:
+        return self.prepared.mode
 
 
 def read_structure_mesh(case: StructureCase, sets: Sequence[str] = ()) -> HexMesh:

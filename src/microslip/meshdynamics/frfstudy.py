@@ -28,7 +28,14 @@ import numpy as np
 
 from ..dynamics.hb import DEFAULT_HB_SAMPLES, check_balance
 from ..errors import ParameterError
-from .case import PreparedStructure, StructureCase, prepare_structure, set_rows, structure_rom
+from .case import (
+    OnStructure,
+    PreparedStructure,
+    StructureCase,
+    prepare_structure,
+    set_rows,
+    structure_rom,
+)
 
 __all__ = ["DAMPING_DEFINITION", "DEFAULT_MESH_HARMONICS", "FRF_MESH_SOLVERS", "MESH_RANGE",
            "REFERENCE", "ForcedModel", "FrfMeshSolver", "FrfSettings", "FrfStudy",
@@ -81,7 +88,7 @@ class FrfSettings:
 
 
 @dataclass(frozen=True)
-class FrfStudy:
+class FrfStudy(OnStructure):
     """What every solver of a forced response shares: the prepared structure (clamped model,
     stuck and free modes, the mode studied) and the load.
 
@@ -96,18 +103,6 @@ class FrfStudy:
     load_direction: np.ndarray = field(repr=False)
     modal_force: float
     response_motion: float
-
-    @property
-    def case(self) -> StructureCase:
-        return self.prepared.case
-
-    @property
-    def number(self) -> int:
-        return self.prepared.number
-
-    @property
-    def mode(self) -> Any:
-        return self.prepared.mode
 
 
 @dataclass(frozen=True)

@@ -23,6 +23,7 @@ from ..dynamics.modal import RESPONSE_SET_COORDINATE
 from ..errors import ParameterError
 from .case import (
     MAX_AMPLITUDES,
+    OnStructure,
     PreparedStructure,
     StructureCase,
     amplitude_grid,
@@ -76,7 +77,7 @@ class ModalSettings:
 
 
 @dataclass(frozen=True)
-class ModalStudy:
+class ModalStudy(OnStructure):
     """What every solver of a modal study shares: the prepared structure (clamped model,
     stuck and free modes, the mode studied), the settings, and the one amplitude grid.
 
@@ -88,18 +89,6 @@ class ModalStudy:
     settings: ModalSettings
     forces: np.ndarray = field(repr=False)
     amplitudes: np.ndarray = field(repr=False)
-
-    @property
-    def case(self) -> StructureCase:
-        return self.prepared.case
-
-    @property
-    def number(self) -> int:
-        return self.prepared.number
-
-    @property
-    def mode(self) -> Any:
-        return self.prepared.mode
 
 
 @dataclass(frozen=True)
