@@ -14,7 +14,7 @@ from typing import Any
 from ..case.table import add_option, number
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
-from .common import check_output_dir, check_plot, print_json
+from .common import check_output_dir, check_plot, flagged, print_json
 
 __all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
            "refuse_mesh_options", "run_own_mesh", "verb"]
@@ -92,6 +92,7 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
 
 
 def mesh_case(args: argparse.Namespace) -> Any:
+    from ..fe.clamp import MeshClamp
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
@@ -130,12 +131,15 @@ def mesh_case(args: argparse.Namespace) -> Any:
     elif getattr(args, "command", "fe") == "fe" and (given(args, "timeout")
                                                      or given(args, "threads")):
         raise ParameterError("--timeout and --threads apply to --solver calculix")
+    with flagged():
+        clamp = MeshClamp(
+            args.contact_set, args.clamp_set, normal_force=float(args.normal_force),
+            modulus=float(args.modulus), poisson_ratio=float(args.poisson_ratio),
+            friction=float(args.friction), stick_slope=float(args.stick_slope),
+            normal_contact=normal, normal_slope=float(
+                DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope))
     return OwnMeshCase(
-        args.mesh, args.contact_set, args.clamp_set, float(args.normal_force),
-        tuple(MeshLoad.parse(s) for s in args.load), float(args.friction),
-        float(args.modulus), float(args.poisson_ratio), stick_slope=float(args.stick_slope),
-        normal_contact=normal, normal_slope=float(
-            DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope),
+        args.mesh, clamp, tuple(MeshLoad.parse(s) for s in args.load),
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
@@ -150,13 +154,14 @@ def run_own_mesh(args: argparse.Namespace) -> int:
     check_output_dir(args.out)
     check_plot(args.plot)
     done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)
+    clamp = case.clamp
     out = {**done.summary, "clamp_portion": "whole",
-           "options": {"normal_contact": case.normal_contact,
-                       "stick_slope_N_per_mm3": case.stick_slope,
-                       "normal_slope_N_per_mm3": case.normal_slope
-                       if case.normal_contact == "penalty" else None,
-                       "friction": case.friction, "normal_force_N": case.normal_force,
-                       "modulus_MPa": case.modulus, "poisson_ratio": case.poisson_ratio,
+           "options": {"normal_contact": clamp.normal_contact,
+                       "stick_slope_N_per_mm3": clamp.stick_slope,
+                       "normal_slope_N_per_mm3": clamp.normal_slope
+                       if clamp.normal_contact == "penalty" else None,
+                       "friction": clamp.friction, "normal_force_N": clamp.normal_force,
+                       "modulus_MPa": clamp.modulus, "poisson_ratio": clamp.poisson_ratio,
                        "substeps": case.substeps, "increments_per_cycle": case.increments,
                        "history": case.history}}
     if args.plot:
