@@ -15,7 +15,7 @@ from ..errors import ParameterError
 from ..meshdynamics.case import BACKBONE_NAMES, DEFAULT_ROM_MODES
 from .common import flagged
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
-from .ownmesh import given
+from .ownmesh import given, mesh_clamp
 
 if TYPE_CHECKING:
     from ..meshdynamics.case import StructureCase
@@ -106,21 +106,12 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
     clamp (:class:`~microslip.fe.clamp.MeshClamp`), the density, the mode, the response set
     and the reduced models' settings, each validated once by the case (its one-line message
     naming the option)."""
-    from ..fe.clamp import MeshClamp
     from ..meshdynamics.case import StructureCase
 
+    clamp = mesh_clamp(args)
     optional = {k: v for k, v in (
-        ("stick_slope", args.stick_slope), ("normal_contact", args.normal_contact),
-        ("normal_slope", args.normal_slope), ("mode", getattr(args, "mode", None)),
-        ("rom_modes", getattr(args, "rom_modes", None)),
+        ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None))) if v is not None}
-    clamp_keys = ("stick_slope", "normal_contact", "normal_slope")
     with flagged():
-        clamp = MeshClamp(args.contact_set, args.clamp_set,
-                          normal_force=float(args.normal_force), modulus=float(args.modulus),
-                          poisson_ratio=float(args.poisson_ratio),
-                          friction=float(args.friction),
-                          **{k: v for k, v in optional.items() if k in clamp_keys})
         return StructureCase(args.mesh, clamp, density=args.density,
-                             response_set=args.response_set,
-                             **{k: v for k, v in optional.items() if k not in clamp_keys})
+                             response_set=args.response_set, **optional)

@@ -9,14 +9,16 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..case.table import add_option, number
 from ..errors import ParameterError
-from ..fe.constants import DEFAULT_NORMAL_SLOPE
+
+if TYPE_CHECKING:
+    from ..fe.clamp import MeshClamp
 from .common import check_output_dir, check_plot, flagged, print_json
 
-__all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
+__all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case", "mesh_clamp",
            "refuse_mesh_options", "run_own_mesh", "verb"]
 
 #: Options of a mesh file only (destinations).
@@ -91,8 +93,25 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
                              f"own), not to the box --mesh {args.mesh}; remove them")
 
 
-def mesh_case(args: argparse.Namespace) -> Any:
+def mesh_clamp(args: argparse.Namespace, normal_contact: str | None = None) -> MeshClamp:
+    """The clamp the options describe (the one place a namespace becomes a
+    :class:`~microslip.fe.clamp.MeshClamp`, for ``fe --mesh`` and the structure commands
+    alike): ``normal_contact`` overrides ``--normal-contact``; what is not given takes the
+    clamp's defaults; a bad value is one line naming its option."""
     from ..fe.clamp import MeshClamp
+
+    optional: dict[str, Any] = {k: v for k, v in (
+        ("stick_slope", args.stick_slope),
+        ("normal_contact", normal_contact or args.normal_contact),
+        ("normal_slope", args.normal_slope)) if v is not None}
+    with flagged():
+        return MeshClamp(args.contact_set, args.clamp_set,
+                         normal_force=float(args.normal_force), modulus=float(args.modulus),
+                         poisson_ratio=float(args.poisson_ratio),
+                         friction=float(args.friction), **optional)
+
+
+def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
 
@@ -131,15 +150,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
     elif getattr(args, "command", "fe") == "fe" and (given(args, "timeout")
                                                      or given(args, "threads")):
         raise ParameterError("--timeout and --threads apply to --solver calculix")
-    with flagged():
-        clamp = MeshClamp(
-            args.contact_set, args.clamp_set, normal_force=float(args.normal_force),
-            modulus=float(args.modulus), poisson_ratio=float(args.poisson_ratio),
-            friction=float(args.friction), stick_slope=float(args.stick_slope),
-            normal_contact=normal, normal_slope=float(
-                DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope))
     return OwnMeshCase(
-        args.mesh, clamp, tuple(MeshLoad.parse(s) for s in args.load),
+        args.mesh, mesh_clamp(args, normal), tuple(MeshLoad.parse(s) for s in args.load),
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
