@@ -23,9 +23,9 @@ import argparse
 import time
 
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import qsma
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import linear_modes
+from microslip.meshdynamics.qsma import qsma
 
 TARGETS = {(24, 6, 2): (1.0, 30.0), (48, 12, 4): (10.0, 300.0)}
 

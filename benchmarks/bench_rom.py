@@ -29,8 +29,8 @@ import numpy as np
 from microslip.dynamics.modal import epmc
 from microslip.dynamics.modal_odd import epmc_odd
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.reduce import build_rom, convergence, full_mass, rom_structure
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.reduce import build_rom, convergence, full_mass, rom_structure
 
 TARGETS = {"build": 5.0, "epmc": 5.0}
 RHO = 2700.0

@@ -58,13 +58,12 @@ MEMORY_MB = 2048.0
 
 
 def _model(counts: tuple[int, int, int], normal: str = "fixed") -> Any:
-    from microslip.fe.builtin.meshmodel import build_mesh_model
+    from microslip.fe.clamp import MeshClamp, clamped_model
     from microslip.fe.examples import cantilever_mesh
 
-    return build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                            clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                            normal_contact=normal, normal_slope=1e6)
+    return clamped_model(cantilever_mesh(*counts), MeshClamp(
+        "contact", "clamp", normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
+        friction=0.5, stick_slope=1e4, normal_contact=normal, normal_slope=1e6))
 
 
 def _peak_mb() -> float:
@@ -97,9 +96,9 @@ def _reset_peak() -> None:
 def child(row: str, counts: tuple[int, int, int]) -> dict[str, Any]:
     """Run one row in this process; its time (s), the model's set-up (s), peak RSS (MB)."""
     from microslip.dynamics.modal_odd import epmc_odd
-    from microslip.fe.builtin.modes import linear_modes
-    from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
-    from microslip.fe.builtin.reduce import build_rom, rom_structure
+    from microslip.meshdynamics.modes import linear_modes
+    from microslip.meshdynamics.qsma import qsma, qsma_amplitudes
+    from microslip.meshdynamics.reduce import build_rom, rom_structure
 
     t0 = time.perf_counter()
     model = _model(counts, "penalty" if row == "epmc3d" else "fixed")

@@ -7,11 +7,11 @@ The cantilever example (:func:`microslip.fe.examples.cantilever_mesh` 24x6x2, C3
 E 70000 MPa, nu 0.33, density 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N/mm^3,
 ``fixed`` normal contact; response set ``response`` (the tip). For the in-plane bending
 (mode 2) and the out-of-plane bending (mode 1), on the modal forces of the full FE's grid
-(:func:`~microslip.fe.builtin.qsma.qsma_amplitudes`, first slip to near gross sliding):
+(:func:`~microslip.meshdynamics.qsma.qsma_amplitudes`, first slip to near gross sliding):
 
 * ``fe``: quasi-static modal analysis of the full frictional FE (the truth);
 * ``joint``: EPMC (7 harmonics) on the whole-joint model
-  (:mod:`microslip.fe.builtin.wholejoint`) as ``--solver joint`` builds it (torsion joint
+  (:mod:`microslip.meshdynamics.wholejoint`) as ``--solver joint`` builds it (torsion joint
   ``iwan``, the rotation's own first-loading curve); ``stuckT`` the same with the classical
   linear torsion spring; ``work`` with the work-equivalent backbone (``--backbone work``);
   at the FE's own amplitudes (equal amplitude: the response set's first harmonic along the
@@ -30,12 +30,17 @@ import time
 
 import numpy as np
 
-from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
-from microslip.fe.builtin.reduce import build_rom
-from microslip.fe.builtin.wholejoint import build_whole_joint, whole_joint_epmc
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.case import (
+    PreparedStructure,
+    StructureCase,
+    amplitude_grid,
+    prepare_structure,
+    structure_rom,
+)
+from microslip.meshdynamics.qsma import qsma
+from microslip.meshdynamics.wholejoint import build_whole_joint, whole_joint_epmc
 
 RHO = 2700.0
 HARMONICS, SAMPLES = 7, 64
@@ -49,26 +54,24 @@ def _pct(x: float, ref: float) -> str:
     return f"{100 * (x / ref - 1):+8.1f}"
 
 
-def compare(model: object, number: int, count: int) -> None:
-    modes = linear_modes(model, RHO, 6, "stuck", "response")  # type: ignore[arg-type]
-    mode = modes.select(number)
-    scale = float(np.linalg.norm(modes.response_motion[number - 1])) / (
-        2 * math.pi * mode.frequency_Hz) ** 2
-    forces = qsma_amplitudes(model, mode, count)  # type: ignore[arg-type]
+def compare(prepared: PreparedStructure, count: int) -> None:
+    """The full FE's QSMA on the study's grid (:func:`amplitude_grid`) against the whole
+    joint's variants, all on the library's prepared structure and its one ROM."""
+    model, mode, number = prepared.model, prepared.mode, prepared.number
+    forces, linear = amplitude_grid(prepared, count)
     t0 = time.perf_counter()
-    fe = qsma(model, mode, forces)  # type: ignore[arg-type]
+    fe = qsma(model, mode, forces)
     t_fe = time.perf_counter() - t0
     # at equal amplitude: the FE's own (its softening makes it exceed the linear map q r /
     # omega^2); a failed FE point keeps the linear map
-    amplitudes = np.where(np.isfinite(fe.amplitude_mm), fe.amplitude_mm, forces * scale)
-    rom = build_rom(model, RHO, modes=60, response_set="response")  # type: ignore[arg-type]
+    amplitudes = np.where(np.isfinite(fe.amplitude_mm), fe.amplitude_mm, linear)
+    rom = structure_rom(prepared)
     assert rom.output is not None
     out = mode.direction @ rom.output
     curves, joints, times = {}, {}, {}
     for name, (torsion, backbone) in VARIANTS.items():
         t0 = time.perf_counter()
-        wj = build_whole_joint(rom, model, mode, out, torsion=torsion,  # type: ignore[arg-type]
-                               backbone=backbone)
+        wj = build_whole_joint(rom, model, mode, out, torsion=torsion, backbone=backbone)
         curves[name], failed = whole_joint_epmc(wj, amplitudes, HARMONICS, SAMPLES,
                                                 mode.frequency_Hz)
         for w in failed:
@@ -109,13 +112,16 @@ def main() -> None:
     p.add_argument("--quick", action="store_true", help="12x3x1 mesh, 4 amplitudes")
     args = p.parse_args()
     counts = (12, 3, 1) if args.quick else (24, 6, 2)
-    model = build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
-    print(f"cantilever {'x'.join(map(str, counts))}: {model.dof} dofs, "
-          f"{model.contact_nodes.size} contact nodes")
+    clamp = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                      poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
+    mesh = cantilever_mesh(*counts)
     for number in (2, 1):
-        compare(model, number, 4 if args.quick else 8)
+        prepared = prepare_structure(StructureCase(mesh, clamp, density=RHO, mode=number,
+                                                   response_set="response", rom_modes=60))
+        model = prepared.model
+        print(f"cantilever {'x'.join(map(str, counts))}: {model.dof} dofs, "
+              f"{model.contact_nodes.size} contact nodes")
+        compare(prepared, 4 if args.quick else 8)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
 from microslip.fe.meshload import MeshLoad
@@ -35,8 +36,9 @@ CLAMP = dict(normal_force=2000.0, friction=0.5, modulus=70000.0, poisson_ratio=0
 
 
 def _case(path: str, loads: tuple[str, ...], cycles: int = 3) -> OwnMeshCase:
-    return OwnMeshCase(path, "contact", "clamp", loads=tuple(MeshLoad.parse(s) for s in loads),
-                       cycles=cycles, **CLAMP)  # type: ignore[arg-type]
+    clamp = MeshClamp("contact", "clamp", **CLAMP)  # type: ignore[arg-type]
+    return OwnMeshCase(path, clamp, loads=tuple(MeshLoad.parse(s) for s in loads),
+                       cycles=cycles)
 
 
 def main() -> None:

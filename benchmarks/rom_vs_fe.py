@@ -3,7 +3,7 @@
 On the cantilever example (``microslip.fe.examples.cantilever_mesh``; E 70000 MPa, nu 0.33,
 rho 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N/mm^3), per mode (default: 2, the
 lowest bending in the contact plane, and 1, the lowest out of it) and per amplitude of the
-full FE's grid (first slip to near gross sliding, :func:`~microslip.fe.builtin.qsma.
+full FE's grid (first slip to near gross sliding, :func:`~microslip.meshdynamics.qsma.
 qsma_amplitudes`), measured in one run:
 
 * ``FE``: the full FE's QSMA (frequency from the loop's first harmonic, zeta = W / (2 pi a^2
@@ -31,11 +31,17 @@ import numpy as np
 
 from microslip.dynamics.modal import ModalCurve, epmc, quasi_static
 from microslip.dynamics.modal_odd import epmc_odd
-from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import Mode, linear_modes
-from microslip.fe.builtin.qsma import QSMACurve, qsma, qsma_amplitudes
-from microslip.fe.builtin.reduce import build_rom, rom_structure
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.case import (
+    StructureCase,
+    amplitude_grid,
+    prepare_structure,
+    structure_rom,
+)
+from microslip.meshdynamics.modes import Mode
+from microslip.meshdynamics.qsma import QSMACurve, qsma
+from microslip.meshdynamics.reduce import rom_structure
 
 E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6
 #: The issue's targets: frequency (first harmonic) and damping ratio, relative.
@@ -63,18 +69,19 @@ class Comparison:
 
 def compare(mesh: tuple[int, int, int], number: int, count: int, harmonics: int,
             rom_modes: int, normal: str) -> Comparison:
-    model = build_mesh_model(cantilever_mesh(*mesh), contact_set="contact",
-                             clamp_set="clamp", normal_force=FN, modulus=E,
-                             poisson_ratio=NU, friction=MU, stick_slope=LAM,
-                             normal_contact=normal, normal_slope=KN)
-    mode = linear_modes(model, RHO, max(number, 2), response_set="response").select(number)
+    clamp = MeshClamp("contact", "clamp", normal_force=FN, modulus=E, poisson_ratio=NU,
+                      friction=MU, stick_slope=LAM, normal_contact=normal, normal_slope=KN)
+    prepared = prepare_structure(StructureCase(
+        cantilever_mesh(*mesh), clamp, density=RHO, mode=number, response_set="response",
+        rom_modes=rom_modes))
+    model, mode = prepared.model, prepared.mode
     t0 = time.perf_counter()
-    forces = qsma_amplitudes(model, mode, count)
+    forces, _ = amplitude_grid(prepared, count)
     fe = qsma(model, mode, forces)
     t_fe = time.perf_counter() - t0
     ok = np.isfinite(fe.amplitude_mm)
     t0 = time.perf_counter()
-    rom = build_rom(model, RHO, modes=rom_modes, response_set="response")
+    rom = structure_rom(prepared)
     assert rom.output is not None
     s = rom_structure(rom, mode.direction @ rom.output)
     method = epmc if rom.per_node == 3 else epmc_odd

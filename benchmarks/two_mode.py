@@ -12,7 +12,7 @@ on the post's top at 45 degrees: the frequency response through both bending res
 with circular and with decoupled joints (harmonic balance, 3 harmonics: 1 harmonic
 underestimates the microslip W_J by about 20 % here), then the full FE at
 the circular curve's x peak, y peak and roundest interface orbit under the quasi-static
-equivalent load (:mod:`microslip.fe.builtin.twomode`).
+equivalent load (:mod:`microslip.meshdynamics.twomode`).
 """
 
 from __future__ import annotations
@@ -21,8 +21,8 @@ import argparse
 import time
 from pathlib import Path
 
-from microslip.fe.builtin.twomode import TwoModeCase, check_points, two_mode_study
 from microslip.fe.meshfile import read_mesh
+from microslip.meshdynamics.twomode import TwoModeCase, check_points, two_mode_study
 
 MESH = Path(__file__).resolve().parents[1] / "examples" / "post_on_plate.inp"
 

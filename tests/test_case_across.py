@@ -33,9 +33,9 @@ from microslip.dynamics.operators2d import (
 )
 from microslip.dynamics.operators2d import PAIRINGS as OPERATOR_PAIRINGS
 from microslip.dynamics.response import frequency_response
-from microslip.dynamics.spec import TRANSVERSE, transverse_operator
 from microslip.dynamics.structure import JointLink, Structure
 from microslip.errors import ParameterError
+from microslip.meshdynamics.spec import TRANSVERSE, transverse_operator
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -193,14 +193,15 @@ def test_the_flags_give_the_json_of_the_case_file(capsys, planar, keys, flags):
 @pytest.mark.slow
 def test_the_fe_joint_across_is_the_fe_first_loading(capsys, planar):
     """transverse = "fe": the operator across is fe_backbone(clamp, "centre", mesh,
-    stick_slope).operator(), and the structure runs end to end."""
+    stick_slope) as a joint (meshdynamics.febackbone), and the structure runs end to end."""
     from microslip.fe.builtin import fe_backbone
+    from microslip.meshdynamics.febackbone import backbone_operator
 
     name = _case(planar / "fe.toml", transverse="fe", fe_mesh=TINY)
     (spec,) = parse_case(tomllib.loads((planar / name).read_text()), name).joints
     assert (spec.transverse, spec.fe_mesh, spec.stick_slope) == ("fe", TINY, SLOPE)
     across = transverse_operator(spec)
-    ref = fe_backbone(CLAMP, "centre", mesh=TINY, stick_slope=SLOPE).operator()
+    ref = backbone_operator(fe_backbone(CLAMP, "centre", mesh=TINY, stick_slope=SLOPE))
     assert across is not None and across.name == ref.name
     np.testing.assert_array_equal(across.stiffness, ref.stiffness)
     np.testing.assert_array_equal(across.slip, ref.slip)

@@ -113,7 +113,7 @@ def test_text_output_has_units(capsys):
     assert main(["modal", *MODE, *JOINT, "--amplitude-range", "0.01", "0.1",
                  "--amplitudes", "2", "--method", "energy"]) == 0
     text = capsys.readouterr().out
-    for unit in ("a (mm)", "f (Hz)", "zeta (-)"):
+    for unit in ("q (mm)", "f (Hz)", "zeta (-)"):  # q: the modal coordinate
         assert unit in text
 
 

@@ -15,13 +15,13 @@ import numpy as np
 import pytest
 
 from microslip.cli import frfmesh
-from microslip.cli.frfmesh import FrfMeshSolver, stuck_response
 from microslip.cli.main import main
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes, modal_mass, modal_stiffness
-from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import read_mesh, write_inp
+from microslip.meshdynamics.frfstudy import FrfMeshSolver, stuck_response
+from microslip.meshdynamics.modes import linear_modes, modal_mass, modal_stiffness
+from microslip.meshdynamics.reduce import build_rom, rom_structure
 
 BASE = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "2000",
         "--friction", "0.5", "--stick-slope", "1e4", "--modulus", "70000",
@@ -218,7 +218,7 @@ def test_whole_joint_linear_limit(capsys: pytest.CaptureFixture[str], mesh: str)
     """--solver joint at 0.01 N: no joint slips, so the harmonic balance equals the stuck
     whole-joint model's own linear solve to 1e-9 (the load carried through the interface
     reduction, T^T f), and its stuck frequency is the one the model reports."""
-    from microslip.fe.builtin.wholejoint import build_whole_joint
+    from microslip.meshdynamics.wholejoint import build_whole_joint
 
     out = _json(capsys, "--mesh", mesh, *BASE, *LOW, "--solver", "joint")
     (curve,) = out["curves"]
@@ -244,7 +244,7 @@ def test_mesh_options_without_a_mesh_are_refused(capsys: pytest.CaptureFixture[s
 
 
 def test_peak_comparison_is_relative_to_the_reference() -> None:
-    from microslip.cli.frfmesh import peak_comparison
+    from microslip.meshdynamics.frfstudy import peak_comparison
 
     ref = {"force_N": 3.0, "peak_amplitude_mm": 0.02, "peak_frequency_Hz": 1600.0,
            "damping_ratio": 0.05}

@@ -4,8 +4,6 @@ default is used) and the case file that describes the user's own part."""
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import pytest
 from conftest import one_line_error, run
@@ -81,26 +79,27 @@ normal_slope = 1e6
 
 
 def test_the_reports_structure_uses_the_cases_contact_law(tmp_path):
+    """The report's structure section builds its case from [mesh] with the case's contact
+    law (penalty and its slope when given; the clamp's defaults otherwise)."""
     import shutil
     from pathlib import Path
 
     import tomllib
 
     from microslip.case.model import parse_case
-    from microslip.cli.main import build_parser
-    from microslip.cli.modalcompare import case_argv
+    from microslip.fe.constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE
+    from microslip.report.structure import case_structure
 
     shutil.copy(Path(__file__).resolve().parents[1] / "examples" / "cantilever.inp", tmp_path)
-    argv = case_argv(parse_case(tomllib.loads(PART), str(tmp_path / "case.toml")), 4)
-    assert argv is not None
-    flags = dict(itertools.pairwise(argv))
-    assert flags["--normal-contact"] == "penalty" and flags["--normal-slope"] == "1000000.0"
-    # and modal --mesh parses it (the study's own checks take it: no refusal of penalty)
-    args = build_parser(argv).parse_args(argv)
-    assert args.normal_contact == "penalty" and args.normal_slope == 1e6
+    structure = case_structure(parse_case(tomllib.loads(PART), str(tmp_path / "case.toml")))
+    assert structure is not None
+    assert structure.clamp.normal_contact == "penalty" and structure.clamp.normal_slope == 1e6
     fixed = PART.replace('normal_contact = "penalty"\nnormal_slope = 1e6\n', "")
-    argv = case_argv(parse_case(tomllib.loads(fixed), "dir/case.toml"), 4)
-    assert argv is not None and "--normal-contact" not in argv and "--normal-slope" not in argv
+    assert fixed != PART
+    structure = case_structure(parse_case(tomllib.loads(fixed), str(tmp_path / "case.toml")))
+    assert structure is not None
+    assert structure.clamp.normal_contact == DEFAULT_NORMAL_CONTACT == "fixed"
+    assert structure.clamp.normal_slope == DEFAULT_NORMAL_SLOPE
 
 
 @pytest.mark.slow

@@ -1,7 +1,7 @@
 """``microslip modal --mesh FILE --solver all``: every solver of ``modal --mesh`` side by side
 on one study, each exactly as it runs alone, a verdict per model against the full FE computed
-from the numbers (:func:`microslip.fe.verdict_modal.modal_verdict`), and the figure with the
-contact's slip pattern (issue 23, item 5)."""
+from the numbers (:func:`microslip.meshdynamics.verdict_modal.modal_verdict`), and the figure
+with the contact's slip pattern (issue 23, item 5)."""
 
 from __future__ import annotations
 
@@ -16,11 +16,10 @@ import numpy as np
 import pytest
 
 from microslip.cli.main import main
-from microslip.cli.modalcompare import SHARED
-from microslip.cli.modalmesh import MESH_SOLVERS
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
-from microslip.fe.verdict_modal import Targets, loglog_interp, modal_verdict
+from microslip.meshdynamics.modalstudy import MESH_SOLVERS, SHARED
+from microslip.meshdynamics.verdict_modal import Targets, loglog_interp, modal_verdict
 
 BASE = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "2000",
         "--friction", "0.5", "--stick-slope", "1e4", "--modulus", "70000",
@@ -115,10 +114,10 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
     eigsh = spla.eigsh
 
     def fixed_start(a: Any, *args: Any, **kw: Any) -> Any:
-        # the ROM's fixed-interface modes (fe.builtin.reduce) start ARPACK from its own
+        # the ROM's fixed-interface modes (meshdynamics.reduce) start ARPACK from its own
         # random vector, which changes from call to call in one process: the ROM's numbers
         # then differ in the last digits between two runs. A fixed start, as the linear
-        # modes have (fe.builtin.modes), makes them reproducible.
+        # modes have (meshdynamics.modes), makes them reproducible.
         kw.setdefault("v0", np.ones(a.shape[0]))
         return eigsh(a, *args, **kw)
 

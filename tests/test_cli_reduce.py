@@ -123,7 +123,7 @@ def test_usage_mistakes_exit_2(capsys, mesh, tmp_path, extra, message):
 def test_rom_modes_defaults_to_60(capsys, mesh, tmp_path, monkeypatch):
     """Without --rom-modes (and --cutoff-frequency) reduce keeps the 60 modes the help
     promises (issue 27: it refused)."""
-    import microslip.fe.builtin.reduce as reduce_module
+    import microslip.meshdynamics.reduce as reduce_module
 
     seen = {}
 

@@ -13,11 +13,11 @@ from microslip import conventions
 from microslip.case import schema
 from microslip.conventions import check_choice, check_positive, check_whole
 from microslip.dynamics import operators2d
-from microslip.dynamics import spec as dynamics_spec
 from microslip.errors import ParameterError
 from microslip.fe import constants
 from microslip.fe.builtin import DEFAULT_MESH, backbone
 from microslip.loading import path
+from microslip.meshdynamics import spec as dynamics_spec
 from microslip.models import MODELS
 
 

@@ -153,3 +153,25 @@ def test_documented_command_runs(doc, line, tmp_path, monkeypatch, capsys):
     assert code == 0, f"{doc}: `{line}` exited {code}: {err.strip()[-400:]}"
     assert "Traceback" not in err
     assert out.strip() or any(tmp_path.iterdir()), "the example printed and wrote nothing"
+
+
+#: The "From Python" example of docs/ownmesh.md at a small size: fewer ROM modes, one
+#: amplitude, one force and one harmonic (the options are the document's).
+OWNMESH_SHRINK = (("rom_modes=60", "rom_modes=12"), ("amplitudes=5", "amplitudes=1"),
+                  ("[1.0, 3.0]", "[1.0]"), ("harmonics=3", "harmonics=1"))
+
+
+@pytest.mark.slow
+def test_ownmesh_python_example_runs(tmp_path, monkeypatch, capsys):
+    """docs/ownmesh.md's Python example on examples/cantilever.inp, shrunk: it runs, and the
+    mode it prints is the command line's (stuck 1714.79 Hz, in-plane bending)."""
+    (code,) = _python_blocks("ownmesh.md")
+    for old, new in OWNMESH_SHRINK:
+        assert old in code
+        code = code.replace(old, new)
+    monkeypatch.chdir(tmp_path)
+    shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    exec(compile(code, "ownmesh.md python block", "exec"), {})
+    out = capsys.readouterr().out
+    assert "mode 2: bending in the contact plane, stuck 1714.79 Hz" in out
+    assert "(response_set)" in out and "F 1 N: peak" in out

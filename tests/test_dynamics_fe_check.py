@@ -1,5 +1,5 @@
 """The Table 1 bar reduced to its joint against the built-in FE at the same motion
-(microslip.dynamics.fe_check; figures at the coarse and medium meshes in docs/dynamics.md)."""
+(microslip.meshdynamics.fe_check; figures at the coarse and medium meshes in docs/dynamics.md)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from microslip import preset
-from microslip.dynamics.fe_check import cycle_work, fe_comparison, orbit_work, reduced_bar
 from microslip.dynamics.operators import jenkins
 from microslip.fe.builtin.study import amplitudes_for_ratio
+from microslip.meshdynamics.fe_check import cycle_work, fe_comparison, orbit_work, reduced_bar
 
 
 def test_cycle_work_of_a_jenkins_element_on_a_circle_is_the_closed_form():

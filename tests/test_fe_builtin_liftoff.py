@@ -12,16 +12,16 @@ import pytest
 
 from microslip.dynamics.files import read_structure
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
-from microslip.fe.builtin.modes import linear_modes, modal_stiffness
-from microslip.fe.builtin.qsma import first_slip_force, qsma_point
-from microslip.fe.builtin.reduce import (
+from microslip.fe.meshfile import read_mesh
+from microslip.meshdynamics.modes import linear_modes, modal_stiffness
+from microslip.meshdynamics.qsma import first_slip_force, qsma_point
+from microslip.meshdynamics.reduce import (
     build_rom,
     full_mass,
     rom_structure,
     stuck_frequencies_full,
     write_rom,
 )
-from microslip.fe.meshfile import read_mesh
 
 BRACKET = Path(__file__).resolve().parents[1] / "examples" / "bracket.inp"
 DENSITY = 2700.0

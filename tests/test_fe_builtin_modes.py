@@ -1,4 +1,4 @@
-"""Linear modes of a clamped mesh (fe.builtin.modes, issue 23): closed forms, orthogonality,
+"""Linear modes of a clamped mesh (meshdynamics.modes, issue 23): closed forms, orthogonality,
 the frames, the labels, ParaView output, bad input, and CalculiX on the same mesh."""
 
 from __future__ import annotations
@@ -12,15 +12,15 @@ import pytest
 
 from microslip.errors import ParameterError
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
-from microslip.fe.builtin.modes import (
+from microslip.fe.examples import CANTILEVER, cantilever_mesh
+from microslip.fe.hexmesh import HexMesh
+from microslip.meshdynamics.modes import (
     describe_motion,
     linear_modes,
     modal_mass,
     modal_stiffness,
     write_modes_vtu,
 )
-from microslip.fe.examples import CANTILEVER, cantilever_mesh
-from microslip.fe.hexmesh import HexMesh
 
 E, NU, RHO = 70000.0, 0.33, 2700.0
 

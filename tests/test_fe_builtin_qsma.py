@@ -1,4 +1,4 @@
-"""Quasi-static modal analysis of the full FE (fe.builtin.qsma, issue 23): the first-harmonic
+"""Quasi-static modal analysis of the full FE (meshdynamics.qsma, issue 23): the first-harmonic
 and secant stiffness of a Jenkins loop, the linear limit, a two-Jenkins closed form on a tiny
 mesh, the amplitude grid, local processes and progress."""
 
@@ -12,8 +12,9 @@ import pytest
 from microslip.errors import ParameterError
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles
-from microslip.fe.builtin.modes import Mode, linear_modes, modal_mass
-from microslip.fe.builtin.qsma import (
+from microslip.fe.examples import cantilever_mesh, grid_mesh
+from microslip.meshdynamics.modes import Mode, linear_modes, modal_mass
+from microslip.meshdynamics.qsma import (
     first_harmonic,
     first_slip_force,
     loop_stiffness,
@@ -21,7 +22,6 @@ from microslip.fe.builtin.qsma import (
     qsma_amplitudes,
     qsma_point,
 )
-from microslip.fe.examples import cantilever_mesh, grid_mesh
 
 RHO = 2700.0
 

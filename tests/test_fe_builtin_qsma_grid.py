@@ -1,6 +1,6 @@
 """The quasi-static modal analysis's amplitude grid on a mode that hardly slips (its top must
 run cyclically, not only on the first loading) and the per-node slip pattern of a point
-(fe.builtin.qsma, issue 23)."""
+(meshdynamics.qsma, issue 23)."""
 
 from __future__ import annotations
 
@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
-from microslip.fe.builtin.modes import Modes, linear_modes
-from microslip.fe.builtin.qsma import (
+from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import Modes, linear_modes
+from microslip.meshdynamics.qsma import (
     GROSS_STICK,
     _failed,
     _first_loading_top,
@@ -22,7 +23,6 @@ from microslip.fe.builtin.qsma import (
     qsma_amplitudes,
     qsma_point,
 )
-from microslip.fe.examples import cantilever_mesh
 
 
 @pytest.fixture(scope="module")

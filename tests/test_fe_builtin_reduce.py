@@ -21,7 +21,8 @@ from microslip.dynamics.structure import SI_PER_MM
 from microslip.dynamics.timeint import transient
 from microslip.errors import ParameterError
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.reduce import (
+from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.reduce import (
     build_rom,
     convergence,
     full_mass,
@@ -29,7 +30,6 @@ from microslip.fe.builtin.reduce import (
     stuck_frequencies_full,
     write_rom,
 )
-from microslip.fe.examples import cantilever_mesh
 
 #: Aluminium cantilever, the issue's values (MPa, -, kg/m^3, -, N, N/mm^3).
 E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6

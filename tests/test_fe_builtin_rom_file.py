@@ -18,8 +18,8 @@ from microslip.dynamics.operators import jenkins
 from microslip.dynamics.operators3d import Contact3D
 from microslip.errors import ParameterError
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.reduce import build_rom, rom_arrays, rom_structure, write_rom
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.reduce import build_rom, rom_arrays, rom_structure, write_rom
 
 #: Aluminium cantilever, the issue's values (MPa, -, kg/m^3, -, N, N/mm^3).
 E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6

@@ -1,4 +1,4 @@
-"""The whole-joint model (fe.builtin.wholejoint): the reduction to the interface's rigid
+"""The whole-joint model (meshdynamics.wholejoint): the reduction to the interface's rigid
 motion, the joint from the FE's first loading, EPMC on it, and its measured error against the
 full FE on the 12x3x1 cantilever."""
 
@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.reduce import build_rom
-from microslip.fe.builtin.wholejoint import (
+from microslip.fe.examples import CANTILEVER, cantilever_mesh
+from microslip.meshdynamics.modes import linear_modes
+from microslip.meshdynamics.reduce import build_rom
+from microslip.meshdynamics.wholejoint import (
     build_whole_joint,
     first_loading,
     interface,
@@ -20,7 +21,6 @@ from microslip.fe.builtin.wholejoint import (
     reduce_to_interface,
     whole_joint_epmc,
 )
-from microslip.fe.examples import CANTILEVER, cantilever_mesh
 
 RHO = 2700.0
 
@@ -125,7 +125,7 @@ def test_whole_joint_against_the_full_fe(model, modes) -> None:  # type: ignore[
     interface's rigid motion does only 14 % of the friction forces' work there, the rest
     is the distortion of the contact (the bar bending inside the clamp) that the reduction
     removes. Bounds a little wider than the measurement."""
-    from microslip.fe.builtin.qsma import qsma, qsma_amplitudes
+    from microslip.meshdynamics.qsma import qsma, qsma_amplitudes
 
     mode = modes.select(2)
     rom = build_rom(model, RHO, modes=60, response_set="response")
@@ -170,7 +170,7 @@ def test_clamp_model_backbone_on_the_contact_patch(model, modes) -> None:  # typ
     motion (in-plane bending: along y, the patch 25.4 mm long, 50.8 mm wide, the bar 6.35 mm
     thick) behind the contact layer sum lambda A_i: its initial slope is near the FE's
     stuck interface stiffness and it slides as a whole at mu F_N."""
-    from microslip.fe.builtin.wholejoint import clamp_backbone, patch
+    from microslip.meshdynamics.wholejoint import clamp_backbone, patch
 
     mode = modes.select(2)
     face = interface(model)
@@ -195,7 +195,7 @@ def test_work_backbone_does_the_interface_s_whole_work(model, modes) -> None:  #
     along the loading is the friction forces' whole work (to the concave majorant's
     discreteness); its initial slope is the stuck interface stiffness times the rigid share
     of the stuck contact's energy (14 % on the 12x3x1 cantilever's in-plane bending)."""
-    from microslip.fe.builtin.wholejoint import work_backbone
+    from microslip.meshdynamics.wholejoint import work_backbone
 
     mode = modes.select(2)
     bb = work_backbone(model, mode)
@@ -218,7 +218,7 @@ def test_work_backbone_does_the_interface_s_whole_work(model, modes) -> None:  #
 def test_command_line_names_every_backbone() -> None:
     """The parser's --backbone choices are the library's backbones (named twice so that the
     command line starts without importing the FE)."""
-    from microslip.cli.meshstructure import BACKBONE_NAMES
-    from microslip.fe.builtin.wholejoint import BACKBONES
+    from microslip.meshdynamics.case import BACKBONE_NAMES
+    from microslip.meshdynamics.wholejoint import BACKBONES
 
     assert tuple(BACKBONES) == BACKBONE_NAMES

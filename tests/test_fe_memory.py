@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
 
-from microslip.fe.builtin import modes as modes_mod
-from microslip.fe.builtin import reduce as reduce_mod
 from microslip.fe.builtin.meshmodel import SpentBackend, build_mesh_model
-from microslip.fe.builtin.modes import linear_modes, modal_stiffness, shift_inverse
-from microslip.fe.builtin.reduce import build_rom, full_mass
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics import modes as modes_mod
+from microslip.meshdynamics import reduce as reduce_mod
+from microslip.meshdynamics.modes import linear_modes, modal_stiffness, shift_inverse
+from microslip.meshdynamics.reduce import build_rom, full_mass
 
 RHO = 2700.0
 

@@ -11,6 +11,7 @@ import pytest
 from microslip import preset
 from microslip.errors import ParameterError
 from microslip.fe.builtin import solve_uniaxial
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.meshload import MeshLoad
 from microslip.fe.ownmesh import OwnMeshCase, run_own_mesh
 
@@ -20,9 +21,10 @@ TABLE1 = preset("table1")
 
 def _box_case(model: str, **kw: object) -> OwnMeshCase:
     p = TABLE1
-    return OwnMeshCase(str(EXAMPLES / "box_table1_24x4x1.inp"), "contact", "clamp",
-                       p.normal_force, (MeshLoad.parse(f"{model}:1,0,0:267"),), p.friction,
-                       p.modulus, p.poisson_ratio, **kw)  # type: ignore[arg-type]
+    clamp = MeshClamp("contact", "clamp", normal_force=p.normal_force, modulus=p.modulus,
+                      poisson_ratio=p.poisson_ratio, friction=p.friction)
+    return OwnMeshCase(str(EXAMPLES / "box_table1_24x4x1.inp"), clamp,
+                       (MeshLoad.parse(f"{model}:1,0,0:267"),), **kw)  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("model", ["tip", "centre"])
@@ -46,9 +48,11 @@ def test_settled_cycles_close_to_the_paper_step() -> None:
 
 
 def test_cantilever_writes_json_loops_and_vtu(tmp_path: Path) -> None:
-    case = OwnMeshCase(str(EXAMPLES / "cantilever.inp"), "contact", "clamp", 2000.0,
-                       (MeshLoad.parse("tip:1,0,0:300"),), 0.5, 70000.0, 0.33,
-                       normal_contact="penalty", normal_slope=1e6)
+    clamp = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                      poisson_ratio=0.33, friction=0.5, normal_contact="penalty",
+                      normal_slope=1e6)
+    case = OwnMeshCase(str(EXAMPLES / "cantilever.inp"), clamp,
+                       (MeshLoad.parse("tip:1,0,0:300"),))
     run = run_own_mesh(case, out=tmp_path)
     saved = json.loads((tmp_path / "result.json").read_text())
     assert saved["dissipated_energy_Nmm"] == run.summary["dissipated_energy_Nmm"] > 0
@@ -65,5 +69,6 @@ def test_cantilever_writes_json_loops_and_vtu(tmp_path: Path) -> None:
 
 def test_paper_history_refuses_phases() -> None:
     with pytest.raises(ParameterError, match="phase 0"):
-        OwnMeshCase("x.inp", "contact", "clamp", 1.0, (MeshLoad.parse("tip:1,0,0:1:90"),),
-                    0.5, 1.0, 0.3, history="paper")
+        OwnMeshCase("x.inp", MeshClamp("contact", "clamp", normal_force=1.0, modulus=1.0,
+                                       poisson_ratio=0.3, friction=0.5),
+                    (MeshLoad.parse("tip:1,0,0:1:90"),), history="paper")

@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 
 from microslip.errors import ParameterError
-from microslip.fe.builtin import twomode as tm
 from microslip.fe.builtin.meshrun import SineCycles
-from microslip.fe.builtin.reduce import Rom
 from microslip.fe.examples import POST_ON_PLATE, post_on_plate_mesh
 from microslip.fe.hexmesh import face_load
 from microslip.fe.meshcheck import check_roles
+from microslip.meshdynamics import twomode as tm
+from microslip.meshdynamics.reduce import Rom
 
 CASE = tm.TwoModeCase()
 #: One harmonic for the slow tests (the continuation's speed; the physics' tests need not

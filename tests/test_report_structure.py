@@ -5,7 +5,6 @@ of ``modal --mesh`` side by side with the verdicts, the same numbers in ``--json
 
 from __future__ import annotations
 
-import itertools
 import json
 import re
 from pathlib import Path
@@ -14,9 +13,11 @@ import pytest
 
 from microslip.case.model import parse_case
 from microslip.cli.main import main
-from microslip.cli.modalcompare import case_argv
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
+from microslip.meshdynamics.case import StructureCase
+from microslip.report.structure import case_structure
 
 CASE = """name = "cantilever on its clamp"
 preset = "table1"
@@ -38,23 +39,15 @@ response_set = "response"
 """
 
 
-def test_the_case_gives_the_command_line_of_modal_mesh() -> None:
-    argv = case_argv(parse_case(_toml(CASE), "dir/case.toml"), 4)
-    assert argv is not None
-    flags = {a: b for a, b in itertools.pairwise(argv)
-             if a.startswith("--") and not b.startswith("--")}
-    assert argv[:2] == ["modal", "--mesh"] and argv[2].endswith("dir/cantilever.inp")
-    assert flags["--solver"] == "all" and "--json" in argv
-    assert {k: flags[k] for k in ("--amplitudes", "--mode", "--density", "--contact-set",
-                                  "--clamp-set", "--response-set", "--modulus",
-                                  "--poisson-ratio", "--friction", "--stick-slope",
-                                  "--normal-force")} == {
-        "--amplitudes": "4", "--mode": "2", "--density": "2700.0", "--contact-set": "contact",
-        "--clamp-set": "clamp", "--response-set": "response", "--modulus": "70000.0",
-        "--poisson-ratio": "0.33", "--friction": "0.5", "--stick-slope": "10000.0",
-        "--normal-force": "2000.0"}
+def test_the_case_gives_the_structure_of_modal_mesh() -> None:
+    """The case file's [mesh] as the library's typed case (no command line forged)."""
+    case = case_structure(parse_case(_toml(CASE), "dir/case.toml"))
+    assert case is not None and case.mesh.endswith("dir/cantilever.inp")
+    assert case == StructureCase(case.mesh, MeshClamp(
+        "contact", "clamp", normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
+        friction=0.5, stick_slope=1e4), density=2700.0, mode=2, response_set="response")
     # no density: no structure section
-    assert case_argv(parse_case(_toml(CASE.replace("density = 2700\n", "")))) is None
+    assert case_structure(parse_case(_toml(CASE.replace("density = 2700\n", "")))) is None
 
 
 def _toml(text: str) -> dict:
@@ -100,3 +93,25 @@ def test_a_case_without_a_structure_says_so(tmp_path: Path,
                  "--no-fe", "--no-progress"]) == 0
     assert json.loads(capsys.readouterr().out)["structure"] is None
     assert "no structure to report" in (tmp_path / "r.html").read_text()
+
+
+def test_write_report_from_python_computes_the_structure_section(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """write_report() from Python asks the case itself for its structure section (no
+    command-line callback); structure=False leaves it out."""
+    from microslip.case.model import load_case
+    from microslip.report import ReportSettings, compute, write_report
+
+    seen: list[object] = []
+
+    def section(case: object) -> None:
+        seen.append(case)
+
+    monkeypatch.setattr(compute, "structure_section", section)
+    (tmp_path / "case.toml").write_text('preset = "table1"\n')
+    case = load_case(str(tmp_path / "case.toml"))
+    settings = ReportSettings(fe_points=False)
+    write_report(case, tmp_path / "r.html", settings, progress=False)
+    assert seen == [case]
+    write_report(case, tmp_path / "s.html", settings, progress=False, structure=False)
+    assert seen == [case]

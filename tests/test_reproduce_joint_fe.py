@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from microslip.dynamics.fe_check import cycle_work
+from microslip.meshdynamics.fe_check import cycle_work
 from microslip.reproduce.joint_fe import (
     JOINTS,
     joint_fe_figure,

@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from microslip.cli.structurejob import STRUCTURE_MODES, structure_study
+from microslip.reproduce.structurejob import STRUCTURE_MODES, structure_study
 
 
 @pytest.mark.slow

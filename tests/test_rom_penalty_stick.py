@@ -13,10 +13,10 @@ import pytest
 
 from microslip.dynamics.modal import quasi_static
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import first_slip_force, qsma_point
-from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import linear_modes
+from microslip.meshdynamics.qsma import first_slip_force, qsma_point
+from microslip.meshdynamics.reduce import build_rom, rom_structure
 
 
 @pytest.mark.slow
@@ -52,7 +52,7 @@ def test_stick_forces_travel_in_the_structure_file(tmp_path) -> None:  # type: i
     line, and a 2-D joint file may not carry them."""
     from microslip.dynamics.files import read_structure
     from microslip.errors import ParameterError
-    from microslip.fe.builtin.reduce import rom_arrays, write_rom
+    from microslip.meshdynamics.reduce import rom_arrays, write_rom
 
     model = build_mesh_model(cantilever_mesh(6, 2, 1), contact_set="contact",
                              clamp_set="clamp", normal_force=2000.0, modulus=70000.0,

@@ -10,10 +10,10 @@ import pytest
 from microslip.dynamics.modal import quasi_static
 from microslip.dynamics.modal_odd import epmc_odd
 from microslip.fe.builtin.meshmodel import build_mesh_model
-from microslip.fe.builtin.modes import linear_modes
-from microslip.fe.builtin.qsma import first_slip_force, qsma
-from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
+from microslip.meshdynamics.modes import linear_modes
+from microslip.meshdynamics.qsma import first_slip_force, qsma
+from microslip.meshdynamics.reduce import build_rom, rom_structure
 
 #: The issue's aluminium cantilever (MPa, -, kg/m^3, -, N, N/mm^3).
 E, NU, RHO, MU, FN, LAM = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4

@@ -18,6 +18,11 @@ The user-facing entry points, in one flat namespace (as scikit-fem's ``skfem`` a
   :func:`loss_factor_vs_ratio`, :func:`ratio_sweep`;
 - the finite elements: :func:`run_loop` (either solver), :func:`solve_uniaxial`,
   :func:`fe_backbone`, :func:`coupling_study`;
+- the structure on your own mesh: :func:`read_mesh`, :class:`MeshClamp`,
+  :func:`clamped_model`, :class:`StructureCase`, :func:`prepare_structure`,
+  :func:`linear_modes`, :func:`qsma`, :func:`build_rom`, :func:`structure_rom`,
+  :func:`build_whole_joint`, :func:`modal_study`, :func:`frf_study` (docs/ownmesh.md, "From
+  Python");
 - the joint in a structure: :class:`Structure`, :func:`one_mode`, :func:`from_matrices`,
   :func:`jenkins`, :func:`iwan4`, :func:`clamp_joint`, :func:`describing_function`,
   :func:`frequency_response`, :func:`epmc`, :func:`energy_method`;
@@ -72,6 +77,24 @@ _LAZY = {
     "coupling_study": ".fe.builtin.study",
     "fe_backbone": ".fe.builtin.backbone",
     "solve_uniaxial": ".fe.builtin.uniaxial",
+    "read_mesh": ".fe.meshfile",
+    "MeshClamp": ".fe.clamp",
+    "clamped_model": ".fe.clamp",
+    # the structure on a mesh
+    "StructureCase": ".meshdynamics.case",
+    "prepare_structure": ".meshdynamics.case",
+    "structure_rom": ".meshdynamics.case",
+    "linear_modes": ".meshdynamics.modes",
+    "qsma": ".meshdynamics.qsma",
+    "qsma_amplitudes": ".meshdynamics.qsma",
+    "build_rom": ".meshdynamics.reduce",
+    "rom_structure": ".meshdynamics.reduce",
+    "build_whole_joint": ".meshdynamics.wholejoint",
+    "whole_joint_epmc": ".meshdynamics.wholejoint",
+    "ModalSettings": ".meshdynamics.modalstudy",
+    "modal_study": ".meshdynamics.modalstudy",
+    "FrfSettings": ".meshdynamics.frfstudy",
+    "frf_study": ".meshdynamics.frfstudy",
     # the joint in a structure
     "IwanOperator": ".dynamics.operators",
     "jenkins": ".dynamics.operators",

@@ -26,13 +26,17 @@ from typing import Any
 from .errors import ParameterError
 
 __all__ = [
+    "BACKBONE_NAMES",
     "CLAMP_MODELS",
     "COUPLINGS",
     "DEFAULT_COUPLING",
     "DEFAULT_ELEMENTS",
     "DEFAULT_MESH",
+    "DEFAULT_ROM_MODES",
     "DEFAULT_STICK_SLOPE",
     "JOINT_MODELS",
+    "MAX_MODE",
+    "MAX_ROM_MODES",
     "PAIRINGS",
     "TRANSVERSE",
     "check_choice",
@@ -62,7 +66,7 @@ DEFAULT_COUPLING = "circular"
 PAIRINGS: tuple[str, ...] = ("ordered", "spatial")
 
 #: What a two-directional tip or centre joint may be across (its second direction), the keys
-#: of :data:`microslip.dynamics.spec.TRANSVERSE`: the clamp's other 1-D model, or the built-in
+#: of :data:`microslip.meshdynamics.spec.TRANSVERSE`: the clamp's other 1-D model, or the built-in
 #: FE's first loading of the centre force across the bar.
 TRANSVERSE: tuple[str, ...] = (*CLAMP_MODELS, "fe")
 
@@ -77,6 +81,18 @@ DEFAULT_MESH = "coarse"
 #: Table 1 bar (docs/validation.md, stick-slope study; docs/solver.md).
 DEFAULT_STICK_SLOPE = 1.0e4
 
+
+# -- the structure on a mesh (modal --mesh, frf --mesh, reduce; microslip.meshdynamics)
+#: Highest mode number a mesh study takes (the eigen-solve computes that many).
+MAX_MODE = 50
+#: Fixed-interface modes of the contact-node ROM unless the case says (the cantilever's stuck
+#: frequencies then equal the full FE's to about 1e-6).
+DEFAULT_ROM_MODES = 60
+#: Most fixed-interface modes ``--rom-modes`` takes.
+MAX_ROM_MODES = 2000
+#: The whole joint's backbones (the keys of
+#: :data:`microslip.meshdynamics.jointbackbone.BACKBONES`; a test holds the two equal).
+BACKBONE_NAMES = ("fe", "work", "tip", "centre")
 
 def _u(unit: str) -> str:
     return f" ({unit})" if unit else ""

@@ -2,7 +2,7 @@
 
 :class:`JointSpec` is what ``--joint`` and its options (:mod:`microslip.cli.joint`) and a
 ``[[joint]]`` table (:mod:`microslip.case.joints`) produce; the dynamics builds its operators
-from it (:func:`microslip.dynamics.spec.joint_operator`). :func:`series_stiffness` is the
+from it (:func:`microslip.meshdynamics.spec.joint_operator`). :func:`series_stiffness` is the
 series spring of a clamp joint from the contact stick slope, written once.
 
 Units: N, mm, N/mm, N/mm^3.

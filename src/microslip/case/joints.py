@@ -14,7 +14,7 @@ A two-directional tip or centre joint may name what it is across, its second dir
 the centre force across the bar), and how the elements of the two are paired
 (``pairing``). The tables become :class:`~microslip.jointspec.JointSpec`, the same
 specification the command line's joint options give; the dynamics builds the operators from
-it (:mod:`microslip.dynamics.spec`).
+it (:mod:`microslip.meshdynamics.spec`).
 
 Units: N, mm, MPa, N/mm, N/mm^3.
 """

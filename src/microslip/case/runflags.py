@@ -15,16 +15,11 @@ from __future__ import annotations
 
 import argparse
 
+from ..conventions import MAX_ROM_MODES
 from .checks import Option, set_name
 
-__all__ = ["DEFAULT_ROM_MODES", "MAX_ROM_MODES", "RUN_OPTIONS", "positive_int", "seed"]
+__all__ = ["RUN_OPTIONS", "positive_int", "seed"]
 
-#: Fixed-interface modes of the contact-node ROM unless --rom-modes says (the cantilever's
-#: stuck frequencies then equal the full FE's to about 1e-6): ``modal --mesh``,
-#: ``frf --mesh`` and ``reduce``.
-DEFAULT_ROM_MODES = 60
-#: Most fixed-interface modes ``--rom-modes`` takes.
-MAX_ROM_MODES = 2000
 
 
 def positive_int(text: str) -> int:

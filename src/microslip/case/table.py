@@ -25,8 +25,11 @@ from ..conventions import (
     COUPLINGS,
     DEFAULT_ELEMENTS,
     DEFAULT_MESH,
+    DEFAULT_ROM_MODES,
     DEFAULT_STICK_SLOPE,
     JOINT_MODELS,
+    MAX_MODE,
+    MAX_ROM_MODES,
     PAIRINGS,
     TRANSVERSE,
 )
@@ -50,7 +53,7 @@ from .checks import (
     text,
     whole,
 )
-from .runflags import DEFAULT_ROM_MODES, MAX_ROM_MODES, RUN_OPTIONS
+from .runflags import RUN_OPTIONS
 
 __all__ = [
     "CASE_DESTS",
@@ -89,8 +92,6 @@ _FROM_PRESET = "from preset"
 
 #: Normal contact laws of a mesh's base (``fixed``: the built-in solver's default).
 NORMAL_CONTACTS = ("fixed", "penalty")
-#: Highest mode number ``--mode`` takes (a mesh's eigen-solve computes that many).
-MAX_MODE = 50
 
 #: --mesh help: the mesh levels of :mod:`microslip.meshlevels`.
 MESH_HELP = (

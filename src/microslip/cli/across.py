@@ -19,7 +19,7 @@ from ..case.table import add_option
 from ..conventions import CLAMP_MODELS, TRANSVERSE
 from ..dynamics.operators import IwanOperator
 from ..dynamics.operators2d import DEFAULT_PAIRING, PAIRINGS
-from ..dynamics.spec import across_operator
+from ..meshdynamics.spec import across_operator
 from .common import model_options
 from .joint import clamp_from_args, describe_joint, elements_from_args
 

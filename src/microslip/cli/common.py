@@ -5,7 +5,10 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import re
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 from ..case import run
@@ -26,6 +29,7 @@ __all__ = [
     "check_output_dir",
     "check_plot",
     "clamp_overrides",
+    "flagged",
     "increments_option",
     "model_options",
     "number",
@@ -189,3 +193,19 @@ def print_json(obj: Any) -> None:
 
     json.dump(to_jsonable(annotate_json(obj)), sys.stdout, indent=2)
     sys.stdout.write("\n")
+
+
+@contextmanager
+def flagged() -> Iterator[None]:
+    """Re-raise a library's ParameterError about a named value (``harmonics must be in [1,
+    256], got 0``) as the command line's option (``--harmonics must be ...``): the library
+    checks a value once, the command line names the flag."""
+    try:
+        yield
+    except ParameterError as exc:
+        text = str(exc)
+        m = re.match(r"([a-z][a-z_-]*) (must|needs) ", text)
+        if m is None:
+            raise
+        raise ParameterError(f"--{m.group(1).replace('_', '-')}{text[len(m.group(1)):]}"
+                             ) from None

@@ -75,15 +75,16 @@ def mesh_convergence(args: argparse.Namespace, case: Any) -> tuple[dict[str, Any
     return out, lines
 
 
-def frequency_convergence(study: Any, out: dict[str, Any]) -> list[str]:
+def frequency_convergence(study: Any, args: argparse.Namespace,
+                          out: dict[str, Any]) -> list[str]:
     """``modal --mesh FILE --convergence``: add ``converged_linear_frequencies_Hz`` (and the
-    levels) to ``out`` and return the lines of the text table (none without the option)."""
-    args = study.args
+    levels) to ``out`` and return the lines of the text table (none without the option).
+    ``study``: the modal study (:class:`~microslip.meshdynamics.modalstudy.ModalStudy`)."""
     if not getattr(args, "convergence", False):
         return []
-    from ..fe.convergence import converge_stuck_frequencies
+    from ..meshdynamics.convergence import converge_stuck_frequencies
 
-    found = converge_stuck_frequencies(study.model, args.density,
+    found = converge_stuck_frequencies(study.prepared.model, study.case.density,
                                        len(out["linear_frequencies_Hz"]), args.mesh_levels or 2)
     out.update(found.summary())
     out["warnings"] = [*out.get("warnings", []), *found.warnings()]

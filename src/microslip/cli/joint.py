@@ -22,9 +22,9 @@ from ..dynamics.describing import (
 )
 from ..dynamics.distributions import DEFAULT_ELEMENTS
 from ..dynamics.operators import IwanOperator
-from ..dynamics.spec import joint_operator
 from ..errors import ParameterError
 from ..jointspec import JointSpec, series_stiffness
+from ..meshdynamics.spec import joint_operator
 from ..models import MODELS
 from ..params import ClampParams
 from .common import add_model_options, add_params, model_options, params_from_args

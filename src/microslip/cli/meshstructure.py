@@ -1,17 +1,14 @@
-"""The structure of the user's own mesh on the command line, shared by ``modal --mesh`` and
-``frf --mesh``: the options that describe it (the mesh, its sets, the contact, the density,
-the response set), their one-line checks, the clamped model they build and its stuck and free
-linear modes.
-
-Parses and delegates: the model is :func:`microslip.fe.builtin.meshmodel.build_mesh_model`,
-the modes :func:`microslip.fe.builtin.modes.linear_modes`. Units: mm, N, MPa, kg/m^3, Hz.
+"""The structure of the user's own mesh on the command line, shared by ``modal --mesh``,
+``frf --mesh`` and ``reduce``: the options that describe it (the mesh, its sets, the contact,
+the density, the response set), their one-line refusals, and :func:`structure_case`, the one
+function that turns them into the library's typed
+:class:`~microslip.meshdynamics.case.StructureCase`. Units: mm, N, MPa, kg/m^3, Hz.
 """
 
 from __future__ import annotations
 
 import argparse
-from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..case.table import (
     DEFAULT_ROM_MODES,
@@ -22,47 +19,28 @@ from ..case.table import (
     mesh_file,
     mode_options,
 )
+from ..conventions import BACKBONE_NAMES
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
+from .common import flagged
 from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
-from .ownmesh import given
+from .ownmesh import given, mesh_clamp
+
+if TYPE_CHECKING:
+    from ..meshdynamics.case import StructureCase
 
 __all__ = [
-    "DEFAULT_ROM_MODES",
     "MAX_MODE",
     "REQUIRED",
-    "MeshModes",
     "add_mesh_structure_options",
     "add_reduced_model_options",
     "check_density",
     "check_mesh_structure",
-    "mesh_model",
-    "mesh_modes",
+    "structure_case",
 ]
 
 #: The clamp's values and the density a mesh structure needs: destination -> flag.
 REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
-#: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
-#: named here so that the parser does not import the FE; a test holds the two equal).
-BACKBONE_NAMES = ("fe", "work", "tip", "centre")
-
-
-@dataclass(frozen=True)
-class MeshModes:
-    """What every study of a mesh structure starts from (``modal --mesh``, ``frf --mesh``):
-    the command line, the clamped model, its stuck and free linear modes and the number
-    (1-based) of the mode studied."""
-
-    args: argparse.Namespace
-    model: Any
-    stuck: Any
-    free: Any
-    number: int
-
-    @property
-    def mode(self) -> Any:
-        """The studied stuck mode (:class:`~microslip.fe.builtin.modes.Mode`)."""
-        return self.stuck.select(self.number)
 
 
 def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None:
@@ -118,37 +96,18 @@ def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = (
         raise ParameterError("--normal-slope needs --normal-contact penalty")
 
 
-def mesh_model(args: argparse.Namespace, sets: tuple[str, ...] = ()) -> Any:
-    """Read the mesh, check its role sets (and the response set and ``sets``), build the
-    body on its base and solve the clamping step: a
-    :class:`~microslip.fe.builtin.meshmodel.MeshModel`."""
-    from ..fe.builtin.meshmodel import build_mesh_model
-    from ..fe.constants import DEFAULT_NORMAL_SLOPE
-    from ..fe.meshcheck import check_roles, check_set
-    from ..fe.meshfile import read_mesh
+def structure_case(args: argparse.Namespace) -> StructureCase:
+    """The typed case of the structure the command line describes (the one place a mesh
+    study's namespace becomes a :class:`~microslip.meshdynamics.case.StructureCase`): the
+    clamp (:class:`~microslip.fe.clamp.MeshClamp`), the density, the mode, the response set
+    and the reduced models' settings, each validated once by the case (its one-line message
+    naming the option)."""
+    from ..meshdynamics.case import StructureCase
 
-    mesh = read_mesh(args.mesh)
-    if args.response_set:  # named as what it is (not "the set of a load")
-        check_set(mesh, args.response_set, "response set")
-    check_roles(mesh, args.contact_set, args.clamp_set, sets)
-    return build_mesh_model(
-        mesh, contact_set=args.contact_set, clamp_set=args.clamp_set,
-        normal_force=float(args.normal_force), modulus=float(args.modulus),
-        poisson_ratio=float(args.poisson_ratio), friction=float(args.friction),
-        stick_slope=float(args.stick_slope),
-        normal_contact=args.normal_contact or "fixed",
-        normal_slope=DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope)
-
-
-def mesh_modes(args: argparse.Namespace, model: Any) -> tuple[int, Any, Any]:
-    """(the --mode number, 1-based and checked; the stuck and the free linear modes, at least
-    six and up to that mode, described by the response set)."""
-    from ..fe.builtin.modes import linear_modes
-
-    number = 1 if args.mode is None else args.mode
-    if not 1 <= number <= MAX_MODE:
-        raise ParameterError(f"--mode must be in [1, {MAX_MODE}] with --mesh, got {number}")
-    n = max(6, number)
-    stuck = linear_modes(model, args.density, n, "stuck", args.response_set)
-    free = linear_modes(model, args.density, n, "free", args.response_set)
-    return number, stuck, free
+    clamp = mesh_clamp(args)
+    optional = {k: v for k, v in (
+        ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
+        ("backbone", getattr(args, "backbone", None))) if v is not None}
+    with flagged():
+        return StructureCase(args.mesh, clamp, density=args.density,
+                             response_set=args.response_set, **optional)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..case.table import add_option
-from ..dynamics.modal import METHODS, energy_method
+from ..dynamics.modal import METHODS, MODAL_COORDINATE, energy_method
 from ..errors import ParameterError
 from .contact import report_warnings
 from .modalmesh import (
@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
         if args.solver == ALL:
             from .modalcompare import run_modal_all
 
-            return run_modal_all(mesh_study(args))
+            return run_modal_all(mesh_study(args), args)
         return run_modal_mesh(args)
     refuse_mesh_options(args)
     if args.amplitude_range is None:
@@ -104,7 +104,8 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json({"structure": describe_structure(structure, args), "method": curve.method,
                     "harmonics": curve.harmonics, "samples": curve.samples,
-                    "amplitude_mm": curve.amplitude, "frequency_Hz": curve.frequency,
+                    "amplitude_mm": curve.amplitude, "amplitude_coordinate": MODAL_COORDINATE,
+                    "frequency_Hz": curve.frequency,
                     "damping_ratio": curve.damping_ratio,
                     "energy_method": None if three_d else {
                         "frequency_Hz": energy.frequency,
@@ -113,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "
           f"{curve.samples} samples")
-    print(f"{'a (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")
+    print(f"{'q (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")  # the modal coordinate
     for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
         print("{:12.5g} {:12.7g} {:12.5g}".format(*row))
     return 0

@@ -9,14 +9,17 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..case.table import MODE_BOX, MODE_MESH, add_option, mode_options
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
-from .common import check_output_dir, check_plot, print_json
 
-__all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case",
+if TYPE_CHECKING:
+    from ..fe.clamp import MeshClamp
+from .common import check_output_dir, check_plot, flagged, print_json
+
+__all__ = ["REQUIRED", "add_own_mesh_options", "given", "is_mesh_file", "mesh_case", "mesh_clamp",
            "refuse_mesh_options", "run_own_mesh", "verb"]
 
 #: Clamp values a mesh run needs (the mesh gives the geometry): destination -> flag.
@@ -80,6 +83,24 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
                              f"own), not to the box --mesh {args.mesh}; remove them")
 
 
+def mesh_clamp(args: argparse.Namespace, normal_contact: str | None = None) -> MeshClamp:
+    """The clamp the options describe (the one place a namespace becomes a
+    :class:`~microslip.fe.clamp.MeshClamp`, for ``fe --mesh`` and the structure commands
+    alike): ``normal_contact`` overrides ``--normal-contact``; what is not given takes the
+    clamp's defaults; a bad value is one line naming its option."""
+    from ..fe.clamp import MeshClamp
+
+    optional: dict[str, Any] = {k: v for k, v in (
+        ("stick_slope", args.stick_slope),
+        ("normal_contact", normal_contact or args.normal_contact),
+        ("normal_slope", args.normal_slope)) if v is not None}
+    with flagged():
+        return MeshClamp(args.contact_set, args.clamp_set,
+                         normal_force=float(args.normal_force), modulus=float(args.modulus),
+                         poisson_ratio=float(args.poisson_ratio),
+                         friction=float(args.friction), **optional)
+
+
 def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
@@ -123,11 +144,7 @@ def mesh_case(args: argparse.Namespace) -> Any:
                                                      or given(args, "threads")):
         raise ParameterError("--timeout and --threads apply to --solver calculix")
     return OwnMeshCase(
-        args.mesh, args.contact_set, args.clamp_set, float(args.normal_force),
-        tuple(MeshLoad.parse(s) for s in args.load), float(args.friction),
-        float(args.modulus), float(args.poisson_ratio), stick_slope=float(args.stick_slope),
-        normal_contact=normal, normal_slope=float(
-            DEFAULT_NORMAL_SLOPE if args.normal_slope is None else args.normal_slope),
+        args.mesh, mesh_clamp(args, normal), tuple(MeshLoad.parse(s) for s in args.load),
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
@@ -150,13 +167,14 @@ def run_own_mesh(args: argparse.Namespace) -> int:
     else:
         done = run(case, args.solver, out=args.out, vtu=not args.no_vtu)
         summary = done.summary
+    clamp = case.clamp
     out = {**summary, "clamp_portion": "whole",
-           "options": {"normal_contact": case.normal_contact,
-                       "stick_slope_N_per_mm3": case.stick_slope,
-                       "normal_slope_N_per_mm3": case.normal_slope
-                       if case.normal_contact == "penalty" else None,
-                       "friction": case.friction, "normal_force_N": case.normal_force,
-                       "modulus_MPa": case.modulus, "poisson_ratio": case.poisson_ratio,
+           "options": {"normal_contact": clamp.normal_contact,
+                       "stick_slope_N_per_mm3": clamp.stick_slope,
+                       "normal_slope_N_per_mm3": clamp.normal_slope
+                       if clamp.normal_contact == "penalty" else None,
+                       "friction": clamp.friction, "normal_force_N": clamp.normal_force,
+                       "modulus_MPa": clamp.modulus, "poisson_ratio": clamp.poisson_ratio,
                        "substeps": case.substeps, "increments_per_cycle": case.increments,
                        "history": case.history}}
     if args.plot:

@@ -3,7 +3,7 @@ as a structure file that ``modal --structure`` and ``frf --structure`` read.
 
 Craig-Bampton with the contact nodes' dofs kept and fixed-interface modes chosen by count
 (``--rom-modes``) or frequency (``--cutoff-frequency``), each contact node its own law
-(:mod:`microslip.fe.builtin.reduce`). Before the file is written the ROM's lowest six stuck
+(:mod:`microslip.meshdynamics.reduce`). Before the file is written the ROM's lowest six stuck
 frequencies are compared with the full FE's for a few mode counts up to the chosen one, so
 that the user sees whether the modes suffice. The file is written to a temporary name and
 renamed: never half-written. This module parses and prints. Units: Hz, s, kg/m^3, N, mm.
@@ -25,7 +25,7 @@ from ..case.table import DEFAULT_ROM_MODES, MAX_ROM_MODES, add_option
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
 from .common import print_json
-from .meshstructure import add_mesh_structure_options, check_density, mesh_model
+from .meshstructure import add_mesh_structure_options, check_density, structure_case
 from .ownmesh import REQUIRED as MESH_REQUIRED
 
 __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts", "run"]
@@ -111,12 +111,14 @@ def _check(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..fe.builtin.reduce import build_rom, convergence, full_mass, write_rom
     from ..io import check_writable
+    from ..meshdynamics.reduce import build_rom, convergence, full_mass, write_rom
 
     _check(args)
     check_writable(args.out, (".npz",), "--out")
-    model = mesh_model(args)
+    from ..meshdynamics.case import clamped
+
+    model = clamped(structure_case(args))
     t0 = time.perf_counter()
     mass = full_mass(model, args.density)
     rom = build_rom(model, args.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,

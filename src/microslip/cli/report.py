@@ -48,7 +48,6 @@ def run(args: argparse.Namespace) -> int:
     from ..models import check_increments
     from ..report import ReportSettings, compute_report, report_json, write_report
     from .common import print_json
-    from .modalcompare import case_comparison
 
     if args.out is None and not args.json:
         from .main import UsageError
@@ -74,15 +73,10 @@ def run(args: argparse.Namespace) -> int:
         warn(f"case {args.report_case}: its mesh {case.values['mesh.file']} has no density "
              "([mesh] density, kg/m^3): the report leaves the structure out and describes the "
              "bar of the case's clamp (its preset and [geometry]), not the mesh")
-    def structure() -> dict[str, Any] | None:  # the case's own mesh, every solver
-        return case_comparison(case)
-
     if args.out is not None:
-        data = write_report(case, args.out, settings, progress=not args.no_progress,
-                            structure=structure)
+        data = write_report(case, args.out, settings, progress=not args.no_progress)
     else:
-        data = compute_report(case, settings, progress=not args.no_progress,
-                              structure=structure)
+        data = compute_report(case, settings, progress=not args.no_progress)
     if args.json:
         print_json(report_json(data) | {"case_file": args.report_case, "page": args.out})
         return 0

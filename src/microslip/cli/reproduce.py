@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
                         fe_mesh=args.fe_mesh, progress=not args.quiet, echo=echo)
         structure: list[Path] = []
         if args.structure_study or (args.structure_study is None and args.fe is not False):
-            from .structurejob import structure_study
+            from ..reproduce.structurejob import structure_study
 
             structure, lines = structure_study(stage, None if args.quiet else echo)
             with open(stage / "report.md", "a", encoding="utf-8") as fh:

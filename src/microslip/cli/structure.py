@@ -27,7 +27,7 @@ from ..dynamics.assemble import (
     with_output,
 )
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
-from ..dynamics.hb import DEFAULT_HB_SAMPLES
+from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
 from ..dynamics.operators2d import PAIRINGS
 from ..dynamics.operators3d import Contact3D
 from ..dynamics.structure import Structure, free_frequency, one_mode
@@ -38,6 +38,7 @@ from .across import (
     add_across_options,
     describe_across,
 )
+from .common import flagged
 from .joint import add_joint_options, describe_joint, joint_from_args
 
 __all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
@@ -58,9 +59,6 @@ ACROSS_WARNING = (
 #: structure file, their joint and the box's geometry (:func:`add_structure_options`; with
 #: ``--mesh`` these options are refused, :func:`~.meshstructure.check_mesh_structure`).
 NOT_MESH = MODE_STRUCTURE
-
-#: Harmonics of the balance unless --harmonics is given.
-DEFAULT_HARMONICS = 7
 
 
 def add_structure_options(parser: argparse.ArgumentParser) -> None:
@@ -152,7 +150,7 @@ def _refuse_own_law(args: argparse.Namespace) -> None:
 def placed_joints(args: argparse.Namespace, matrices: MatrixFile) -> list[PlacedJoint]:
     """The joints of the case file's [[joint]] tables, placed on ``matrices``; a joint's own
     coupling wins over --coupling (or [structure] coupling), which wins over circular."""
-    from ..dynamics.spec import joint_operator, transverse_operator
+    from ..meshdynamics.spec import joint_operator, transverse_operator
     from .common import model_options
 
     specs = args.case_joints
@@ -222,7 +220,7 @@ def describe_structure(structure: Structure, args: argparse.Namespace | None = N
             return {**out, "joint": describe_contacts(structure)}
         if not specs:
             return {**out, "joint": describe_joint(structure.joints[0].operator)}  # type: ignore[arg-type]
-        from ..dynamics.spec import joint_operator, transverse_operator
+        from ..meshdynamics.spec import joint_operator, transverse_operator
         from .common import model_options
 
         opts = model_options(args)
@@ -265,13 +263,8 @@ def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
     """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
     if args.harmonics is None:
         args.harmonics = DEFAULT_HARMONICS
-    if not 1 <= args.harmonics <= 256:
-        raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
-    low = 2 * args.harmonics + 2
-    if not low <= args.samples <= 65536:
-        raise ParameterError(f"--samples must be in [{low}, 65536] for {args.harmonics} "
-                             f"harmonics, got {args.samples}")
-    return int(args.harmonics), int(args.samples)
+    with flagged():
+        return check_balance(args.harmonics, args.samples)
 
 
 def headline(structure: Structure, mode: int) -> str:

@@ -10,7 +10,7 @@ Two formats:
   optional ``joint_stiffness`` (N/mm) and ``joint_slip_force`` (N), shape (n_joints,), both
   or neither: each joint of the file is then its own Jenkins element (circular on a
   two-directional joint), as a reduced model with every contact node writes it
-  (:mod:`microslip.fe.builtin.reduce`), in place of the joint the command line names;
+  (:mod:`microslip.meshdynamics.reduce`), in place of the joint the command line names;
   or (n_joints, 3, 2) for *3-D contact joints* (a contact node with penalty normal contact,
   :class:`~.operators3d.Contact3D`: tangential 1, tangential 2, normal, in that order) with
   their laws ``joint_stiffness`` (tangential k_t, N/mm), ``joint_normal_stiffness`` (k_n,

@@ -26,11 +26,38 @@ from .operators2d import CircularIwan
 from .operators3d import Contact3D
 from .structure import SI_PER_MM, JointLink, Structure
 
-__all__ = ["DEFAULT_HB_SAMPLES", "HarmonicBalance", "Residual", "from_time", "harmonic_columns",
-           "to_time"]
+__all__ = [
+    "DEFAULT_HARMONICS",
+    "DEFAULT_HB_SAMPLES",
+    "MAX_HARMONICS",
+    "HarmonicBalance",
+    "Residual",
+    "check_balance",
+    "from_time",
+    "harmonic_columns",
+    "to_time",
+]
 
 #: Time samples per period of the AFT scheme, unless given.
 DEFAULT_HB_SAMPLES = 128
+#: Harmonics of the balance unless a study says (a mesh's forced response:
+#: :data:`microslip.meshdynamics.frfstudy.DEFAULT_MESH_HARMONICS`).
+DEFAULT_HARMONICS = 7
+#: Most harmonics of a balance; most time samples per period.
+MAX_HARMONICS = 256
+MAX_SAMPLES = 65536
+
+
+def check_balance(harmonics: int, samples: int) -> tuple[int, int]:
+    """(harmonics, samples) if harmonics is in [1, :data:`MAX_HARMONICS`] and samples in
+    [2 harmonics + 2, :data:`MAX_SAMPLES`] (enough to resolve them); one line otherwise."""
+    if not 1 <= harmonics <= MAX_HARMONICS:
+        raise ParameterError(f"harmonics must be in [1, {MAX_HARMONICS}], got {harmonics}")
+    low = 2 * harmonics + 2
+    if not low <= samples <= MAX_SAMPLES:
+        raise ParameterError(f"samples must be in [{low}, {MAX_SAMPLES}] for {harmonics} "
+                             f"harmonics, got {samples}")
+    return int(harmonics), int(samples)
 
 Array = NDArray[np.float64]
 

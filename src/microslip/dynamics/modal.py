@@ -28,9 +28,31 @@ from .operators2d import CircularIwan
 from .operators3d import Contact3D
 from .structure import SI_PER_MM, Structure
 
-__all__ = ["METHODS", "ModalCurve", "energy_method", "epmc", "quasi_static"]
+__all__ = [
+    "AMPLITUDE_COORDINATES",
+    "METHODS",
+    "MODAL_COORDINATE",
+    "RESPONSE_SET_COORDINATE",
+    "ModalCurve",
+    "energy_method",
+    "epmc",
+    "quasi_static",
+]
 
 Array = NDArray[np.float64]
+
+#: ``amplitude_coordinate`` of a modal curve's JSON: what its ``amplitude_mm`` measures.
+#: A structure's output coordinate is the stuck mode's modal coordinate q (x = q phi;
+#: :func:`~microslip.dynamics.assemble.modal_output`) for a one-mode structure or a
+#: structure file; on a mesh it is the response set's mean displacement along the mode
+#: (:mod:`microslip.meshdynamics`).
+MODAL_COORDINATE = "modal"
+RESPONSE_SET_COORDINATE = "response_set"
+AMPLITUDE_COORDINATES = {
+    MODAL_COORDINATE: "first harmonic of the stuck mode's modal coordinate q (x = q phi), mm",
+    RESPONSE_SET_COORDINATE: "first harmonic of the response set's mean displacement along "
+                             "the mode's direction, mm",
+}
 
 #: Newton tolerance of the extended periodic motion concept (relative).
 TOLERANCE = 1e-11
@@ -203,7 +225,7 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
 def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
                  samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
     """Frequency and damping ratio by quasi-static modal analysis (Lacayo and Allen 2019) on
-    the structure, the method :mod:`microslip.fe.builtin.qsma` applies to the full FE.
+    the structure, the method :mod:`microslip.meshdynamics.qsma` applies to the full FE.
 
     Notes
     -----

@@ -58,6 +58,8 @@ _LAZY = {
     "STATUS": ".result",
     "ContactHistory": ".result",
     "FELoopResult": ".result",
+    "MeshClamp": ".clamp",
+    "clamped_model": ".clamp",
     "SOLVERS": ".run",
     "SolverEntry": ".run",
     "run_loop": ".run",

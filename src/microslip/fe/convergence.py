@@ -29,7 +29,6 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from .constants import DEFAULT_NORMAL_SLOPE
 from .hexmesh import HexMesh
 
 __all__ = [
@@ -43,7 +42,6 @@ __all__ = [
     "MeshConvergence",
     "converge_frequencies",
     "converge_own_mesh",
-    "converge_stuck_frequencies",
     "richardson",
 ]
 
@@ -308,7 +306,7 @@ def converge_frequencies(mesh: HexMesh, frequencies: Callable[[HexMesh], tuple[i
 
     ``frequencies(mesh)`` returns (DOF, the lowest stuck linear frequencies in Hz) of a mesh
     (the caller clamps it: :func:`~microslip.fe.builtin.meshmodel.build_mesh_model` and
-    :func:`~microslip.fe.builtin.modes.linear_modes`). The modes are matched by their rank.
+    :func:`~microslip.meshdynamics.modes.linear_modes`). The modes are matched by their rank.
     """
     from .refine import refine_mesh
 
@@ -323,25 +321,3 @@ def converge_frequencies(mesh: HexMesh, frequencies: Callable[[HexMesh], tuple[i
     estimates = tuple(richardson([f[k] for f in freqs], THEORETICAL_ORDER["frequency"])
                       for k in range(count))
     return FrequencyConvergence(factors, tuple(dofs), tuple(freqs), estimates)
-
-
-def converge_stuck_frequencies(model: Any, density_kg_m3: float, count: int,
-                               levels: int = 2) -> FrequencyConvergence:
-    """The lowest ``count`` stuck linear frequencies (Hz) of a clamped mesh model
-    (:class:`~microslip.fe.builtin.meshmodel.MeshModel`) on its mesh and ``levels`` - 1
-    refinements x2, each clamped again with the model's own sets, material and contact."""
-    from .builtin.meshmodel import build_mesh_model
-    from .builtin.modes import linear_modes
-
-    def frequencies(mesh: HexMesh) -> tuple[int, Any]:
-        m = model if mesh is model.mesh else build_mesh_model(
-            mesh, contact_set=model.contact_set, clamp_set=model.clamp_set,
-            normal_force=model.clamp_force, modulus=model.modulus,
-            poisson_ratio=model.poisson_ratio, friction=model.friction,
-            stick_slope=model.stick_slope,
-            normal_contact="fixed" if model.normal is None else "penalty",
-            normal_slope=(DEFAULT_NORMAL_SLOPE if model.normal is None
-                          else model.normal.slope), element=model.element)
-        return m.dof, linear_modes(m, density_kg_m3, count, "stuck").frequencies_Hz
-
-    return converge_frequencies(model.mesh, frequencies, levels)

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..io import atomic_write, write_loop_csv
-from .constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from .clamp import MeshClamp
 from .hexmesh import HexMesh
 from .meshload import MeshLoad
 
@@ -39,10 +39,11 @@ HISTORIES = {"settle": "cycles until the work per cycle settles to the tolerance
 
 @dataclass(frozen=True)
 class OwnMeshCase:
-    """A clamp described by its mesh: the file, the role sets, the clamp and the loads.
+    """A clamp described by its mesh: the file, the clamp (:class:`~.clamp.MeshClamp`: the
+    role sets, the clamping force, the material and the contact law) and the loads.
 
-    ``normal_contact`` is ``fixed`` (normal forces of the clamping step) or ``penalty``
-    (``normal_slope`` N/mm^3, lift-off allowed); CalculiX takes ``penalty`` only.
+    The clamp's ``normal_contact`` is ``fixed`` (normal forces of the clamping step) or
+    ``penalty`` (``normal_slope`` N/mm^3, lift-off allowed); CalculiX takes ``penalty`` only.
     ``substeps`` as the box's ``fe --substeps``: equal substeps over 1.25 cycles (a multiple of
     5; 50 gives 40 increments per cycle). ``history`` is one of :data:`HISTORIES`: ``settle``
     runs cycles until the work of a cycle is within ``tol`` (relative) of the last, at most
@@ -53,16 +54,8 @@ class OwnMeshCase:
     """
 
     mesh_file: str
-    contact_set: str
-    clamp_set: str
-    normal_force: float
+    clamp: MeshClamp
     loads: tuple[MeshLoad, ...]
-    friction: float
-    modulus: float
-    poisson_ratio: float
-    stick_slope: float = DEFAULT_STICK_SLOPE
-    normal_contact: str = "fixed"
-    normal_slope: float = DEFAULT_NORMAL_SLOPE
     substeps: int = 50
     history: str = "settle"
     tol: float = 1e-3
@@ -72,6 +65,8 @@ class OwnMeshCase:
     refine: int = 1
 
     def __post_init__(self) -> None:
+        if not isinstance(self.clamp, MeshClamp):
+            raise ParameterError(f"clamp must be a MeshClamp, got {type(self.clamp).__name__}")
         if not self.loads:
             raise ParameterError("give at least one --load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
         if self.history not in HISTORIES:
@@ -112,20 +107,15 @@ def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
-    check_roles(mesh, case.contact_set, case.clamp_set, case.loads)
+    check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, case.loads)
     return refine_mesh(mesh, case.refine)
 
 
 def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
-    from .builtin.meshmodel import build_mesh_model
     from .builtin.meshrun import LoadFactors, SineCycles, solve_mesh
+    from .clamp import clamped_model
 
-    model = build_mesh_model(
-        mesh, contact_set=case.contact_set, clamp_set=case.clamp_set,
-        normal_force=case.normal_force, modulus=case.modulus,
-        poisson_ratio=case.poisson_ratio, friction=case.friction,
-        stick_slope=case.stick_slope, normal_contact=case.normal_contact,
-        normal_slope=case.normal_slope)
+    model = clamped_model(mesh, case.clamp)
     history: SineCycles | LoadFactors
     if case.history == "paper":
         time = np.arange(case.substeps + 1) / case.increments
@@ -143,11 +133,8 @@ def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str,
     from .calculix.meshrun import run_mesh_calculix
 
     result = run_mesh_calculix(
-        mesh, contact_set=case.contact_set, clamp_set=case.clamp_set,
-        normal_force=case.normal_force, loads=case.loads, friction=case.friction,
-        stick_slope=case.stick_slope, normal_contact=case.normal_contact,
-        normal_slope=case.normal_slope, modulus=case.modulus,
-        poisson_ratio=case.poisson_ratio, increments_per_cycle=case.increments,
+        mesh, **case.clamp.model_options(), loads=case.loads,
+        increments_per_cycle=case.increments,
         cycles=1 if case.history == "paper" else case.cycles,
         startup="quarter" if case.history == "paper" else "ramp", **case.options)
     return result.summary(), result
@@ -210,7 +197,7 @@ def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path 
     summary, result = OWN_MESH_SOLVERS[solver](mesh, case, record)
     from .meshcheck import scale_warnings
 
-    units = scale_warnings(mesh, case.clamp_set, case.normal_force, case.modulus)
+    units = scale_warnings(mesh, case.clamp.clamp_set, case.clamp.normal_force, case.clamp.modulus)
     if units:
         summary["warnings"] = [*units, *summary.get("warnings", [])]
     summary = {"mesh": str(case.mesh_file), "nodes": len(mesh.nodes),

@@ -100,7 +100,7 @@ def figure_joint_fe(path: str | os.PathLike[str], ratios: Sequence[float],
 
     ``joints`` maps a key of ``run.joint_force`` to its label, ``over_fe`` each key to
     W_joint / W_FE at ``ratios``; ``run`` is the
-    :class:`~microslip.dynamics.fe_check.FEComparison` drawn in (b), at R = ``run_ratio``.
+    :class:`~microslip.meshdynamics.fe_check.FEComparison` drawn in (b), at R = ``run_ratio``.
     """
     fig, axes = new_figure(ncols=2, width_mm=85.0, height_mm=72.0)
     ax = axes[0, 0]

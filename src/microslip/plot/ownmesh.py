@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..fe.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
+from ..meshdynamics.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
 from .core import COLOURS, displacement_scale, new_figure, pyplot, save_figure
 
 __all__ = ["compare_figure", "plot_compare", "plot_mesh_loops", "plot_qsma", "slip_snapshots"]

@@ -1,4 +1,4 @@
-"""The two-mode study's figure (:mod:`microslip.fe.builtin.twomode`): the frequency response
+"""The two-mode study's figure (:mod:`microslip.meshdynamics.twomode`): the frequency response
 of the post's top along x and y with circular and decoupled joints, and the interface's
 orbit at the checked points. Units: Hz, mm (or um), N."""
 

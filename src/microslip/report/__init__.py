@@ -11,8 +11,6 @@ Distinct from :mod:`microslip.reproduce`, which reproduces the paper's figures.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
-from typing import Any
 
 from ..case.model import Case
 from ..io import atomic_write
@@ -25,10 +23,10 @@ __all__ = ["ReportData", "ReportSettings", "compute_report", "render", "report_j
 
 def write_report(case: Case, path: str | os.PathLike[str],
                  settings: ReportSettings | None = None, *, progress: bool = True,
-                 structure: Callable[[], dict[str, Any] | None] | None = None
-                 ) -> ReportData:
+                 structure: bool = True) -> ReportData:
     """Compute the report of ``case`` and write it to ``path`` (never half-written);
-    ``structure``: :func:`~microslip.report.compute.compute_report`'s."""
+    ``structure``: :func:`~microslip.report.compute.compute_report`'s (the section of the
+    structure's mode when the case's [mesh] gives a file and a density)."""
     data = compute_report(case, settings, progress=progress, structure=structure)
     page = render(data)
     with atomic_write(path) as fh:

@@ -12,7 +12,6 @@ one JSON object (``microslip report --json``).
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -43,6 +42,7 @@ from ..named import result
 from ..params import ClampParams
 from ..progress import progress_bar
 from ..results import DampingResult
+from .structure import structure_section
 
 __all__ = ["LOOP_FRACTIONS", "ReportData", "ReportSettings", "comparison", "compute_report",
            "report_json"]
@@ -141,11 +141,10 @@ def _planar(case: Case, increments: int) -> tuple[PlanarRun | None, str | None]:
 
 def compute_report(case: Case, settings: ReportSettings | None = None, *,
                    progress: bool = True,
-                   structure: Callable[[], dict[str, Any] | None] | None = None
-                   ) -> ReportData:
-    """Compute every number of the report of ``case``; ``structure`` computes the section of
-    the structure's mode, last (the command line gives it:
-    :func:`microslip.cli.modalcompare.case_comparison` of the case)."""
+                   structure: bool = True) -> ReportData:
+    """Compute every number of the report of ``case``; with ``structure`` the section of the
+    structure's mode too, last, when the case's [mesh] gives a file and a density
+    (:func:`microslip.report.structure.structure_section`)."""
     s = settings or ReportSettings()
     inputs = _loop(case, s)
     model, amplitude, limit = inputs.model, inputs.amplitude, inputs.macroslip
@@ -183,7 +182,7 @@ def compute_report(case: Case, settings: ReportSettings | None = None, *,
         validity_rigid=validity(model, inputs.params, amplitude),
         validity_layer=validity(model, inputs.params, amplitude, stick_slope=stick),
         stick_slope=stick, planar_run=planar, planar_error=planar_error,
-        structure=None if structure is None else structure())
+        structure=structure_section(case) if structure else None)
 
 
 def comparison(data: ReportData) -> list[tuple[str, float, float | None, float | None]]:

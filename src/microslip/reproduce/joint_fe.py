@@ -2,7 +2,7 @@
 
 A structural-dynamics user puts the clamp into a structure as one joint with two in-plane
 directions. This step says how well each joint of microslip reproduces the FE's coupled
-dissipation on the Table 1 bar (:func:`microslip.dynamics.fe_check.fe_comparison`): the
+dissipation on the Table 1 bar (:func:`microslip.meshdynamics.fe_check.fe_comparison`): the
 isotropic circular joint and the paper's decoupled sum built from the 1-D models, and the
 anisotropic joint with the FE's own first loading across the bar, at the force ratios of
 :data:`JOINT_FE_RATIOS`, phase 90 degrees, largest resultant 0.75 mu F_N. It writes
@@ -53,8 +53,8 @@ def joint_fe_study(*, mesh: Any = None, ratios: Sequence[float] = JOINT_FE_RATIO
                    ) -> tuple[dict[str, list[Any]], list[Any]]:
     """Columns of ``joint2d_vs_fe.csv`` and the comparisons (one per ratio that ran);
     ``mesh`` default :data:`JOINT_FE_MESH`."""
-    from ..dynamics.fe_check import cycle_work, fe_comparison
     from ..fe.builtin.study import amplitudes_for_ratio
+    from ..meshdynamics.fe_check import cycle_work, fe_comparison
 
     params = preset("table1")
     peak = PEAK_FRACTION * params.macroslip_force

@@ -5,8 +5,9 @@ joint within 0.1 %, docs/dynamics.md); across the bar the clamped zone bends in 
 plane on its friction foundation, a mechanism neither of the paper's models describes. The
 built-in solver's monotonic loading of the one force, from the clamped state to just below
 macroslip, is that direction's virgin curve; a Masing joint built from it
-(:func:`microslip.dynamics.distributions.from_backbone`) then reproduces the FE's cyclic
-loops in that direction (tested against the FE's settled cycles).
+(:func:`microslip.meshdynamics.febackbone.backbone_operator`, one layer up: the FE does not
+import the dynamics) then reproduces the FE's cyclic loops in that direction (tested against
+the FE's settled cycles).
 
 Units: N, mm.
 """
@@ -68,16 +69,6 @@ class FEBackbone:
     macroslip_force: float
     mesh: str
     stick_slope: float
-
-    def operator(self, name: str | None = None) -> Any:
-        """The Iwan operator (:class:`~microslip.dynamics.operators.IwanOperator`) whose
-        virgin curve is this backbone's concave majorant (:func:`concave_majorant`),
-        extended with its last slope to mu F_N."""
-        from ...dynamics.distributions import from_backbone
-
-        keep = concave_majorant(self.displacement, self.force)
-        return from_backbone(name or f"fe-{self.load}", self.displacement[keep],
-                             self.force[keep], macroslip_force=self.macroslip_force)
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready figures with units."""

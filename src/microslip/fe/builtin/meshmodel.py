@@ -37,7 +37,7 @@ from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
 from ...blas import single_threaded_blas
 from ...errors import ParameterError
 from ...params import check_positive
-from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..hexmesh import HexMesh, face_load
 from ..meshcheck import check_set
 from ..meshload import MeshLoad
@@ -373,7 +373,8 @@ def _backend(name: str, k_ff: sp.csr_matrix, cdofs: IntArray, kc: FloatArray,
 
 def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
                      modulus: float, poisson_ratio: float, friction: float,
-                     stick_slope: float = DEFAULT_STICK_SLOPE, normal_contact: str = "fixed",
+                     stick_slope: float = DEFAULT_STICK_SLOPE,
+                     normal_contact: str = DEFAULT_NORMAL_CONTACT,
                      normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str = "C3D8I",
                      linear_solver: str = "auto", newton: NewtonOptions | None = None,
                      condensed: bool | None = None) -> MeshModel:

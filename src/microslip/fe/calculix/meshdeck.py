@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import ParameterError
+from ..constants import DEFAULT_NORMAL_SLOPE
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
 from .deck import (
@@ -407,7 +408,7 @@ def _clamping_step(normal_force: float, clamp_area: float, clamp_set: str) -> li
 
 def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
                     loads: Sequence[MeshLoad], friction: float, stick_slope: float,
-                    normal_contact: str = "penalty", normal_slope: float = 1.0e5,
+                    normal_contact: str = "penalty", normal_slope: float = DEFAULT_NORMAL_SLOPE,
                     modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                     cycles: int = 1, max_iterations: int = 26,
                     fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter"
@@ -509,7 +510,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
 
 def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
                          normal_force: float, friction: float, stick_slope: float,
-                         normal_slope: float = 1.0e5, modulus: float, poisson_ratio: float,
+                         normal_slope: float = DEFAULT_NORMAL_SLOPE, modulus: float,
+                         poisson_ratio: float,
                          density_kg_m3: float, modes: int = 10, element: str | None = None
                          ) -> str:
     """The deck of the linear modes about the clamped state (issue 23): the deck of

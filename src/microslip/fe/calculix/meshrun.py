@@ -41,6 +41,7 @@ from ...energy import loop_work
 from ...errors import ParameterError
 from ...io import atomic_write
 from ...named import result
+from ..constants import DEFAULT_NORMAL_SLOPE
 from ..errors import ResultsError
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
@@ -293,7 +294,7 @@ def read_mesh_results(plan: MeshLoadPlan, history: LoadHistory, job_dir: str | P
 
 def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
                       loads: Sequence[MeshLoad], friction: float, stick_slope: float,
-                      normal_contact: str = "penalty", normal_slope: float = 1.0e5,
+                      normal_contact: str = "penalty", normal_slope: float = DEFAULT_NORMAL_SLOPE,
                       modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                       cycles: int = 1, max_iterations: int = 26,
                       fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
@@ -387,7 +388,8 @@ def read_frequencies(dat: str | Path) -> FloatArray:
 
 def run_frequency_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str,
                            normal_force: float, friction: float, stick_slope: float,
-                           normal_slope: float = 1.0e5, modulus: float, poisson_ratio: float,
+                           normal_slope: float = DEFAULT_NORMAL_SLOPE, modulus: float,
+                           poisson_ratio: float,
                            density_kg_m3: float, modes: int = 10, element: str | None = None,
                            job_dir: str | Path | None = None, timeout: float | None = None,
                            executable: str | None = None) -> FloatArray:

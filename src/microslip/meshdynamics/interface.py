@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
-from .meshmodel import MeshModel
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel
 from .reduce import Rom
 
 __all__ = ["Interface", "interface", "reduce_to_interface"]

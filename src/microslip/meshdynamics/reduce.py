@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -43,14 +44,14 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
-from ...blas import single_threaded_blas
-from ...errors import ParameterError
-from .meshmodel import MeshModel
+from ..blas import single_threaded_blas
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel
 from .modes import modal_mass, modal_stiffness, shift_inverse
 
 if TYPE_CHECKING:
-    from ...dynamics.files import MatrixFile
-    from ...dynamics.structure import Structure
+    from ..dynamics.files import MatrixFile
+    from ..dynamics.structure import Structure
 
 __all__ = ["Rom", "build_rom", "convergence", "full_mass", "rom_arrays", "rom_matrices",
            "rom_structure", "stuck_frequencies_full", "write_rom"]
@@ -98,6 +99,9 @@ class Rom:
         N_i > 0 where the node is closed; with ``penalty`` contact minus k_n A_i times the
         gap where the clamping lifted it off (open: it carries nothing until it closes).
         None: every node closed at N_i = slip force / mu.
+    outputs : dict of str to ndarray, shape (3, n)
+        The same rows for every other set named in ``build_rom``'s ``output_sets`` (a load
+        set, say), from the same build: one basis, no sign to align.
     """
 
     mass: FloatArray = field(repr=False)
@@ -121,6 +125,7 @@ class Rom:
         if self.preload is None:
             return np.asarray(self.slip_force > 0.0)
         return np.asarray(self.preload > 0.0)
+    outputs: dict[str, FloatArray] = field(default_factory=dict, repr=False)
 
     @property
     def dofs(self) -> int:
@@ -231,7 +236,7 @@ def _interface_modes(k_ii: sp.csc_matrix, m_ii: sp.csc_matrix, modes: int | None
 
 def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = None,
               cutoff_hz: float | None = None, response_set: str | None = None,
-              mass: sp.csr_matrix | None = None) -> Rom:
+              mass: sp.csr_matrix | None = None, output_sets: Sequence[str] = ()) -> Rom:
     """Craig-Bampton ROM of ``model`` with every contact node's dofs kept.
 
     Parameters
@@ -248,6 +253,9 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
         A node set whose mean displacement is the ROM's output rows.
     mass : sparse matrix, optional
         The full mass (:func:`full_mass`), if already built.
+    output_sets : sequence of str, optional
+        More node sets whose mean displacement rows the ROM carries (:attr:`Rom.outputs`),
+        computed in the same pass as the response set's.
 
     Returns
     -------
@@ -264,6 +272,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     b, per_node = _boundary(model)
     inner = np.setdiff1d(np.arange(model.dof), b)
     rows = None if response_set is None else _response_rows(model, response_set, b, inner)
+    others = [s for s in dict.fromkeys(output_sets) if s != response_set]
+    more = [_response_rows(model, s, b, inner) for s in others]
     k_ii = k_full[inner][:, inner].tocsc()
     m_ii = m_full[inner][:, inner].tocsc()
     k_ib = k_full[inner][:, b]
@@ -278,8 +288,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                                  "is above it): raise the cut-off")
         phi = phi / np.max(np.abs(phi), axis=0) * np.sign(
             phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])])
-        k_psi, m_psi, psi_m_psi, m_psi_phi, psi_rows = _constraint_modes(
-            lu, k_ib.tocsc(), m_ib.tocsc(), m_ii, phi, rows)
+        k_psi, m_psi, psi_m_psi, m_psi_phi, psi_rows, psi_more = _constraint_modes(
+            lu, k_ib.tocsc(), m_ib.tocsc(), m_ii, phi, rows, more)
     mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
     del lu, k_ii, m_ii  # the factor (on the 50k-DOF cantilever 0.8 GB) before the rest
     k_bb = k_full[b][:, b].toarray() + k_psi
@@ -295,6 +305,8 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
     k_r[:nb, :nb] = 0.5 * (k_bb + k_bb.T)
     k_r[nb:, nb:] = np.diag(mu * (2.0 * np.pi * freq) ** 2)
     out = None if rows is None else _output(model, rows, psi_rows, phi)
+    outputs = {s: _output(model, r, sums, phi)
+               for s, r, sums in zip(others, more, psi_more, strict=True)}
     kn = (np.zeros_like(model.contact_stiffness) if model.normal is None
           else np.asarray(model.normal.stiffness, dtype=float))
     return Rom(mass=m_r, stiffness=k_r, boundary=b, per_node=per_node,
@@ -302,7 +314,7 @@ def build_rom(model: MeshModel, density_kg_m3: float, *, modes: int | None = Non
                slip_force=model.friction_limit.copy(), normal_stiffness=kn,
                friction=model.friction, output=out,
                build_s=time.perf_counter() - t0, stick_force=clamped_stick_force(model),
-               preload=model.preload.copy())
+               preload=model.preload.copy(), outputs=outputs)
 
 
 def clamped_stick_force(model: MeshModel) -> FloatArray:
@@ -329,13 +341,16 @@ class _Rows:
 
 
 def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix,
-                      m_ii: sp.csc_matrix, phi: FloatArray, rows: _Rows | None
-                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+                      m_ii: sp.csc_matrix, phi: FloatArray, rows: _Rows | None,
+                      more: Sequence[_Rows] = ()
+                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
+                                 list[FloatArray]]:
     """The constraint modes Psi = -K_ii^-1 K_ib (n_i, n_b) in the reduced matrices, ``BLOCK``
     columns of Psi at a time: K_bi Psi, M_bi Psi, Psi^T M_ii Psi (n_b, n_b), (M_ii Psi)^T
     Phi (n_b, n_m) and the sums of Psi's rows of the response set (3, n_b; zeros without
-    one). Psi^T M_ii Psi is taken column block by column block as -K_bi K_ii^-1 (M_ii Psi_j)
-    (K_ii symmetric), one more solve per block instead of holding all of Psi."""
+    one; ``more``: the same for each of more sets). Psi^T M_ii Psi is taken column block
+    by column block as -K_bi K_ii^-1 (M_ii Psi_j) (K_ii symmetric), one more solve per
+    block instead of holding all of Psi."""
     n_b = k_ib.shape[1]
     k_bi = k_ib.T.tocsr()
     m_bi = m_ib.T.tocsr()
@@ -344,6 +359,7 @@ def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix
     psi_m_psi = np.empty((n_b, n_b))
     m_psi_phi = np.empty((n_b, phi.shape[1]))
     sums = np.zeros((3, n_b))
+    more_sums = [np.zeros((3, n_b)) for _ in more]
     for j in range(0, n_b, BLOCK):
         cols = slice(j, j + BLOCK)
         psi = -lu.solve(k_ib[:, cols].toarray())
@@ -352,11 +368,14 @@ def _constraint_modes(lu: spla.SuperLU, k_ib: sp.csc_matrix, m_ib: sp.csc_matrix
         if rows is not None:
             for c in range(3):
                 sums[c, cols] = psi[rows.interior[c]].sum(axis=0)
+        for r, s in zip(more, more_sums, strict=True):
+            for c in range(3):
+                s[c, cols] = psi[r.interior[c]].sum(axis=0)
         mp = m_ii @ psi
         del psi
         m_psi_phi[cols] = mp.T @ phi
         psi_m_psi[:, cols] = -(k_bi @ lu.solve(mp))
-    return k_psi, m_psi, psi_m_psi, m_psi_phi, sums
+    return k_psi, m_psi, psi_m_psi, m_psi_phi, sums, more_sums
 
 
 def _response_rows(model: MeshModel, name: str, b: IntArray, inner: IntArray) -> _Rows:
@@ -424,7 +443,7 @@ def rom_matrices(rom: Rom) -> MatrixFile:
     A node the clamping step left open: with ``penalty`` its element has the signed preload
     (minus k_n A_i times its gap, :attr:`Rom.preload`) and may close during the vibration;
     with ``fixed`` normal contact it has no joint (it carries nothing)."""
-    from ...dynamics.files import MatrixFile, check_matrices
+    from ..dynamics.files import MatrixFile, check_matrices
 
     m, k, c = check_matrices("rom", rom.mass * SI_FACTOR, rom.stiffness * SI_FACTOR,
                              np.zeros_like(rom.mass))
@@ -450,7 +469,7 @@ def rom_structure(rom: Rom, output: FloatArray | None = None) -> Structure:
     default, the response set's mean displacement along global y (the contact plane's
     in-plane bending of the cantilever), else the first coordinate. The same structure as
     :func:`write_rom`'s file read back (:func:`~microslip.dynamics.assemble.from_matrices`)."""
-    from ...dynamics.assemble import from_matrices, with_output
+    from ..dynamics.assemble import from_matrices, with_output
 
     mats = rom_matrices(rom)
     s = from_matrices(mats, mats.joints, None, "circular")  # every joint has its own law

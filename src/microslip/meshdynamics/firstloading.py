@@ -19,12 +19,12 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import MacroslipError, ParameterError
-from ..errors import NonConvergenceError
-from ..result import STICK
+from ..errors import MacroslipError, ParameterError
+from ..fe.builtin.meshmodel import MeshModel
+from ..fe.builtin.meshrun import VectorLoad, _Run
+from ..fe.errors import NonConvergenceError
+from ..fe.result import STICK
 from .interface import Interface
-from .meshmodel import MeshModel
-from .meshrun import VectorLoad, _Run
 from .modes import Mode, response_nodes
 from .qsma import GROSS_STICK  # near gross sliding: where the QSMA's grid ends too
 

@@ -77,7 +77,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel
 from .firstloading import PULL, FirstLoading, first_loading
 from .interface import Interface, interface, reduce_to_interface
 from .jointbackbone import (
@@ -89,7 +90,6 @@ from .jointbackbone import (
     shaken_down,
     work_backbone,
 )
-from .meshmodel import MeshModel
 from .modes import Mode
 from .reduce import SI_FACTOR, Rom
 
@@ -164,7 +164,7 @@ def build_whole_joint(rom: Rom, model: MeshModel, mode: Mode, output: FloatArray
     joint of ``backbone`` (a name of :data:`BACKBONES`, or a :class:`JointBackbone`) on it,
     the output ``output`` (n_rom,: the response set's mean displacement along the mode per
     ROM coordinate, as for :func:`~.reduce.rom_structure`) carried through T."""
-    from ...dynamics.structure import JointLink, Structure
+    from ..dynamics.structure import JointLink, Structure
 
     if torsion not in TORSION:
         raise ParameterError(f"unknown torsion {torsion!r}; choose one of "
@@ -207,8 +207,8 @@ def whole_joint_epmc(joint: WholeJoint, amplitudes: FloatArray, harmonics: int,
     ladder of :data:`LADDER` amplitudes from the first, and one that still fails (near the
     joint's macroslip) is NaN with its reason.
     """
-    from ...dynamics.modal import ModalCurve
-    from ...dynamics.modal_odd import epmc_odd
+    from ..dynamics.modal import ModalCurve
+    from ..dynamics.modal_odd import epmc_odd
 
     a = np.asarray(amplitudes, dtype=float)
     index = joint.mode_index(frequency_Hz)

@@ -5,8 +5,8 @@ lowest bending modes, every model side by side (``microslip reproduce``; issue 2
 cantilever_mesh` (24x6x2 C3D8I, the clamp of ``examples/cantilever.inp``'s README: aluminium
 E 70000 MPa, nu 0.33, 2700 kg/m^3, mu 0.5, F_N 2000 N, stick slope 1e4 N/mm^3, ``fixed``
 normal contact) for its out-of-plane and in-plane bending modes: each mode's JSON and figure,
-and report lines with the verdicts. It lives in the command-line layer because it runs the
-command's own code path (:func:`.modalcompare.run_all`).
+and report lines with the verdicts. The command's own study
+(:func:`microslip.meshdynamics.modalstudy.modal_study`) on a typed case, no command line.
 """
 
 from __future__ import annotations
@@ -14,12 +14,16 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-__all__ = ["STRUCTURE_ARGV", "STRUCTURE_MODES", "structure_study"]
+from ..fe.clamp import MeshClamp
 
-#: The cantilever's clamp and material (N, MPa, N/mm^3, kg/m^3).
-STRUCTURE_ARGV = ("--contact-set", "contact", "--clamp-set", "clamp", "--response-set",
-                  "response", "--normal-force", "2000", "--friction", "0.5", "--stick-slope",
-                  "1e4", "--modulus", "70000", "--poisson-ratio", "0.33", "--density", "2700")
+__all__ = ["STRUCTURE_CLAMP", "STRUCTURE_MODES", "structure_study"]
+
+#: The cantilever's clamp and material (N, MPa, N/mm^3); density 2700 kg/m^3, response set
+#: ``response``.
+STRUCTURE_CLAMP = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
+STRUCTURE_DENSITY = 2700.0
+STRUCTURE_RESPONSE = "response"
 #: Out-of-plane and in-plane bending.
 STRUCTURE_MODES = (1, 2)
 #: Amplitudes per mode, first slip to near gross sliding.
@@ -33,10 +37,9 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
     from ..fe.examples import cantilever_mesh
     from ..fe.meshfile import write_inp
     from ..io import write_json
+    from ..meshdynamics.case import StructureCase
+    from ..meshdynamics.modalstudy import ModalSettings, modal_study
     from ..plot.ownmesh import plot_compare
-    from .main import build_parser
-    from .modalcompare import run_all
-    from .modalmesh import mesh_study
 
     folder = stage / "structure"
     folder.mkdir(parents=True, exist_ok=True)
@@ -51,9 +54,10 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
     for number in STRUCTURE_MODES:
         if echo is not None:
             echo(f"structure: mode {number} of the cantilever, every model")
-        argv = ["modal", "--mesh", str(mesh), *STRUCTURE_ARGV, "--mode", str(number),
-                "--amplitudes", str(amplitudes), "--solver", "all", "--json"]
-        out = run_all(mesh_study(build_parser(argv).parse_args(argv)))[1]
+        case = StructureCase(str(mesh), STRUCTURE_CLAMP,
+                             density=STRUCTURE_DENSITY, mode=number,
+                             response_set=STRUCTURE_RESPONSE)
+        out = modal_study(case, ModalSettings(amplitudes=amplitudes))
         out["mesh"] = name  # the staged path is gone once the results are in place
         data, figure = folder / f"mode{number}.json", folder / f"mode{number}.png"
         write_json(data, out)

@@ -33,8 +33,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
-from .meshmodel import MeshModel
-from .meshrun import SineCycles, VectorLoad, solve_mesh
+from ..fe.builtin.meshmodel import MeshModel
+from ..fe.builtin.meshrun import SineCycles, VectorLoad, solve_mesh
 from .reduce import Rom
 from .romquasistatic import rom_quasistatic
 from .twomodecase import COUPLINGS, BendingPair, TwoModeCase

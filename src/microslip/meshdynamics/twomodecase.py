@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
-from ..hexmesh import HexMesh
-from .meshmodel import MeshModel, build_mesh_model
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel, build_mesh_model
+from ..fe.hexmesh import HexMesh
 from .modes import Modes, linear_modes
 from .reduce import Rom, build_rom
 

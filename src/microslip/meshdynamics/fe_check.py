@@ -29,17 +29,17 @@ from typing import Any
 import numpy as np
 
 from ..conventions import DEFAULT_MESH
+from ..dynamics.assemble import PlacedJoint, from_joints
+from ..dynamics.distributions import DEFAULT_ELEMENTS, clamp_joint
+from ..dynamics.files import MatrixFile
+from ..dynamics.operators import IwanOperator
+from ..dynamics.operators2d import PAIRINGS
+from ..dynamics.structure import Structure
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_STICK_SLOPE
 from ..jointspec import series_stiffness
 from ..named import result
 from ..params import ClampParams
-from .assemble import PlacedJoint, from_joints
-from .distributions import DEFAULT_ELEMENTS, clamp_joint
-from .files import MatrixFile
-from .operators import IwanOperator
-from .operators2d import PAIRINGS
-from .structure import Structure
 
 __all__ = ["FEComparison", "cycle_work", "fe_comparison", "orbit_work", "reduced_bar"]
 
@@ -163,6 +163,7 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     """Run the FE's coupled planar study and the first loading across the bar, and drive
     the reduced joints with the FE's orbits."""
     from ..fe.builtin import build_model, coupling_study, fe_backbone
+    from .febackbone import backbone_operator
 
     fem = build_model(params, mesh, stick_slope=stick_slope)
     study = coupling_study(params, tip_amplitude, centre_amplitude, phase_deg, cycles=cycles,
@@ -177,7 +178,7 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
     orbit = np.column_stack([coupled.tip_displacement[c], coupled.centre_displacement[c]])[:-1]
     tip_orbit = study.tip_only.tip_displacement[study.tip_only.last_cycle()][:-1]
     centre_orbit = study.centre_only.centre_displacement[study.centre_only.last_cycle()][:-1]
-    across = fe_backbone(params, "centre", mesh=fem).operator("fe-across")
+    across = backbone_operator(fe_backbone(params, "centre", mesh=fem), "fe-across")
     zeros = np.zeros_like(centre_orbit)
     bars = {"circular": reduced_bar(tip, None, "circular"),
             "decoupled": reduced_bar(tip, centre, "decoupled")}

@@ -17,11 +17,11 @@ from typing import TYPE_CHECKING
 
 from ..conventions import CLAMP_MODELS, DEFAULT_MESH
 from ..conventions import TRANSVERSE as TRANSVERSE_NAMES
+from ..dynamics.distributions import clamp_joint, iwan4_segalman
+from ..dynamics.operators import IwanOperator, jenkins
 from ..errors import ParameterError
 from ..jointspec import JointSpec
 from ..params import ClampParams
-from .distributions import clamp_joint, iwan4_segalman
-from .operators import IwanOperator, jenkins
 
 if TYPE_CHECKING:
     from ..options import ModelOptions
@@ -70,10 +70,9 @@ def _fe_across(clamp: ClampParams, mesh: str, stick_slope: float) -> IwanOperato
     """The FE's first loading of the centre force across the bar as a 1-D joint (cached:
     an FE run, the same for the structure and its description)."""
     from ..fe.builtin import fe_backbone
+    from .febackbone import backbone_operator
 
-    op: IwanOperator = fe_backbone(clamp, "centre", mesh=mesh,
-                                   stick_slope=stick_slope).operator()
-    return op
+    return backbone_operator(fe_backbone(clamp, "centre", mesh=mesh, stick_slope=stick_slope))
 
 
 #: Transverse name (:data:`microslip.conventions.TRANSVERSE`) -> the 1-D joint across a bar:

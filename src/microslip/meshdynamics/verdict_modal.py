@@ -1,6 +1,6 @@
 """A model's modal curve against the full FE's, judged from the numbers (issue 23, item 5).
 
-The full FE's quasi-static modal analysis (:mod:`microslip.fe.builtin.qsma`) is the truth;
+The full FE's quasi-static modal analysis (:mod:`microslip.meshdynamics.qsma`) is the truth;
 a model (the contact-node ROM's EPMC, the whole-joint model's EPMC) is compared with it at
 equal amplitude over the *microslip range*: the FE's amplitudes whose damping ratio lies
 between :data:`DAMPING_FLOOR` and :data:`DAMPING_CEILING` (5 %), and that lie inside the

@@ -25,13 +25,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
-from ...errors import ParameterError
-from .meshmodel import MeshModel
+from ..errors import ParameterError
+from ..fe.builtin.meshmodel import MeshModel
 from .reduce import SI_FACTOR, Rom
 from .twomodecase import COUPLINGS, TwoModeCase
 
 if TYPE_CHECKING:
-    from ...dynamics.structure import Structure
+    from ..dynamics.structure import Structure
 
 __all__ = ["Orbit", "Peak", "ResponseCurve", "energy_table", "first_harmonic",
            "forced_response", "forcing_shape", "interface_rows", "orbit", "rom_system"]
@@ -76,9 +76,9 @@ def rom_system(rom: Rom, coupling: str, damping_ratio: float, output: FloatArray
     """The ROM as a :class:`~microslip.dynamics.structure.Structure`: each contact node a
     Jenkins element (lambda A_i, mu N_i) to the ground, ``circular`` (one 2-D element) or
     ``decoupled`` (two 1-D elements), modal damping zeta_0, reporting ``output``."""
-    from ...dynamics.assemble import PlacedJoint, from_joints, with_output
-    from ...dynamics.files import MatrixFile
-    from ...dynamics.operators import jenkins
+    from ..dynamics.assemble import PlacedJoint, from_joints, with_output
+    from ..dynamics.files import MatrixFile
+    from ..dynamics.operators import jenkins
 
     if coupling not in COUPLINGS:
         raise ParameterError(f"unknown coupling {coupling!r}; valid: {', '.join(COUPLINGS)}")
@@ -218,7 +218,7 @@ def forced_response(model: MeshModel, rom: Rom, case: TwoModeCase, force: float,
                     step: float = 0.02) -> ResponseCurve:
     """The ROM's response to ``force cos(w t)`` (N) on the top set along the case's angle
     over ``frequency_range`` (Hz), by harmonic balance with ``case.harmonics`` harmonics."""
-    from ...dynamics.response import frequency_response
+    from ..dynamics.response import frequency_response
 
     shape = forcing_shape(rom, case.angle_deg)
     s = rom_system(rom, coupling, case.damping_ratio, shape)

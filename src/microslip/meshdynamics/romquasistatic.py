@@ -14,9 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
-from .contact import return_map
-from .meshrun import SineCycles, VectorLoad
+from ..errors import ParameterError
+from ..fe.builtin.contact import return_map
+from ..fe.builtin.meshrun import SineCycles, VectorLoad
 from .reduce import Rom
 
 __all__ = ["RETURN_MAPS", "QuasiStatic", "rom_quasistatic"]

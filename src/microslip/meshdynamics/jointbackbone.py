@@ -13,11 +13,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
-from .backbone import concave_majorant
+from ..errors import ParameterError
+from ..fe.builtin.backbone import concave_majorant
+from ..fe.builtin.meshmodel import MeshModel
 from .firstloading import PULL, FirstLoading, first_loading
 from .interface import Interface, interface
-from .meshmodel import MeshModel
 from .modes import Mode
 
 __all__ = ["BACKBONES", "HULL_TOLERANCE", "NEGLIGIBLE", "JointBackbone", "clamp_backbone",
@@ -70,8 +70,8 @@ class JointBackbone:
     def translation(self) -> Any:
         """The two-directional translation joint: :func:`circular` of the Iwan operator of
         the translation's curve (isotropic in the plane)."""
-        from ...dynamics.distributions import from_backbone
-        from ...dynamics.operators2d import circular
+        from ..dynamics.distributions import from_backbone
+        from ..dynamics.operators2d import circular
 
         return circular(from_backbone("whole-joint", self.displacement, self.force,
                                       macroslip_force=self.macroslip_force))
@@ -80,7 +80,7 @@ class JointBackbone:
         """The rotation's Iwan operator (force M / R in N against c in mm), or None when
         the mode does not turn the interface (no curve: the rotation keeps its stuck
         stiffness)."""
-        from ...dynamics.distributions import from_backbone
+        from ..dynamics.distributions import from_backbone
 
         if self.rotation.size == 0:
             return None
@@ -187,7 +187,7 @@ def patch(model: MeshModel, face: Interface, direction: FloatArray) -> Any:
     its length along the in-plane ``direction`` and its width across (the extents of the
     contact nodes, mm), the body's thickness along the contact normal (the extent of its
     nodes, mm), the model's modulus, Poisson's ratio, mu and F_N."""
-    from ...params import ClampParams
+    from ..params import ClampParams
 
     e = np.asarray(direction, dtype=float)
     across = np.array([-e[1], e[0]])
@@ -209,8 +209,8 @@ def clamp_backbone(model: MeshModel, mode: Mode, name: str, face: Interface | No
     stuck interface stiffness, less the bar's compliance at the model's first force step
     (3.5 % on the cantilever). No FE loading: the rotation keeps its stuck stiffness (the
     1-D models have no torsion)."""
-    from ...conventions import CLAMP_MODELS
-    from ...dynamics.distributions import clamp_joint
+    from ..conventions import CLAMP_MODELS
+    from ..dynamics.distributions import clamp_joint
 
     if name not in CLAMP_MODELS:
         raise ParameterError(f"unknown clamp model {name!r}; choose one of "

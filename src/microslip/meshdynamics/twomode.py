@@ -39,9 +39,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import ParameterError
-from ..hexmesh import HexMesh
-from .meshrun import SineCycles
+from ..errors import ParameterError
+from ..fe.builtin.meshrun import SineCycles
+from ..fe.hexmesh import HexMesh
 from .romquasistatic import rom_quasistatic
 from .twomodecase import (
     COUPLINGS,

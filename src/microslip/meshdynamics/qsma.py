@@ -1,7 +1,7 @@
 """Quasi-static modal analysis of the full frictional FE (Lacayo and Allen 2019; issue 23).
 
 After the clamping step, the stuck mode's inertial load pattern M phi (phi mass-normalised,
-:func:`~microslip.fe.builtin.modes.linear_modes`) scaled by the modal force q is applied
+:func:`~microslip.meshdynamics.modes.linear_modes`) scaled by the modal force q is applied
 cyclically, f(t) = q sin(2 pi t) M phi, on the full frictional FE (:func:`~microslip.fe.
 builtin.meshrun.solve_mesh` with a :class:`~microslip.fe.builtin.meshrun.VectorLoad`) until
 the work per cycle settles. The load's work-conjugate displacement is the modal coordinate
@@ -16,7 +16,7 @@ eta = phi^T M (u - u_clamped); from the settled loop (q sin 2 pi t, eta(t)):
 * the damping ratio zeta = W / (2 pi a^2 omega^2), W the work of the load over the settled
   cycle (unit modal mass: a linear viscous mode dissipates W = 2 pi zeta omega^2 a^2);
 * ``amplitude_mm``: the first-harmonic amplitude of the response set's mean displacement
-  along the mode's direction (:attr:`~microslip.fe.builtin.modes.Mode.direction`).
+  along the mode's direction (:attr:`~microslip.meshdynamics.modes.Mode.direction`).
 
 Units: phi in 1/sqrt(t), eta and a in sqrt(t)·mm, q in sqrt(t)·mm/s^2 (q M phi in N), omega^2
 in 1/s^2, W in N·mm, frequencies in Hz. Each amplitude is an independent run: local processes
@@ -37,12 +37,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import MacroslipError, ParameterError
-from ..errors import NonConvergenceError
-from ..hexmesh import HexMesh
-from ..result import OPEN, SLIP, STICK
-from .meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
-from .meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
+from ..errors import MacroslipError, ParameterError
+from ..fe.builtin.meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
+from ..fe.builtin.meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
+from ..fe.errors import NonConvergenceError
+from ..fe.hexmesh import HexMesh
+from ..fe.result import OPEN, SLIP, STICK
 from .modes import Mode, modal_stiffness, response_nodes, shift_inverse
 
 __all__ = [
@@ -468,7 +468,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
     ----------
     model : MeshModel
     mode : Mode
-        :meth:`~microslip.fe.builtin.modes.Modes.select` of the stuck modes.
+        :meth:`~microslip.meshdynamics.modes.Modes.select` of the stuck modes.
     forces : sequence of float, optional
         Modal forces q; default :func:`qsma_amplitudes` (``count`` of them).
     history : SineCycles, optional
@@ -502,7 +502,7 @@ def qsma(model: MeshModel, mode: Mode, forces: Sequence[float] | None = None, *,
             progress(done, total, spent / done * (total - done))
 
     if scheduler is not None:
-        from ...cluster import map_on_cluster
+        from ..cluster import map_on_cluster
 
         recipe = _Recipe.of(model)
         payloads = [(recipe, mode, float(f), history) for f in q]

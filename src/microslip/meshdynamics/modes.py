@@ -32,10 +32,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from ...blas import single_threaded_blas
-from ...errors import MicroslipError, ParameterError
-from .mass import density_t_per_mm3, mass_matrix
-from .meshmodel import AUTO_BAND_LIMIT, MeshModel, set_faces
+from ..blas import single_threaded_blas
+from ..errors import MicroslipError, ParameterError
+from ..fe.builtin.mass import density_t_per_mm3, mass_matrix
+from ..fe.builtin.meshmodel import AUTO_BAND_LIMIT, MeshModel, set_faces
 
 __all__ = [
     "CONTACT_STATES",
@@ -411,7 +411,7 @@ def write_modes_vtu(model: MeshModel, modes: Modes, path: str | os.PathLike[str]
     """One VTU file of the mesh with a point array ``mode_<k>_<f>Hz`` (the mass-normalised
     shape, scaled to a largest nodal motion of 1 mm) per mode, for ParaView's Warp By Vector.
     Written atomically."""
-    from ...io import atomic_path
+    from ..io import atomic_path
 
     try:
         import meshio

@@ -1,0 +1,234 @@
+"""The structure of a mesh as one typed case, and what every study of it starts from.
+
+:class:`StructureCase` holds what the user states (the mesh, its clamp, the density, the
+mode, the response set and the reduced models' settings), validated once;
+:func:`prepare_structure` reads the mesh, clamps it and computes its stuck and free linear modes
+(:class:`PreparedStructure`); :func:`amplitude_grid` is the one amplitude grid every modal
+solver runs on and :func:`structure_rom` the contact-node ROM, built once per study with
+the rows of every output set. Units: mm, N, MPa, kg/m^3, Hz.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..conventions import BACKBONE_NAMES, DEFAULT_ROM_MODES, MAX_MODE
+from ..errors import ParameterError
+from ..fe.clamp import MeshClamp
+
+if TYPE_CHECKING:
+    from ..fe.builtin.meshmodel import MeshModel
+    from ..fe.hexmesh import HexMesh
+    from .modes import Mode, Modes
+    from .reduce import Rom
+
+__all__ = [
+    "BACKBONE_NAMES",
+    "DEFAULT_ROM_MODES",
+    "MAX_AMPLITUDES",
+    "MAX_MODE",
+    "OnStructure",
+    "PreparedStructure",
+    "StructureCase",
+    "amplitude_grid",
+    "prepare_structure",
+    "structure_rom",
+]
+
+#: Most amplitudes of one grid.
+MAX_AMPLITUDES = 200
+
+
+@dataclass(frozen=True)
+class StructureCase:
+    """The structure of a mesh with its clamp: what a modal or forced-response study of it
+    needs beyond the solver's own settings.
+
+    Attributes
+    ----------
+    mesh : str, Path or HexMesh
+        A hexahedral mesh file (.inp, .msh, .vtu, ...) or a mesh already read.
+    clamp : MeshClamp
+        The clamp (:class:`microslip.fe.clamp.MeshClamp`).
+    density : float
+        rho, kg/m^3 (> 0).
+    mode : int
+        The mode studied, 1-based by stuck frequency, in [1, :data:`MAX_MODE`].
+    response_set : str, optional
+        The node set whose mean displacement along the mode is the amplitude.
+    rom_modes : int
+        Fixed-interface modes of the contact-node ROM (>= 1).
+    backbone : str
+        The whole joint's backbone, one of :data:`BACKBONE_NAMES`.
+    """
+
+    mesh: Any
+    clamp: MeshClamp
+    density: float
+    mode: int = 1
+    response_set: str | None = None
+    rom_modes: int = DEFAULT_ROM_MODES
+    backbone: str = "fe"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.clamp, MeshClamp):
+            raise ParameterError(f"clamp must be a MeshClamp, got {type(self.clamp).__name__}")
+        try:
+            rho = float(self.density)
+        except (TypeError, ValueError):
+            rho = math.nan
+        if not (math.isfinite(rho) and rho > 0.0):
+            raise ParameterError(f"density must be > 0 kg/m^3 and finite, got "
+                                 f"{self.density!r}")
+        object.__setattr__(self, "density", rho)
+        if isinstance(self.mode, bool) or not isinstance(self.mode, int | np.integer) or not (
+                1 <= self.mode <= MAX_MODE):
+            raise ParameterError(f"mode must be in [1, {MAX_MODE}] with a mesh, got "
+                                 f"{self.mode}")
+        if isinstance(self.rom_modes, bool) or not isinstance(
+                self.rom_modes, int | np.integer) or self.rom_modes < 1:
+            raise ParameterError(f"rom_modes must be >= 1, got {self.rom_modes}")
+        if self.backbone not in BACKBONE_NAMES:
+            raise ParameterError(f"unknown backbone {self.backbone!r}; choose one of "
+                                 f"{', '.join(BACKBONE_NAMES)}")
+        if self.response_set is not None and not (isinstance(self.response_set, str)
+                                                  and self.response_set):
+            raise ParameterError(f"response_set must name a node set, got "
+                                 f"{self.response_set!r}")
+
+    @property
+    def mesh_name(self) -> str:
+        """The mesh as the output names it: the path as given, or the mesh's source."""
+        if isinstance(self.mesh, str | Path):
+            return str(self.mesh)
+        return str(getattr(self.mesh, "source", "mesh"))
+
+
+@dataclass(frozen=True)
+class PreparedStructure:
+    """What every study of a mesh structure starts from: the case, the clamped model
+    (:class:`~microslip.fe.builtin.meshmodel.MeshModel`) and its stuck and free linear modes
+    (:class:`~microslip.meshdynamics.modes.Modes`, at least six and up to the mode
+    studied, described by the response set)."""
+
+    case: StructureCase
+    model: MeshModel
+    stuck: Modes
+    free: Modes
+
+    @property
+    def number(self) -> int:
+        """The mode studied, 1-based."""
+        return int(self.case.mode)
+
+    @property
+    def mode(self) -> Mode:
+        """The studied stuck mode (:class:`~microslip.meshdynamics.modes.Mode`)."""
+        return self.stuck.select(self.number)
+
+
+class OnStructure:
+    """What a study on a :class:`PreparedStructure` (its ``prepared``) reads of it: the case,
+    the mode number and the studied stuck mode."""
+
+    prepared: PreparedStructure
+
+    @property
+    def case(self) -> StructureCase:
+        return self.prepared.case
+
+    @property
+    def number(self) -> int:
+        return self.prepared.number
+
+    @property
+    def mode(self) -> Mode:
+        return self.prepared.mode
+
+
+def read_structure_mesh(case: StructureCase, sets: Sequence[str] = ()) -> HexMesh:
+    """The case's mesh, read if a path, with its role sets (and the response set and
+    ``sets``) checked."""
+    from ..fe.meshcheck import check_roles, check_set
+    from ..fe.meshfile import read_mesh
+
+    mesh = read_mesh(case.mesh) if isinstance(case.mesh, str | Path) else case.mesh
+    if case.response_set:  # named as what it is (not "the set of a load")
+        check_set(mesh, case.response_set, "response set")
+    check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, sets)
+    return mesh
+
+
+def clamped(case: StructureCase, sets: Sequence[str] = ()) -> MeshModel:
+    """Read and check the mesh (:func:`read_structure_mesh`), build the body on its base and
+    solve the clamping step."""
+    from ..fe.clamp import clamped_model
+
+    return clamped_model(read_structure_mesh(case, sets), case.clamp)
+
+
+def prepare_structure(case: StructureCase, sets: Sequence[str] = ()) -> PreparedStructure:
+    """Clamp the case's mesh (:func:`clamped`; ``sets``: more node sets to check, a load
+    set, say) and compute its stuck and free linear modes."""
+    from .modes import linear_modes
+
+    model = clamped(case, sets)
+    n = max(6, case.mode)
+    stuck = linear_modes(model, case.density, n, "stuck", case.response_set)
+    free = linear_modes(model, case.density, n, "free", case.response_set)
+    return PreparedStructure(case=case, model=model, stuck=stuck, free=free)
+
+
+def amplitude_grid(prepared: PreparedStructure, count: int,
+                   amplitude_range: tuple[float, float] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The modal forces q and the amplitudes (mm) of the one grid of a modal study.
+
+    From first slip to near gross sliding (:func:`~microslip.meshdynamics.qsma.
+    qsma_amplitudes`), or log-uniform over ``amplitude_range`` (mm). Linear through the stuck
+    mode, the response set's amplitude is a = q r / omega^2 at modal force q (r its motion
+    per unit modal coordinate)."""
+    from .qsma import qsma_amplitudes
+
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or not (
+            1 <= count <= MAX_AMPLITUDES):
+        raise ParameterError(f"amplitudes must be in [1, {MAX_AMPLITUDES}] with a mesh, got "
+                             f"{count}")
+    number = prepared.number
+    mode = prepared.mode
+    scale = float(np.linalg.norm(prepared.stuck.response_motion[number - 1])) / (
+        2 * math.pi * mode.frequency_Hz) ** 2
+    if amplitude_range is None:
+        forces = qsma_amplitudes(prepared.model, mode, count)
+        return forces, forces * scale
+    lo, hi = amplitude_range
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
+        raise ParameterError(f"amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
+                             f"{lo:g} {hi:g}")
+    amplitudes = np.geomspace(lo, hi, count)
+    return amplitudes / scale, amplitudes
+
+
+def structure_rom(prepared: PreparedStructure, output_sets: Sequence[str] = ()) -> Rom:
+    """The contact-node ROM of the prepared structure (the case's ``rom_modes``), its output
+    rows the response set's, with the rows of every set of ``output_sets`` too
+    (:attr:`~microslip.meshdynamics.reduce.Rom.outputs`): one build for the whole study."""
+    from . import reduce
+
+    case = prepared.case
+    return reduce.build_rom(prepared.model, case.density, modes=case.rom_modes,
+                            response_set=case.response_set, output_sets=tuple(output_sets))
+
+
+def set_rows(rom: Rom, name: str, response_set: str | None) -> np.ndarray:
+    """The (3, n_rom) mean displacement rows of the set ``name`` on the ROM's coordinates."""
+    if name == response_set:
+        assert rom.output is not None
+        return np.asarray(rom.output)
+    return np.asarray(rom.outputs[name])

@@ -1,0 +1,323 @@
+"""A mode's frequency and damping ratio against amplitude on the structure of a mesh, by the
+full FE (quasi-static modal analysis, the truth), the contact-node ROM or the whole joint,
+each on the same amplitude grid, and the models judged against the full FE.
+
+:func:`modal_study` runs the solvers of :data:`MESH_SOLVERS` on one
+:class:`~microslip.meshdynamics.case.StructureCase`; the ROM is built once for every solver
+that needs it. :func:`study_output` and :func:`compare_output` are the JSON of one solver
+and of several side by side (what ``modal --mesh --json`` prints). Units: Hz, mm, N,
+kg/m^3; damping ratios dimensionless.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, cast
+
+import numpy as np
+
+from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
+from ..dynamics.modal import RESPONSE_SET_COORDINATE
+from ..errors import ParameterError
+from .case import (
+    MAX_AMPLITUDES,
+    OnStructure,
+    PreparedStructure,
+    StructureCase,
+    amplitude_grid,
+    prepare_structure,
+    structure_rom,
+)
+from .verdict_modal import modal_verdict
+
+__all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "SHARED", "TRUTH", "MeshCurve", "MeshSolver",
+           "ModalSettings", "ModalStudy", "compare_output", "modal_study", "prepare_modal",
+           "run_solvers", "study_output"]
+
+#: Keys of a solver's JSON that the study gives, the same for every solver: written once.
+SHARED = ("mesh", "mode", "label", "density_kg_m3", "amplitude_coordinate",
+          "linear_frequencies_Hz", "free_frequencies_Hz", "modes")
+#: The solver every other is judged against.
+TRUTH = "fe"
+#: Progress of the full FE's amplitudes: (done, total, seconds left).
+Progress = Callable[[int, int, float], None]
+
+
+@dataclass(frozen=True)
+class ModalSettings:
+    """The solvers' settings of a modal study: the amplitude grid (``amplitudes`` of them,
+    first slip to near gross sliding, or log-uniform over ``amplitude_range``, mm), the
+    harmonic balance of the ROM and the whole joint (``harmonics``, ``samples`` per period)
+    and where the full FE's independent amplitudes run (``workers`` local processes, or a
+    Dask ``scheduler`` address)."""
+
+    amplitudes: int = 8
+    amplitude_range: tuple[float, float] | None = None
+    harmonics: int = DEFAULT_HARMONICS
+    samples: int = DEFAULT_HB_SAMPLES
+    workers: int = 1
+    scheduler: str | None = None
+
+    def __post_init__(self) -> None:
+        n = self.amplitudes
+        if isinstance(n, bool) or not isinstance(n, int | np.integer) or not (
+                1 <= n <= MAX_AMPLITUDES):
+            raise ParameterError(f"amplitudes must be in [1, {MAX_AMPLITUDES}] with a mesh, "
+                                 f"got {n}")
+        if self.amplitude_range is not None:
+            lo, hi = self.amplitude_range
+            if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
+                raise ParameterError(f"amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
+                                     f"{lo:g} {hi:g}")
+        check_balance(self.harmonics, self.samples)
+        if self.workers < 1:
+            raise ParameterError(f"workers must be >= 1, got {self.workers}")
+
+
+@dataclass(frozen=True)
+class ModalStudy(OnStructure):
+    """What every solver of a modal study shares: the prepared structure (clamped model,
+    stuck and free modes, the mode studied), the settings, and the one amplitude grid.
+
+    ``forces`` are the QSMA's modal forces q; ``amplitudes`` (mm) are the same levels mapped
+    through the stuck mode (a = q r / omega^2, r the response set's motion per unit modal
+    coordinate), or the settings' ``amplitude_range`` itself."""
+
+    prepared: PreparedStructure
+    settings: ModalSettings
+    forces: np.ndarray = field(repr=False)
+    amplitudes: np.ndarray = field(repr=False)
+
+
+@dataclass(frozen=True)
+class MeshCurve:
+    """One solver's frequency and damping ratio against amplitude, with its own columns
+    (``columns``: JSON key -> (table header, format)) and figures (``extra``)."""
+
+    label: str
+    columns: dict[str, tuple[str, str]]
+    values: dict[str, list[float | None]]
+    extra: dict[str, Any]
+    warnings: list[str]
+
+
+@dataclass(frozen=True)
+class MeshSolver:
+    """One solver of a modal study: what it is, the settings only it takes (their option
+    names), whether it runs on the contact-node ROM, and the function that computes its
+    curve from the study, the ROM (or None) and a progress callback."""
+
+    help: str
+    options: tuple[str, ...]
+    needs_rom: bool
+    run: Callable[[ModalStudy, Any, Progress | None], MeshCurve]
+
+
+#: The amplitude column: the response set's mean displacement along the mode (its header
+#: says so: ``amplitude_coordinate`` = ``response_set``).
+BASE_COLUMNS = {"amplitude_mm": ("a_resp (mm)", "{:12.5g}"),
+                "frequency_Hz": ("f (Hz)", "{:12.7g}"),
+                "damping_ratio": ("zeta (-)", "{:12.5g}")}
+
+
+def nulls(values: Any) -> list[float | None]:
+    """A column for JSON: NaN (an amplitude that failed; its reason is in ``warnings``) as
+    null."""
+    return [None if v is None or math.isnan(v) else float(v) for v in values]
+
+
+def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
+    """Quasi-static modal analysis of the full frictional FE at the grid's modal forces."""
+    from .qsma import qsma
+
+    model = study.prepared.model
+    curve = qsma(model, study.mode, cast(Any, study.forces), workers=study.settings.workers,
+                 scheduler=study.settings.scheduler, progress=progress)
+    s = curve.summary()
+    columns = {"amplitude_mm": BASE_COLUMNS["amplitude_mm"],
+               "frequency_Hz": BASE_COLUMNS["frequency_Hz"],
+               "secant_frequency_Hz": ("f_sec (Hz)", "{:12.7g}"),
+               "damping_ratio": BASE_COLUMNS["damping_ratio"],
+               "slip_fraction": ("slip (-)", "{:9.3f}")}
+    values = {k: nulls(s[k]) for k in (*columns, "dissipated_energy_Nmm")}
+    # the slip pattern: the contact nodes in the contact plane (mm), slipped or not per amplitude
+    xy = model.mesh.nodes[model.contact_nodes] @ model.rotation.T
+    pattern = {"x_mm": xy[:, 0].tolist(), "y_mm": xy[:, 1].tolist(),
+               "slipped": [p.node_slipped.tolist() for p in curve.points]}
+    return MeshCurve(label="quasi-static modal analysis of the full FE", columns=columns,
+                     values=values, extra={"modal_force": s["force"], "slip_pattern": pattern},
+                     warnings=list(s["warnings"]))
+
+
+def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
+    """EPMC on the contact-node ROM at the grid's amplitudes."""
+    from ..dynamics.modal import epmc
+    from ..dynamics.modal_odd import epmc_odd
+    from .reduce import rom_structure
+
+    mode, s = study.mode, study.settings
+    structure = rom_structure(rom, mode.direction @ rom.output)
+    method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
+    curve = method(structure, np.asarray(study.amplitudes), s.harmonics, s.samples,
+                   study.number - 1)
+    count = len(study.prepared.stuck.frequencies_Hz)
+    return MeshCurve(
+        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
+        columns=dict(BASE_COLUMNS),
+        values={"amplitude_mm": [float(a) for a in curve.amplitude],
+                "frequency_Hz": [float(f) for f in curve.frequency],
+                "damping_ratio": [float(z) for z in curve.damping_ratio]},
+        extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
+               "rom": {"dofs": rom.dofs, "fixed_interface_modes": study.case.rom_modes,
+                       "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
+                       "samples": curve.samples}},
+        warnings=[])
+
+
+def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
+    """EPMC on the whole-joint model (:mod:`microslip.meshdynamics.wholejoint`) at the grid's
+    amplitudes: the ROM reduced to the interface's rigid motion, one joint from the FE's
+    first loading."""
+    from .wholejoint import build_whole_joint, whole_joint_epmc
+
+    mode, s = study.mode, study.settings
+    assert rom.output is not None
+    joint = build_whole_joint(rom, study.prepared.model, mode, mode.direction @ rom.output,
+                              backbone=study.case.backbone)
+    curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), s.harmonics,
+                                     s.samples, mode.frequency_Hz)
+    stuck = float(joint.stuck_frequencies()[joint.mode_index(mode.frequency_Hz)])
+    bb = joint.backbone
+    warnings = list(failed)
+    if bb.source == "pull":
+        warnings.append(f"mode {study.number} does not load the interface as a whole (its "
+                        "contact resultant does not follow its mean displacement): the joint "
+                        "is the interface's pull test, and the whole-joint model misses the "
+                        "damping of the interface's distortion")
+    loading = bb.loading
+    share = (float(loading.rigid_work[-1] / loading.work[-1])
+             if loading is not None and loading.work[-1] > 0 else None)
+    return MeshCurve(
+        label=f"EPMC on the whole-joint model ({joint.structure.dofs} DOF, "
+              f"{curve.harmonics} harmonics; stuck {stuck:.6g} Hz, "
+              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)",
+        columns=dict(BASE_COLUMNS),
+        values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
+                                               curve.amplitude)),
+                "frequency_Hz": nulls(curve.frequency),
+                "damping_ratio": nulls(curve.damping_ratio)},
+        extra={"joint": {**bb.summary(), "torsion": joint.torsion,
+                         "rigid_work_share": share,
+                         "stuck_frequency_Hz": stuck,
+                         "stuck_frequency_error": stuck / mode.frequency_Hz - 1.0,
+                         "dofs": joint.structure.dofs,
+                         "fixed_interface_modes": study.case.rom_modes,
+                         "harmonics": curve.harmonics, "samples": curve.samples}},
+        warnings=warnings)
+
+
+#: The solvers of a modal study, each on the same amplitude grid.
+MESH_SOLVERS: dict[str, MeshSolver] = {
+    "fe": MeshSolver("quasi-static modal analysis of the full frictional FE (the truth)",
+                     ("workers", "scheduler"), False, _fe),
+    "rom": MeshSolver("EPMC by harmonic balance on a Craig-Bampton model that keeps every "
+                      "contact node with the FE's own contact law (--rom-modes "
+                      "fixed-interface modes)", ("harmonics", "rom_modes"), True, _rom),
+    "joint": MeshSolver("EPMC by harmonic balance on the whole-joint model: the contact "
+                        "reduced to its rigid motion in its plane, one joint whose backbone "
+                        "is the FE's first loading by the mode (or --backbone tip|centre)",
+                        ("harmonics", "rom_modes", "backbone"), True, _joint),
+}
+
+
+def check_solvers(solvers: Sequence[str]) -> tuple[str, ...]:
+    """``solvers`` if each is a key of :data:`MESH_SOLVERS` (at least one)."""
+    bad = [s for s in solvers if s not in MESH_SOLVERS]
+    if bad or not solvers:
+        raise ParameterError(f"unknown modal solver {bad[0] if bad else None!r}; choose from "
+                             f"{', '.join(MESH_SOLVERS)}")
+    return tuple(solvers)
+
+
+def prepare_modal(case: StructureCase, settings: ModalSettings | None = None) -> ModalStudy:
+    """Clamp the case's mesh, compute its stuck and free modes and the amplitude grid:
+    everything the solvers share."""
+    settings = ModalSettings() if settings is None else settings
+    prepared = prepare_structure(case)
+    forces, amplitudes = amplitude_grid(prepared, settings.amplitudes,
+                                        settings.amplitude_range)
+    return ModalStudy(prepared=prepared, settings=settings, forces=forces,
+                      amplitudes=amplitudes)
+
+
+def run_solvers(study: ModalStudy, solvers: Sequence[str] = tuple(MESH_SOLVERS),
+                progress: Progress | None = None,
+                echo: Callable[[str], None] | None = None) -> dict[str, MeshCurve]:
+    """Each named solver's curve on ``study`` (in the order given); the contact-node ROM is
+    built once, before the first solver that needs it. ``echo`` hears each solver's name
+    as it starts (``solver k/n: name``)."""
+    names = check_solvers(solvers)
+    rom = None
+    curves: dict[str, MeshCurve] = {}
+    for k, name in enumerate(names):
+        solver = MESH_SOLVERS[name]
+        if echo is not None:
+            echo(f"solver {k + 1}/{len(names)}: {name}")
+        if solver.needs_rom and rom is None:
+            rom = structure_rom(study.prepared)
+        curves[name] = solver.run(study, rom, progress)
+    return curves
+
+
+def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, Any]:
+    """The JSON of one solver's curve on the study."""
+    prepared = study.prepared
+    return {"mesh": study.case.mesh_name, "solver": solver, "mode": study.number,
+            "label": study.mode.label, "density_kg_m3": study.case.density,
+            "amplitude_coordinate": RESPONSE_SET_COORDINATE,
+            "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
+            "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
+            "modes": prepared.stuck.summary(), **curve.values, **curve.extra,
+            "warnings": curve.warnings}
+
+
+def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str, Any]:
+    """The JSON of every solver's curve on ``study``: the shared keys once, ``solvers``
+    (name -> that solver's own keys, as one solver's JSON has them), ``verdicts`` (name ->
+    :meth:`~microslip.meshdynamics.verdict_modal.ModalVerdict.summary`, every solver but the
+    full FE) and ``warnings`` (every solver's, each line led by its name)."""
+    outputs = {name: study_output(study, name, curve) for name, curve in curves.items()}
+    first = next(iter(outputs.values()))
+    out: dict[str, Any] = {k: first[k] for k in SHARED}
+    out["solvers"] = {name: {k: v for k, v in o.items() if k not in (*SHARED, "solver")}
+                      for name, o in outputs.items()}
+    truth = out["solvers"].get(TRUTH)
+    out["verdicts"] = ({} if truth is None else
+                       {name: modal_verdict(name, truth, o).summary()
+                        for name, o in out["solvers"].items() if name != TRUTH})
+    out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
+                       for w in o["warnings"]]
+    return out
+
+
+def modal_study(case: StructureCase, settings: ModalSettings | None = None,
+                solvers: Sequence[str] = tuple(MESH_SOLVERS),
+                progress: Progress | None = None,
+                echo: Callable[[str], None] | None = None) -> dict[str, Any]:
+    """Every named solver on one structure and one amplitude grid, side by side with the
+    verdicts against the full FE (when ``fe`` is among them): :func:`compare_output`.
+
+    Examples
+    --------
+    >>> from microslip.fe.clamp import MeshClamp
+    >>> from microslip.meshdynamics import StructureCase, modal_study
+    >>> clamp = MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+    ...                   poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
+    >>> case = StructureCase("examples/cantilever.inp", clamp, density=2700.0, mode=2,
+    ...                      response_set="response")
+    >>> out = modal_study(case, ModalSettings(amplitudes=3), ("fe", "rom"))  # doctest: +SKIP
+    """
+    study = prepare_modal(case, settings)
+    return compare_output(study, run_solvers(study, solvers, progress, echo))
