@@ -345,6 +345,11 @@ _OPTIONS: tuple[Option, ...] = (
     Option("levels", "with --convergence: meshes run, the given one and 1 or 2 refinements x2 "
            "(3 observes the order, 2 assumes the element's)", "", "2 | 3", type=int,
            metavar="N", choices=None, scope="mesh"),
+    # the element of the user's own mesh (fe, modal, frf --mesh FILE; issue 29, item 3)
+    Option("element", "the built-in's hexahedra on a mesh file: hex8 (C3D8I) or hex20 "
+           "(C3D20R; an 8-node mesh gets a node at the middle of every edge, its sets carried)",
+           "", "hex8 | hex20", type=None, metavar=None, choices=("hex8", "hex20"),
+           scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

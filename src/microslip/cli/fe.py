@@ -15,7 +15,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
-from ..case.table import add_option, add_solver, mesh_or_file
+from ..case.table import OPTIONS, add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe import SOLVERS
@@ -69,11 +69,12 @@ def add_parser(sub: Any) -> None:
                    help="builtin: write the interface pressure after clamping (x_mm,pressure "
                         "in MPa, the mean over the width per section), ready for "
                         "--pressure-law table:FILE of loop, planar and sweep")
-    g.add_argument("--element", choices=[e for s in SOLVERS.values() for e in s.elements],
-                   default=None,
-                   help="calculix: 20-node brick, reduced (C3D20R, default) or full "
-                        "integration (C3D20); builtin: 8-node brick with incompatible modes "
-                        "(C3D8I, default) or plain (C3D8)")
+    add_option(g, "element", choices=[*(e for s in SOLVERS.values() for e in s.elements),
+                                      *(OPTIONS["element"].choices or ())],
+               help="the box: calculix: 20-node brick, reduced (C3D20R, default) or full "
+                    "integration (C3D20); builtin: 8-node brick with incompatible modes "
+                    "(C3D8I, default) or plain (C3D8). --mesh FILE: "
+                    + OPTIONS["element"].help + " (default: as the file)")
     g.add_argument("--substeps", type=int, default=50, metavar="N",
                    help="equal substeps over t = 0..1.25 s, a multiple of 5 (default 50)")
     add_own_mesh_options(p)
@@ -100,6 +101,10 @@ def run(args: argparse.Namespace) -> int:
     if is_mesh_file(args.mesh):
         return run_own_mesh(args)
     refuse_mesh_options(args)
+    if args.element in (OPTIONS["element"].choices or ()):
+        raise ParameterError(f"--element {args.element} applies to --mesh FILE (a mesh of your "
+                             "own); the box takes C3D8I or C3D8 (builtin), C3D20R or C3D20 "
+                             "(calculix)")
     if args.model is None:
         raise ParameterError("give --model tip|centre (the box's load case), or --mesh FILE "
                              "with its sets and loads")

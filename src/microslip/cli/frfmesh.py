@@ -63,7 +63,7 @@ MESH_RANGE = (0.8, 1.05)
 #: Options of frf --mesh only (destinations).
 FRF_MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
                  "response_set", "solver", "rom_modes", "backbone", "load_set",
-                 "load_direction")
+                 "load_direction", "element")
 #: Options of frf's structure file that do nothing with a mesh.
 NOT_WITH_FRF_MESH = ("excitation",)
 DAMPING_DEFINITION = ("zeta = F_modal / (2 m omega^2 a_peak): the linear single-mode peak "

@@ -83,6 +83,7 @@ def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None
                         "lift-off allowed (default fixed)")
     g.add_argument("--normal-slope", type=number, default=None, metavar="N/MM3",
                    help="penalty normal stiffness per area, N/mm^3 (default 1e5)")
+    add_option(g, "element", note="(default: as the file)")
     g.add_argument("--density", type=number, default=None, metavar="KG/M3",
                    help="density of the body, kg/m^3 (aluminium 2700, steel 7850)")
     g.add_argument("--response-set", metavar="NAME", default=None,
@@ -136,10 +137,12 @@ def mesh_model(args: argparse.Namespace, sets: tuple[str, ...] = ()) -> Any:
     from ..fe.constants import DEFAULT_NORMAL_SLOPE
     from ..fe.meshcheck import check_roles
     from ..fe.meshfile import read_mesh
+    from ..fe.promote import as_element
 
     mesh = read_mesh(args.mesh)
     check_roles(mesh, args.contact_set, args.clamp_set,
                 [*([args.response_set] if args.response_set else []), *sets])
+    mesh = as_element(mesh, getattr(args, "element", None))
     return build_mesh_model(
         mesh, contact_set=args.contact_set, clamp_set=args.clamp_set,
         normal_force=float(args.normal_force), modulus=float(args.modulus),

@@ -37,7 +37,7 @@ __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
              "response_set", "solver", "workers", "rom_modes", "backbone", "convergence",
-             "levels")
+             "levels", "element")
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
 

@@ -24,7 +24,7 @@ MESH_ONLY = ("contact_set", "clamp_set", "load", "history", "settle_tol", "max_c
              "cycles", "plot", "refine", "convergence", "levels")
 #: Options of the built-in box only: refused with a mesh file.
 BOX_ONLY = ("model", "preset", "length", "width", "thickness", "amplitude",
-            "displacement_amplitude", "pressure_law", "clamping_csv", "element", "reuse",
+            "displacement_amplitude", "pressure_law", "clamping_csv", "reuse",
             "strain_energy")
 #: Clamp values a mesh run needs (the mesh gives the geometry): destination -> flag.
 REQUIRED = {"normal_force": "--normal-force N", "friction": "--friction X",
@@ -97,12 +97,17 @@ def refuse_mesh_options(args: argparse.Namespace) -> None:
 def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
+    from ..fe.promote import ELEMENT_ORDERS
 
     bad = [f"--{d.replace('_', '-')}" for d in BOX_ONLY if given(args, d)]
     if bad:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} the mesh gives the geometry and --load the "
                              "loads")
+    element = getattr(args, "element", None)
+    if element is not None and element not in ELEMENT_ORDERS:
+        raise ParameterError(f"--element {element} applies to the box (--mesh LEVEL) only; with "
+                             f"--mesh {args.mesh} give --element {' or '.join(ELEMENT_ORDERS)}")
     missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
     for dest in ("contact_set", "clamp_set"):
         if getattr(args, dest, None) is None:
@@ -143,7 +148,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
         cycles=3 if args.cycles is None else args.cycles,
-        refine=1 if getattr(args, "refine", None) is None else args.refine, **extra)
+        refine=1 if getattr(args, "refine", None) is None else args.refine, element=element,
+        **extra)
 
 
 def run_own_mesh(args: argparse.Namespace) -> int:
