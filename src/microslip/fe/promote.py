@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from ..errors import ParameterError
 from .hexmesh import HexMesh
 
-__all__ = ["ELEMENT_ORDERS", "as_element", "promote_mesh"]
+__all__ = ["ELEMENT_ORDERS", "as_element", "demote_mesh", "promote_mesh"]
 
 IntArray = NDArray[np.int64]
 
@@ -33,6 +33,42 @@ ELEMENT_ORDERS = {"hex8": 8, "hex20": 20}
 #: nodes 9..20.
 _EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
           (0, 4), (1, 5), (2, 6), (3, 7))
+
+
+#: A mid-edge node lies at its edge's middle when within this fraction of the mesh's size.
+MIDPOINT_TOL = 1e-9
+
+
+def demote_mesh(mesh: HexMesh) -> HexMesh:
+    """The 8-node mesh under a 20-node one whose mid-edge nodes lie at their edges' middles
+    (a promoted mesh, or straight-edged quadratic elements): the corner nodes only, renumbered,
+    node sets cut to them, surfaces kept. Refuses curved edges (the refinement of the corner
+    mesh would not fill the same volume).
+
+    >>> from microslip.fe.hexmesh import HexMesh
+    >>> cube = HexMesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+    ...                 [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], [list(range(8))])
+    >>> demote_mesh(promote_mesh(cube)).elements.tolist()
+    [[0, 1, 2, 3, 4, 5, 6, 7]]
+    """
+    if mesh.nodes_per_element == 8:
+        return mesh
+    e = mesh.elements
+    ends = e[:, np.asarray(_EDGES)]  # (n_e, 12, 2)
+    mid = 0.5 * (mesh.nodes[ends[..., 0]] + mesh.nodes[ends[..., 1]])
+    size = float(np.max(np.ptp(mesh.nodes, axis=0)))
+    if float(np.max(np.abs(mesh.nodes[e[:, 8:]] - mid))) > MIDPOINT_TOL * size:
+        raise ParameterError(f"{mesh.source}: --refine subdivides 20-node hexahedra only when "
+                             "their edges are straight with the mid-edge node at the middle; "
+                             "this mesh has curved edges (refine it in the mesher)")
+    corners = np.unique(e[:, :8])
+    inv = np.full(len(mesh.nodes), -1, dtype=np.int64)
+    inv[corners] = np.arange(corners.size)
+    sets = {k: inv[v][inv[v] >= 0] for k, v in mesh.node_sets.items()}
+    return HexMesh(mesh.nodes[corners], inv[e[:, :8]], sets, dict(mesh.surfaces),
+                   source=mesh.source, set_dims=dict(mesh.set_dims),
+                   node_ids=None if mesh.node_ids is None else mesh.node_ids[corners],
+                   element_ids=mesh.element_ids)
 
 
 def as_element(mesh: HexMesh, element: str | None) -> HexMesh:
@@ -61,8 +97,9 @@ def promote_mesh(mesh: HexMesh) -> HexMesh:
     ...                 [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], [list(range(8))],
     ...                {"bottom": [0, 1, 2, 3]})
     >>> q = promote_mesh(cube)
-    >>> q.elements.shape, q.node_sets["bottom"].tolist()
-    ((1, 20), [0, 1, 2, 3, 8, 9, 10, 11])
+    >>> q.elements.shape, q.node_sets["bottom"].tolist() == sorted(
+    ...     [0, 1, 2, 3, *q.elements[0, 8:12].tolist()])
+    ((1, 20), True)
     """
     if mesh.nodes_per_element == 20:
         return mesh
