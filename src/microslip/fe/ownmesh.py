@@ -117,9 +117,8 @@ class OwnMeshRun:
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .meshcheck import check_roles
     from .meshfile import read_mesh
-    from .refine import refine_mesh
-
     from .promote import as_element
+    from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
     check_roles(mesh, case.contact_set, case.clamp_set, case.loads)

@@ -317,7 +317,7 @@ def contact_areas(face_x: FloatArray, face_nodes: IntArray,
     share = CONTACT_WEIGHTS[weights][0](face_x)
     nodes, inv = np.unique(face_nodes.ravel(), return_inverse=True)
     inv = inv.reshape(face_nodes.shape)
-    area = np.bincount(inv.ravel(), weights=share.ravel(), minlength=len(nodes))
+    area = np.bincount(inv.ravel(), weights=share.ravel(), minlength=len(nodes)).astype(float)
     m, _ = face_mass(face_x)
     rows = np.repeat(inv, 8, axis=1).ravel()
     cols = np.tile(inv, (1, 8)).ravel()
@@ -368,7 +368,7 @@ class RecoveredNormal:
         share = np.where((norm != 0.0)[:, None], q / safe[:, None], c.weight
                          / c.weight.sum(axis=1)[:, None])
         return np.bincount(c.face.ravel(), weights=(share * total[:, None]).ravel(),
-                           minlength=c.nodes.size)
+                           minlength=c.nodes.size).astype(float)
 
     def __matmul__(self, u: FloatArray) -> FloatArray:
         r = np.asarray(self.k_rf @ u)

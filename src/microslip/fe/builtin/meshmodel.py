@@ -44,7 +44,7 @@ from ..hexmesh import HexMesh, face_load
 from ..meshcheck import check_set
 from ..meshload import MeshLoad
 from .condense import Reduced, condense
-from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
+from .element import assemble_hex8, hex8_b_matrices
 from .hex20 import (
     DEFAULT_CONTACT_WEIGHTS,
     HEX20_ELEMENTS,
