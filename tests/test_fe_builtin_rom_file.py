@@ -133,9 +133,12 @@ def test_fixed_file_reads_as_before_and_needs_no_joint(tmp_path, capsys):
             "--amplitudes", "2", "--harmonics", "3", "--json"]
     assert main(args) == 0
     bare = json.loads(capsys.readouterr().out)
+    # a command-line joint would change nothing (the file's joints carry their own laws):
+    # refused in one line (issue 27), not silently ignored
     assert main([*args, "--joint", "jenkins", "--joint-stiffness", "1", "--slip-force",
-                 "1"]) == 0
-    assert json.loads(capsys.readouterr().out)["frequency_Hz"] == bare["frequency_Hz"]
+                 "1"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("error: --joint") and err.count("\n") == 1 and "own law" in err
     assert bare["energy_method"] is not None
 
 

@@ -32,6 +32,8 @@ __all__ = [
     "DEFAULT_COUPLING",
     "DEFAULT_ELEMENTS",
     "DEFAULT_MESH",
+    "DEFAULT_NORMAL_CONTACT",
+    "DEFAULT_NORMAL_SLOPE",
     "DEFAULT_ROM_MODES",
     "DEFAULT_STICK_SLOPE",
     "JOINT_MODELS",
@@ -81,6 +83,14 @@ DEFAULT_MESH = "coarse"
 #: Table 1 bar (docs/validation.md, stick-slope study; docs/solver.md).
 DEFAULT_STICK_SLOPE = 1.0e4
 
+
+#: Slope of the linear pressure-overclosure law, N/mm^3 (penetration F_N/(L w K) ~ 1e-6 mm):
+#: ``penalty`` normal contact, both FE solvers.
+DEFAULT_NORMAL_SLOPE = 1.0e5
+#: Normal contact of a clamp on a mesh unless one is named: ``fixed``, the clamping step's
+#: normal forces held (the paper's reading). CalculiX models ``penalty`` only and refuses it
+#: (docs/interpretation.md, "The mesh structure's library home").
+DEFAULT_NORMAL_CONTACT = "fixed"
 
 # -- the structure on a mesh (modal --mesh, frf --mesh, reduce; microslip.meshdynamics)
 #: Highest mode number a mesh study takes (the eigen-solve computes that many).

@@ -23,10 +23,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..conventions import DEFAULT_MESH, check_whole
+from ..conventions import DEFAULT_MESH, DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE, check_whole
 from ..energy import DEFAULT_STRAIN_ENERGY, damping
 from ..errors import MacroslipError, ParameterError
-from ..fe.constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..models import Contact, check_increments, get_model, macroslip_force
 from ..models.interface import PRESSURE_LAWS, PressureLaw, power_law, read_pressure_table
 from ..models.validity import validity

@@ -25,6 +25,7 @@ from ..conventions import (
     COUPLINGS,
     DEFAULT_ELEMENTS,
     DEFAULT_MESH,
+    DEFAULT_NORMAL_SLOPE,
     DEFAULT_ROM_MODES,
     DEFAULT_STICK_SLOPE,
     JOINT_MODELS,
@@ -33,7 +34,6 @@ from ..conventions import (
     PAIRINGS,
     TRANSVERSE,
 )
-from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS
 from .checks import (
     PRESSURE_LAWS,
@@ -190,6 +190,12 @@ _OPTIONS: tuple[Option, ...] = (
     Option("mesh_levels", "with --convergence: meshes run, the given one and 1 or 2 refinements x2 "
            "(3 observes the order, 2 assumes the element's)", "", "2 | 3", type=int,
            metavar="N", choices=None, spelling="--levels", scope="mesh"),
+    # the element of the user's own mesh (fe, modal, frf --mesh FILE; issue 29, item 3); fe's
+    # --element takes the box's elements too (one option there, checked by mode)
+    Option("mesh_element", "the built-in's hexahedra on a mesh file: hex8 (C3D8I) or hex20 "
+           "(C3D20R; an 8-node mesh gets a node at the middle of every edge, its sets carried)",
+           "", "hex8 | hex20", type=None, metavar=None, choices=("hex8", "hex20"),
+           spelling="--element", scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

@@ -15,7 +15,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
-from ..case.table import MODE_BOX, add_option, add_solver, mesh_or_file
+from ..case.table import MODE_BOX, OPTIONS, add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe import SOLVERS
@@ -65,11 +65,13 @@ def add_parser(sub: Any) -> None:
                "take it")
     add_option(g, "clamping_csv", mode=MODE_BOX, note="ready for --pressure-law table:FILE "
                "of loop, planar and sweep")
-    add_option(g, "element", mode=MODE_BOX,
-               choices=[e for s in SOLVERS.values() for e in s.elements],
-               help="calculix: 20-node brick, reduced (C3D20R, default) or full integration "
-                    "(C3D20); builtin: 8-node brick with incompatible modes (C3D8I, default) "
-                    "or plain (C3D8)")
+    # one --element for both modes, each value checked against the mode it belongs to
+    add_option(g, "element", choices=[*(e for s in SOLVERS.values() for e in s.elements),
+                                      *(OPTIONS["mesh_element"].choices or ())],
+               help="the box: calculix: 20-node brick, reduced (C3D20R, default) or full "
+                    "integration (C3D20); builtin: 8-node brick with incompatible modes "
+                    "(C3D8I, default) or plain (C3D8). --mesh FILE: "
+                    + OPTIONS["mesh_element"].help + " (default: as the file)")
     add_option(g, "substeps")
     add_own_mesh_options(p)
     s = p.add_argument_group("solver")
@@ -93,6 +95,10 @@ def run(args: argparse.Namespace) -> int:
     if is_mesh_file(args.mesh):
         return run_own_mesh(args)
     refuse_mesh_options(args)
+    if args.element in (OPTIONS["mesh_element"].choices or ()):
+        raise ParameterError(f"--element {args.element} applies to --mesh FILE (a mesh of your "
+                             "own); the box takes C3D8I or C3D8 (builtin), C3D20R or C3D20 "
+                             "(calculix)")
     if args.model is None:
         raise ParameterError("give --model tip|centre (the box's load case), or --mesh FILE "
                              "with its sets and loads")

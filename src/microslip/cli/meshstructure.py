@@ -55,6 +55,7 @@ def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None
         add_option(g, name, mode=MODE_MESH)
     add_option(g, "normal_contact", note="default fixed", mode=MODE_MESH)
     add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
+    add_option(g, "mesh_element", note="default: as the file", mode=MODE_MESH)
     add_option(g, "density", mode=MODE_MESH)
     add_option(g, "response_set", help=response_help, mode=MODE_MESH)
 
@@ -107,7 +108,8 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
     clamp = mesh_clamp(args)
     optional = {k: v for k, v in (
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
-        ("backbone", getattr(args, "backbone", None))) if v is not None}
+        ("backbone", getattr(args, "backbone", None)),
+        ("element", getattr(args, "mesh_element", None))) if v is not None}
     with flagged():
         return StructureCase(args.mesh, clamp, density=args.density,
                              response_set=args.response_set, **optional)

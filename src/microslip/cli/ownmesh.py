@@ -104,6 +104,7 @@ def mesh_clamp(args: argparse.Namespace, normal_contact: str | None = None) -> M
 def mesh_case(args: argparse.Namespace) -> Any:
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
+    from ..fe.promote import ELEMENT_ORDERS
 
     # the box's options (added with mode=MODE_BOX): refused with a mesh file
     bad = [f"--{d.replace('_', '-')}" for d in mode_options(args, MODE_BOX) if given(args, d)]
@@ -111,6 +112,10 @@ def mesh_case(args: argparse.Namespace) -> Any:
         raise ParameterError(f"{', '.join(bad)} {verb(bad)} to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} the mesh gives the geometry and --load the "
                              "loads")
+    element = getattr(args, "element", None)
+    if element is not None and element not in ELEMENT_ORDERS:
+        raise ParameterError(f"--element {element} applies to the box (--mesh LEVEL) only; with "
+                             f"--mesh {args.mesh} give --element {' or '.join(ELEMENT_ORDERS)}")
     missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
     for dest in ("contact_set", "clamp_set"):
         if getattr(args, dest, None) is None:
@@ -149,7 +154,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,
         cycles=3 if args.cycles is None else args.cycles,
-        refine=1 if getattr(args, "refine", None) is None else args.refine, **extra)
+        refine=1 if getattr(args, "refine", None) is None else args.refine, element=element,
+        **extra)
 
 
 def run_own_mesh(args: argparse.Namespace) -> int:

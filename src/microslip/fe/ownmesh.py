@@ -50,7 +50,9 @@ class OwnMeshCase:
     ``max_cycles`` (CalculiX runs ``cycles``); ``paper`` is the paper's load step of the box
     (a quarter-cycle rise, then one cycle; W over that cycle), loads at phase 0 only.
     ``refine`` N > 1 runs the mesh with every element subdivided N times in each direction
-    (:func:`~microslip.fe.refine.refine_mesh`, its sets carried).
+    (:func:`~microslip.fe.refine.refine_mesh`, its sets carried). ``element`` ``hex20`` runs
+    an 8-node mesh as 20-node hexahedra (:func:`~microslip.fe.promote.promote_mesh`, after the
+    refinement), ``hex8`` refuses a 20-node mesh; None: as the file.
     """
 
     mesh_file: str
@@ -63,6 +65,7 @@ class OwnMeshCase:
     cycles: int = 3
     options: dict[str, Any] = field(default_factory=dict)
     refine: int = 1
+    element: str | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.clamp, MeshClamp):
@@ -82,6 +85,11 @@ class OwnMeshCase:
                 1 <= self.refine <= MAX_REFINE):
             raise ParameterError(f"--refine must be a whole number in [1, {MAX_REFINE}], got "
                                  f"{self.refine!r}")
+        from .promote import ELEMENT_ORDERS
+
+        if self.element is not None and self.element not in ELEMENT_ORDERS:
+            raise ParameterError(f"--element must be one of {', '.join(ELEMENT_ORDERS)}, got "
+                                 f"{self.element!r}")
         if self.history == "paper" and any(ld.phase_deg % 360 for ld in self.loads):
             raise ParameterError("the paper's load step starts every load from rest at phase "
                                  "0; with phases use the default history (settle)")
@@ -104,11 +112,12 @@ class OwnMeshRun:
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .meshcheck import check_roles
     from .meshfile import read_mesh
+    from .promote import as_element
     from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
     check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, case.loads)
-    return refine_mesh(mesh, case.refine)
+    return as_element(refine_mesh(mesh, case.refine), case.element)
 
 
 def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
@@ -125,7 +134,7 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
         history = SineCycles(increments=case.increments, tol=case.tol,
                              max_cycles=case.max_cycles)
     result = solve_mesh(model, case.loads, history, record=record)
-    return {"solver": "builtin", "element": "C3D8I", **result.summary(),
+    return {"solver": "builtin", "element": model.element, **result.summary(),
             "converged": result.converged}, result
 
 

@@ -141,8 +141,16 @@ def refine(mesh: HexMesh, factor: int) -> Refinement:
 
 
 def refine_mesh(mesh: HexMesh, factor: int) -> HexMesh:
-    """The refined mesh of :func:`refine` (``factor`` 1 gives ``mesh`` itself)."""
-    return mesh if _check_factor(factor) == 1 else refine(mesh, factor).mesh
+    """The refined mesh of :func:`refine` (``factor`` 1 gives ``mesh`` itself). A 20-node
+    mesh with straight edges is refined as its corner mesh, then promoted again
+    (:mod:`.promote`)."""
+    if _check_factor(factor) == 1:
+        return mesh
+    if mesh.nodes_per_element == 20:
+        from .promote import demote_mesh, promote_mesh
+
+        return promote_mesh(refine(demote_mesh(mesh), factor).mesh)
+    return refine(mesh, factor).mesh
 
 
 def _node_sets(mesh: HexMesh, prolong: sp.csr_matrix) -> dict[str, IntArray]:

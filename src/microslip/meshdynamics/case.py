@@ -66,6 +66,10 @@ class StructureCase:
         Fixed-interface modes of the contact-node ROM (>= 1).
     backbone : str
         The whole joint's backbone, one of :data:`BACKBONE_NAMES`.
+    element : str, optional
+        ``hex20`` runs an 8-node mesh as 20-node hexahedra
+        (:func:`~microslip.fe.promote.as_element`), ``hex8`` refuses a 20-node mesh; None:
+        as the file.
     """
 
     mesh: Any
@@ -75,6 +79,7 @@ class StructureCase:
     response_set: str | None = None
     rom_modes: int = DEFAULT_ROM_MODES
     backbone: str = "fe"
+    element: str | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.clamp, MeshClamp):
@@ -97,6 +102,11 @@ class StructureCase:
         if self.backbone not in BACKBONE_NAMES:
             raise ParameterError(f"unknown backbone {self.backbone!r}; choose one of "
                                  f"{', '.join(BACKBONE_NAMES)}")
+        from ..fe.promote import ELEMENT_ORDERS
+
+        if self.element is not None and self.element not in ELEMENT_ORDERS:
+            raise ParameterError(f"element must be one of {', '.join(ELEMENT_ORDERS)}, got "
+                                 f"{self.element!r}")
         if self.response_set is not None and not (isinstance(self.response_set, str)
                                                   and self.response_set):
             raise ParameterError(f"response_set must name a node set, got "
@@ -162,7 +172,9 @@ def read_structure_mesh(case: StructureCase, sets: Sequence[str] = ()) -> HexMes
     if case.response_set:  # named as what it is (not "the set of a load")
         check_set(mesh, case.response_set, "response set")
     check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, sets)
-    return mesh
+    from ..fe.promote import as_element
+
+    return as_element(mesh, case.element)
 
 
 def clamped(case: StructureCase, sets: Sequence[str] = ()) -> MeshModel:

@@ -49,6 +49,10 @@ def mass_matrix(nodes: NDArray[np.float64], elements: NDArray[np.int64],
     """
     x = np.asarray(nodes, dtype=float)
     e = np.asarray(elements, dtype=np.int64)
+    if e.ndim == 2 and e.shape[1] == 20:  # quadratic hexahedra (fe.builtin.hex20)
+        from .hex20 import mass_matrix20
+
+        return mass_matrix20(x, e, density)
     if e.ndim != 2 or e.shape[1] != 8:
         raise ParameterError(f"elements must have 8 nodes each, got shape {e.shape}")
     _, detj, _ = hex8_b_matrices(x[e])  # (n_e, 8 gp); checks the Jacobians

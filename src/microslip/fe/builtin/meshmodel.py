@@ -3,7 +3,9 @@
 The same physics as the built-in box (:mod:`.solve`), on any :class:`~microslip.fe.hexmesh.HexMesh`
 of 8-node hexahedra:
 
-* the elastic body (C3D8I or C3D8, :func:`~microslip.fe.builtin.element.assemble_hex8`);
+* the elastic body (C3D8I or C3D8, :func:`~microslip.fe.builtin.element.assemble_hex8`; on
+  20-node meshes C3D20R or C3D20, :mod:`.hex20`, whose contact nodes get CalculiX's
+  node-to-face areas and, under ``fixed`` normal contact, N_i from the recovered pressure);
 * a flat *contact* set on a rigid base: its nodes carry the circular Coulomb friction of
   :mod:`.contact` with the stick stiffness k_i = lambda A_i, A_i the node's share of the
   contact faces' area (the consistent nodal shares of a uniform traction, as the box's
@@ -42,7 +44,17 @@ from ..hexmesh import HexMesh, face_load
 from ..meshcheck import check_set
 from ..meshload import MeshLoad
 from .condense import Reduced, condense
-from .element import ELEMENTS, assemble_hex8, hex8_b_matrices
+from .element import assemble_hex8, hex8_b_matrices
+from .hex20 import (
+    DEFAULT_CONTACT_WEIGHTS,
+    HEX20_ELEMENTS,
+    QuadContact,
+    RecoveredNormal,
+    assemble_hex20,
+    contact_areas,
+    face_nodes20,
+    hex20_b_matrices,
+)
 from .linalg import Backend, make_backend
 from .model import NewtonOptions
 from .normal import PenaltyNormal, check_normal_contact
@@ -51,6 +63,7 @@ from .solve import clamping_step, contact_partition
 __all__ = [
     "AUTO_BAND_LIMIT",
     "CONDENSE_MIN_DOF",
+    "MESH_ELEMENTS",
     "MESH_LINEAR_SOLVERS",
     "MeshModel",
     "SpentBackend",
@@ -375,9 +388,10 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
                      modulus: float, poisson_ratio: float, friction: float,
                      stick_slope: float = DEFAULT_STICK_SLOPE,
                      normal_contact: str = DEFAULT_NORMAL_CONTACT,
-                     normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str = "C3D8I",
+                     normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str | None = None,
                      linear_solver: str = "auto", newton: NewtonOptions | None = None,
-                     condensed: bool | None = None) -> MeshModel:
+                     condensed: bool | None = None,
+                     contact_weights: str = DEFAULT_CONTACT_WEIGHTS) -> MeshModel:
     """Assemble the body of a mesh on its rigid base and solve the clamping step.
 
     Parameters
@@ -401,7 +415,8 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     normal_contact : {"fixed", "penalty"}
     normal_slope : float
         k_n, N/mm^3 (``penalty``).
-    element : {"C3D8I", "C3D8"}
+    element : {"C3D8I", "C3D8"} for 8-node meshes, {"C3D20R", "C3D20"} for 20-node ones
+        Default: C3D8I, C3D20R (:data:`MESH_ELEMENTS`).
     linear_solver : {"auto", "banded", "splu", "cholmod"}
         ``auto``: banded Cholesky while the half-bandwidth is at most
         :data:`AUTO_BAND_LIMIT` dofs, SuperLU beyond.
@@ -411,6 +426,10 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         (:mod:`.condense`; the same answer to rounding, much faster when the contact is a
         small part of the body). Default: when the model has at least
         :data:`CONDENSE_MIN_DOF` free dofs and the contact at most a quarter of them.
+    contact_weights : str
+        20-node meshes: the nodal areas of the quadratic contact faces, a name of
+        :data:`~microslip.fe.builtin.hex20.CONTACT_WEIGHTS` (default CalculiX's node-to-face
+        1/100 and 24/100 of each face's area).
 
     Returns
     -------
@@ -430,13 +449,11 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     t0 = time.perf_counter()
     if not isinstance(mesh, HexMesh):
         raise ParameterError(f"mesh must be a HexMesh, got {type(mesh).__name__}")
-    if mesh.nodes_per_element != 8:
-        raise ParameterError(f"{mesh.source}: the built-in solver takes 8-node hexahedra; "
-                             "this mesh has 20-node ones (use --solver calculix, or export "
-                             "linear hexahedra)")
-    if element not in ELEMENTS:
-        raise ParameterError(f"unknown element {element!r}; choose one of "
-                             f"{', '.join(ELEMENTS)}")
+    kind = MESH_ELEMENTS[mesh.nodes_per_element]
+    element = kind.default if element is None else element
+    if element not in kind.elements:
+        raise ParameterError(f"unknown element {element!r} for {mesh.nodes_per_element}-node "
+                             f"hexahedra; choose one of {', '.join(kind.elements)}")
     f_n = check_positive("normal_force", normal_force, "N")
     e_mod = check_positive("modulus", modulus, "MPa")
     nu = _poisson(poisson_ratio)
@@ -447,7 +464,7 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     newton = NewtonOptions() if newton is None else newton
 
     try:
-        hex8_b_matrices(mesh.nodes[mesh.elements])
+        kind.jacobians(mesh.nodes[mesh.elements])
     except ParameterError as exc:
         raise ParameterError(f"{mesh.source}: {exc}") from None
     contact_faces = set_faces(mesh, contact_set, "contact set", boundary=True)
@@ -467,13 +484,13 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     nodes = mesh.nodes[order]
     if not np.array_equal(rotation, np.eye(3)):
         nodes = nodes @ rotation.T
-    k_all = assemble_hex8(nodes, elements, e_mod, nu, element)
+    k_all = kind.assemble(nodes, elements, e_mod, nu, element)
 
-    c_mesh, c_share, c_area = face_load(mesh, contact_faces)
+    c_mesh, area, quad = _contact_areas(mesh, contact_faces, contact_weights)
     c_model = inv[c_mesh]
     sort = np.argsort(c_model)
     contact_nodes, contact = c_mesh[sort], c_model[sort]
-    area = c_share[sort] * c_area
+    area = area[sort]
     n_all = 3 * order.size
     held = 3 * contact + 2
     free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
@@ -492,8 +509,12 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
             full[base + c] = f_n * k_share * push[c]
         clamp = full[free]
         clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+        reactions: Any = k_rf
+        if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
+            reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
+            clamp_fixed = None
         normal, limit, u, resp, iters = clamping_step(
-            k_ff, k_rf, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+            k_ff, reactions, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
     except (np.linalg.LinAlgError, RuntimeError) as err:
         raise ParameterError(
             f"{mesh.source}: the body is not held after clamping (its stiffness is "
@@ -515,6 +536,38 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, clamp_load=clamp,
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced)
+
+
+@dataclass(frozen=True)
+class MeshElements:
+    """The elements of a mesh of n-node hexahedra: their names (the first the default), the
+    Jacobian check and the stiffness assembly."""
+
+    elements: tuple[str, ...]
+    jacobians: Any
+    assemble: Any
+
+    @property
+    def default(self) -> str:
+        return self.elements[0]
+
+
+#: Nodes per element -> the built-in elements of such a mesh.
+MESH_ELEMENTS = {8: MeshElements(("C3D8I", "C3D8"), hex8_b_matrices, assemble_hex8),
+                 20: MeshElements(tuple(HEX20_ELEMENTS), hex20_b_matrices, assemble_hex20)}
+
+
+def _contact_areas(mesh: HexMesh, faces: IntArray, weights: str
+                   ) -> tuple[IntArray, FloatArray, QuadContact | None]:
+    """The contact nodes, their areas A_i (mm^2) and (20-node faces) what recovers their
+    normal forces (:class:`~.hex20.QuadContact`); None for 4-node faces, whose consistent
+    shares are the areas (:func:`~microslip.fe.hexmesh.face_load`)."""
+    if mesh.nodes_per_element == 8:
+        nodes, share, total = face_load(mesh, faces)
+        return nodes, share * total, None
+    fn = face_nodes20(mesh.elements, faces)
+    quad = contact_areas(mesh.nodes[fn], fn, weights)
+    return quad.nodes, quad.area, quad
 
 
 def _connected(mesh: HexMesh, elements: IntArray, n: int, contact_faces: IntArray,
