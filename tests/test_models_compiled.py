@@ -60,3 +60,19 @@ def test_masing_sums_and_layer_curves_are_the_compiled_ones_bit_for_bit() -> Non
     for which in (0, 2, 3):
         _same((layer.law_values(which, law.code, law.data, xi),),
               (compiled(layer.law_values)(which, law.code, law.data, xi),))
+
+
+def test_a_process_runs_plain_until_its_budget_then_compiled() -> None:
+    """:func:`microslip.models.kernel`: plain while the steps fit in PLAIN_STEPS, compiled
+    for a call beyond it and for every call once the compiled kernels are loaded (a fresh
+    process: this one has loaded them)."""
+    import subprocess
+    import sys
+
+    code = ("from microslip.models import LAYER_STEP, PLAIN_STEPS, kernel, tip\n"
+            "f = tip.tip_backbone\n"
+            "print(kernel(f, 1000) is f, kernel(f, PLAIN_STEPS - 1000) is f,\n"
+            "      kernel(f, 1) is f, kernel(f, 1000) is f, LAYER_STEP > 1)")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                         text=True).stdout.split()
+    assert out == ["True", "True", "False", "False", "True"]

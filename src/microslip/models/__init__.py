@@ -63,7 +63,7 @@ from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude
 from ..results import Backbone
-from ._jit import PLAIN_STEPS, kernel
+from ._jit import LAYER_STEP, PLAIN_STEPS, kernel
 from .centre import centre_backbone, centre_step, centre_stored_energy
 from .contact import DEFAULT_CONTACT, Contact, check_reading
 from .layered import centre_layer_backbone, tip_layer_backbone
@@ -71,6 +71,7 @@ from .tip import tip_backbone, tip_step, tip_stored_energy
 
 __all__ = [
     "DEFAULT_CONTACT",
+    "LAYER_STEP",
     "MAX_INCREMENTS",
     "MAX_STRAIN",
     "MODELS",
@@ -323,7 +324,8 @@ def _loading(spec: ModelSpec, params: ClampParams, f0: float, n: int, opt: Model
     if contact is None:
         forces, disp, stored, slip, width, thickness = kernel(spec.backbone, n)(*args)
     else:
-        forces, disp, stored, slip, width, thickness = kernel(spec.layer_backbone, n)(
+        forces, disp, stored, slip, width, thickness = kernel(spec.layer_backbone,
+                                                              n * LAYER_STEP)(
             *args, *contact.kernel_args)
     section_ok = np.all(width > 0) and np.all(thickness > 0)
     if not (np.all(np.isfinite(disp)) and section_ok):

@@ -15,7 +15,7 @@ import sys
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-__all__ = ["JIT_OPTIONS", "PLAIN_STEPS", "jit", "kernel"]
+__all__ = ["JIT_OPTIONS", "LAYER_STEP", "PLAIN_STEPS", "jit", "kernel"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -32,11 +32,16 @@ def jit(**options: Any) -> Callable[[F], F]:
     return mark
 
 
-#: Steps (increments, curve points) a process runs through the plain-Python kernels before
-#: it loads their compiled copies (:mod:`.compiled`): about what loading numba and the
-#: cached machine code costs (1-1.5 s) at a few microseconds a step. ``microslip loop``
-#: (1000 increments) stays plain; a study of many loops, or one long loop, compiles.
+#: Steps (increments of the rigid-foundation models, about 1 microsecond each in plain
+#: Python) a process runs through the plain-Python kernels before it loads their compiled
+#: copies (:mod:`.compiled`), which costs 1-1.5 s (numba's import and registries, the cached
+#: machine code). ``microslip loop`` (1000 increments) stays plain; a study of many loops,
+#: or one long loop, compiles.
 PLAIN_STEPS = 200_000
+
+#: What one step of the shear-layer models (a slip-front search: 50-200 microseconds in
+#: plain Python, measured) counts in :data:`PLAIN_STEPS`.
+LAYER_STEP = 100
 
 _plain_steps = 0
 

@@ -39,6 +39,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import ParameterError
 from ..params import ClampParams
 from . import layer as kernel
+from ._jit import LAYER_STEP
 from ._jit import kernel as _run
 
 __all__ = [
@@ -287,8 +288,8 @@ def backbone_force(bar: Domain, force: ArrayLike, *,
     if check and np.any(f >= bar.total):
         raise ParameterError(f"force must stay below the macroslip force {bar.total:g} N")
     flat = np.ascontiguousarray(f.reshape(-1))
-    a, d = _run(kernel.domain_curve, flat.size)(bar.constants, bar.law.code, bar.law.data,
-                                                flat)
+    curve = _run(kernel.domain_curve, flat.size * LAYER_STEP)
+    a, d = curve(bar.constants, bar.law.code, bar.law.data, flat)
     return a.reshape(f.shape), d.reshape(f.shape)
 
 
@@ -319,8 +320,8 @@ def _curve(domains: tuple[Domain, ...], f: FloatArray,
         (a1, d), (a2, _) = (backbone_force(first, share, check=False),
                             backbone_force(second, share, check=False))
         return np.array([a1, a2]), d
-    a1, a2, d = _run(kernel.split_curve, f.size)(first.constants, second.constants, law.code,
-                                                 law.data, f)
+    curve = _run(kernel.split_curve, f.size * LAYER_STEP)
+    a1, a2, d = curve(first.constants, second.constants, law.code, law.data, f)
     return np.array([a1, a2]), d
 
 
