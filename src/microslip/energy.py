@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 
 from .conventions import check_choice
 from .errors import ParameterError
-from .models._jit import kernel
+from .models.dispatch import kernel
 from .models.masing import backbone_sums, masing_energies
 from .options import ModelOptions
 from .params import ClampParams

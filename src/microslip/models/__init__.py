@@ -34,7 +34,7 @@ analysis fails on a nested tuple returned by a function inlined in ``prange``.
 run their compiled copies (:mod:`.compiled`, numba's on-disk cache stamped with the whole
 folder, :mod:`microslip._kernelcache`, so that a kernel inlining an edited step is rebuilt,
 never loaded stale); a short single loop runs the plain functions, which is cheaper than
-loading numba (:func:`kernel`, :data:`PLAIN_STEPS`). The two agree bit for bit.
+loading numba (:func:`kernel`, :data:`PLAIN_STEPS`, :mod:`.dispatch`). The two agree bit for bit.
 
 This package may import ``closedform``, ``options``, ``params``, ``results``, ``named``,
 ``errors`` and (:mod:`.compiled`, :mod:`.batch_kernels`) ``_kernelcache``; never ``energy``
@@ -63,9 +63,9 @@ from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude
 from ..results import Backbone
-from ._jit import LAYER_STEP, PLAIN_STEPS, kernel
 from .centre import centre_backbone, centre_step, centre_stored_energy
 from .contact import DEFAULT_CONTACT, Contact, check_reading
+from .dispatch import LAYER_STEP, PLAIN_STEPS, kernel
 from .layered import centre_layer_backbone, tip_layer_backbone
 from .tip import tip_backbone, tip_step, tip_stored_energy
 

@@ -39,8 +39,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import ParameterError
 from ..params import ClampParams
 from . import layer as kernel
-from ._jit import LAYER_STEP
-from ._jit import kernel as _run
+from .dispatch import LAYER_STEP
+from .dispatch import kernel as _run
 
 __all__ = [
     "PRESSURE_LAWS",
