@@ -1,20 +1,22 @@
 """Start-up time of the command line, against the import of numpy and scipy.sparse.
 
-Run: ``python3 benchmarks/bench_startup.py`` (``--runs N``, default 7).
+Run: ``python3 benchmarks/bench_startup.py`` (``--runs N``, default 10).
 
 Each row is a fresh interpreter (a subprocess, as a shell script calling ``microslip`` pays
 it), timed wall-clock from start to exit and in CPU time (user + system, of the child; less
-sensitive than the wall clock to other work on a busy machine); the best of N runs of each,
-the rows interleaved run by run so that a busy machine slows them alike. Targets (issue 21):
+sensitive than the wall clock to other work on a busy machine); the median of N runs of
+each, the rows interleaved run by run so that a busy machine slows them alike. Targets (issue 21):
 ``microslip --help`` within 2x and ``microslip loop --model tip --preset table1`` within 3x
-of the reference, ``python -c "import numpy, scipy.sparse"``. The numba kernels come from
-their on-disk cache (one warm-up run first), as on any call after the first on a machine.
+of the reference, ``python -c "import numpy, scipy.sparse"``. A single loop runs the models
+as plain Python (no numba, issue 27); other numba kernels come from their on-disk cache (one
+warm-up run first), as on any call after the first on a machine.
 """
 
 from __future__ import annotations
 
 import argparse
 import resource
+import statistics
 import subprocess
 import sys
 import time
@@ -42,14 +44,14 @@ def timed(argv: list[str]) -> tuple[float, float]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=7, help="runs per row (best taken)")
+    parser.add_argument("--runs", type=int, default=10, help="runs per row (median taken)")
     runs = parser.parse_args(argv).runs
     for _, args, _ in ROWS:  # warm-up: compiled-kernel cache, file system cache
         timed(args)
     runs_ = [[timed(args) for _, args, _ in ROWS] for _ in range(runs)]
-    wall = [min(r[i][0] for r in runs_) for i in range(len(ROWS))]
-    cpu = [min(r[i][1] for r in runs_) for i in range(len(ROWS))]
-    print(f"best of {runs} runs, s; ratio to the first row (wall clock, then CPU time)")
+    wall = [statistics.median(r[i][0] for r in runs_) for i in range(len(ROWS))]
+    cpu = [statistics.median(r[i][1] for r in runs_) for i in range(len(ROWS))]
+    print(f"median of {runs} runs, s; ratio to the first row (wall clock, then CPU time)")
     print(f"{'command':<44} {'wall':>7} {'ratio':>6} {'CPU':>7} {'ratio':>6} {'target':>7}")
     met = True
     for i, (label, _, target) in enumerate(ROWS):

@@ -23,7 +23,6 @@ import math
 import time
 
 import numpy as np
-from microslip.meshdynamics.modes import linear_modes
 
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles, solve_mesh
@@ -32,6 +31,7 @@ from microslip.fe.meshfile import read_mesh
 from microslip.fe.meshload import MeshLoad
 from microslip.fe.promote import promote_mesh
 from microslip.fe.refine import refine_mesh
+from microslip.meshdynamics.modes import linear_modes
 
 CASE = dict(contact_set="contact", clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
             poisson_ratio=0.33, friction=0.5, stick_slope=1e4)

@@ -48,5 +48,9 @@ if ! command -v chromium >/dev/null 2>&1; then
     "skipped" >&2
 fi
 
-# Compile and cache the numba kernels now (a few seconds), not in the user's first command.
+# Compile and cache the numba kernels that `microslip reproduce` runs, now rather than in the
+# user's first command: about 50 s of CPU time, so about a minute on an idle 2-core machine
+# and several minutes on a busy one (it says how long it took). A single `microslip loop`
+# needs none of them; the first `sweep` compiles its batch kernels (about 30 s of CPU).
+echo "setup: compiling the numba kernels (about a minute; longer on a busy machine)" >&2
 "$VPY" -m microslip.warmup

@@ -29,6 +29,21 @@ def _modules_after(argv: list[str]) -> list[str]:
     return json.loads(out)
 
 
+#: Modules a single loop must not import (prefixes): numba and the compiled kernels (the
+#: models run as plain Python, :func:`microslip.models.kernel`), and scipy.
+COMPILED = ("numba", "scipy", "microslip.models.compiled", "microslip.models.batch_kernels",
+            "microslip.dynamics", "microslip.batch")
+
+
+@pytest.mark.parametrize("model", ["tip", "centre"])
+def test_a_single_loop_loads_no_compiled_kernel(model):
+    """``microslip loop`` within 3x of importing numpy and scipy.sparse (issue 27): it
+    imports neither numba nor scipy (benchmarks/bench_startup.py times it)."""
+    loaded = _modules_after(["loop", "--model", model, "--preset", "table1", "--json"])
+    assert "microslip.models" in loaded
+    assert [m for m in loaded if m.startswith(COMPILED)] == []
+
+
 def test_help_imports_no_command():
     loaded = _modules_after(["--help"])
     commands = [m for m in loaded if m.rsplit(".", 1)[-1] in COMMANDS

@@ -11,7 +11,6 @@ import shutil
 import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
-from microslip.meshdynamics.modes import linear_modes
 
 from microslip.cli.main import main
 from microslip.errors import ParameterError
@@ -29,6 +28,7 @@ from microslip.fe.examples import cantilever_mesh, grid_mesh
 from microslip.fe.meshfile import read_mesh
 from microslip.fe.promote import as_element, demote_mesh, promote_mesh
 from microslip.fe.refine import refine_mesh
+from microslip.meshdynamics.modes import linear_modes
 
 E, NU, RHO = 70000.0, 0.33, 2700.0
 

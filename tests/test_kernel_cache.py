@@ -7,10 +7,11 @@ import os
 
 from microslip import _kernelcache
 from microslip.models import batch_kernels, tip
+from microslip.models.compiled import compiled
 
 
 def test_kernels_use_the_folder_stamped_cache():
-    for kernel in (tip.tip_backbone, batch_kernels.tip_kernel):
+    for kernel in (compiled(tip.tip_backbone), batch_kernels.tip_kernel):
         locator = kernel._cache._impl.locator
         assert type(locator).__name__.startswith("FolderStamped")
         assert locator.get_source_stamp() == _kernelcache._folder_stamp(

@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 
 from .conventions import check_choice
 from .errors import ParameterError
+from .models.dispatch import kernel
 from .models.masing import backbone_sums, masing_energies
 from .options import ModelOptions
 from .params import ClampParams
@@ -180,7 +181,7 @@ def damping_from_backbone(backbone: Backbone,
         raise ParameterError(
             f"amplitude {f[-1]:g} N gives a peak displacement of {d[-1]:g} mm: too small to form "
             "a loop in double precision; give a larger amplitude")
-    q, q_k0, d_km1, d_k0, k0 = backbone_sums(f, d)
+    q, q_k0, d_km1, d_k0, k0 = kernel(backbone_sums, n)(f, d)
     w, u, _ = masing_energies(f[-1], d[-1], q, q_k0, d_km1, d_k0, (k0 - 1) / n, k0 / n,
                               float(backbone.stored_energy[-1]), code)
     loop = masing_loop(backbone)

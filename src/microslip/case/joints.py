@@ -22,12 +22,11 @@ Units: N, mm, MPa, N/mm, N/mm^3.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..conventions import CLAMP_MODELS
 from ..errors import ParameterError
-from ..jointspec import JointSpec, series_stiffness
+from ..jointspec import JointSpec, joint_spec
 from ..params import PRESETS, ClampParams
 from .schema import (
     ACROSS_KEYS,
@@ -101,7 +100,7 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
         unused += sorted(f"[joint.{k.split('.')[0]}]" if "." in k else k for k in clamp)
     if unused:
         raise ParameterError(f"{', '.join(unused)} not used by model {model}")
-    params, series, slope = _clamp(model, own, clamp, case_values) \
+    params, stiffness, slope = _clamp(model, own, clamp, case_values) \
         if model in CLAMP_MODELS else (None, None, None)
     if model in ("jenkins", "iwan"):
         missing = [k for k in sorted(JOINT_USES[model] - {"elements"}) if k not in own]
@@ -111,10 +110,10 @@ def _joint(number: int, table: Mapping[str, Any], case_values: Mapping[str, Any]
         raise ParameterError('joint.transverse = "fe" needs contact.stick_slope (N/mm^3, the '
                              "FE's contact stiffness), not joint.stiffness: give the stick "
                              "slope instead")
-    return JointSpec(number=number, dofs=dofs, model=model, coupling=coupling,
-                     values=MappingProxyType(own), clamp=params, series_stiffness=series,
-                     transverse=across.get("transverse"), pairing=across.get("pairing"),
-                     fe_mesh=across.get("fe_mesh"), stick_slope=slope)
+    return joint_spec(model, own, clamp=params, stiffness=stiffness, stick_slope=slope,
+                      number=number, dofs=dofs, coupling=coupling,
+                      transverse=across.get("transverse"), pairing=across.get("pairing"),
+                      fe_mesh=across.get("fe_mesh"))
 
 
 def _check_across(across: Mapping[str, Any], model: str, directions: int,
@@ -142,9 +141,10 @@ def _check_across(across: Mapping[str, Any], model: str, directions: int,
 
 
 def _clamp(model: str, own: Mapping[str, Any], clamp: Mapping[str, Any],
-           case_values: Mapping[str, Any]) -> tuple[ClampParams, float, float | None]:
-    """The clamp of a tip or centre joint, its series stiffness (N/mm) and the stick slope
-    it comes from (N/mm^3; None if ``stiffness`` is given)."""
+           case_values: Mapping[str, Any]) -> tuple[ClampParams, float | None, float | None]:
+    """The clamp of a tip or centre joint and its series spring: ``stiffness`` (N/mm) or the
+    stick slope (N/mm^3), the other None (:func:`~microslip.jointspec.joint_spec` makes the
+    series stiffness)."""
     if "preset" in clamp:
         base = PRESETS[clamp["preset"]][0].as_dict()
         values = {k: base[f] for k, f in CLAMP_KEYS.items()}
@@ -171,5 +171,4 @@ def _clamp(model: str, own: Mapping[str, Any], clamp: Mapping[str, Any],
             f"model {model} needs joint.stiffness (N/mm, a series spring) or "
             "contact.stick_slope (N/mm^3; series spring = stick slope x width x length): a "
             "bar on a rigid Coulomb foundation has no finite stiffness at zero displacement")
-    slope = float(values["contact.stick_slope"])
-    return params, series_stiffness(params, slope), slope
+    return params, None, float(values["contact.stick_slope"])

@@ -24,6 +24,7 @@ from ..conventions import (
     TRANSVERSE,
 )
 from ..errors import ParameterError
+from ..jointspec import JOINT_USES
 from ..params import PRESETS, ClampParams
 from .table import (
     OPTIONS,
@@ -180,14 +181,6 @@ JOINT_KEYS: tuple[Key, ...] = (
     *(_key("joint", o.joint_key, o) for o in OPTIONS.values() if o.joint_key is not None),
 )
 
-#: Joint model -> the keys of :data:`JOINT_KEYS` it uses besides dofs, model, coupling and
-#: the keys across (:data:`ACROSS_KEYS`, checked on their own).
-JOINT_USES: dict[str, frozenset[str]] = {
-    "jenkins": frozenset({"stiffness", "slip_force"}),
-    "iwan": frozenset({"stiffness", "slip_force", "chi", "beta", "elements"}),
-    "tip": frozenset({"stiffness", "elements"}),
-    "centre": frozenset({"stiffness", "elements"}),
-}
 
 #: The keys of a joint across (:data:`JOINT_KEYS`): transverse and what only it uses.
 ACROSS_KEYS = ("transverse", "pairing", "fe_mesh")

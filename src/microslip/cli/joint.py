@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -23,7 +22,7 @@ from ..dynamics.describing import (
 from ..dynamics.distributions import DEFAULT_ELEMENTS
 from ..dynamics.operators import IwanOperator
 from ..errors import ParameterError
-from ..jointspec import JointSpec, series_stiffness
+from ..jointspec import JOINT_USES, JointSpec, joint_spec, series_stiffness
 from ..meshdynamics.spec import joint_operator
 from ..models import MODELS
 from ..params import ClampParams
@@ -35,6 +34,16 @@ __all__ = ["JOINTS", "add_joint_options", "add_parser", "clamp_from_args", "desc
 def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float | None]:
     """The clamp of a tip or centre joint, its series spring (N/mm) and the stick slope it
     comes from (N/mm^3; None if --joint-stiffness is given)."""
+    params, stiffness, slope = _clamp_args(args)
+    if stiffness is None:
+        assert slope is not None  # exactly one of the two (checked)
+        return params, series_stiffness(params, slope), slope
+    return params, stiffness, None
+
+
+def _clamp_args(args: argparse.Namespace) -> tuple[ClampParams, float | None, float | None]:
+    """The clamp of a tip or centre joint and --joint-stiffness or --stick-slope (the
+    other None), checked."""
     params, _ = params_from_args(args, fallback_amplitude=1.0)
     if args.amplitude is not None:
         raise ParameterError("--amplitude (a load amplitude) does not apply to a joint; give "
@@ -46,21 +55,20 @@ def clamp_from_args(args: argparse.Namespace) -> tuple[ClampParams, float, float
             "a bar on a rigid Coulomb foundation has no finite stiffness at zero "
             "displacement (F ~ sqrt(d))")
     if args.stick_slope is not None:
-        slope = _positive(args.stick_slope, "--stick-slope", "N/mm^3")
-        return params, series_stiffness(params, slope), slope
+        return params, None, _positive(args.stick_slope, "--stick-slope", "N/mm^3")
     return params, args.joint_stiffness, None
 
 
-#: Joint name -> the joint options it uses (the others are refused).
-JOINTS: dict[str, frozenset[str]] = {
-    "jenkins": frozenset({"joint_stiffness", "slip_force"}),
-    "iwan": frozenset({"joint_stiffness", "slip_force", "chi", "beta", "elements"}),
-    **{m: frozenset({"joint_stiffness", "stick_slope", "elements"}) for m in MODELS},
-}
-
 #: Joint option dest -> the key of a ``[[joint]]`` table (:class:`JointSpec` values).
 _KEYS = {"joint_stiffness": "stiffness", "slip_force": "slip_force", "chi": "chi",
-         "beta": "beta"}
+         "beta": "beta", "elements": "elements"}
+
+#: Joint name -> the joint options it uses (the others are refused): those of
+#: :data:`~microslip.jointspec.JOINT_USES`, and the stick slope of a tip or centre joint.
+JOINTS: dict[str, frozenset[str]] = {
+    model: frozenset({dest for dest, key in _KEYS.items() if key in uses}
+                     | ({"stick_slope"} if model in MODELS else set()))
+    for model, uses in JOINT_USES.items()}
 
 #: Joint option dest -> flag.
 _FLAGS = {"joint_stiffness": "--joint-stiffness", "slip_force": "--slip-force", "chi": "--chi",
@@ -111,18 +119,19 @@ def spec_from_args(args: argparse.Namespace) -> JointSpec:
     if extra:
         raise ParameterError(f"{', '.join(extra)} not used by --joint {args.joint}")
     values: dict[str, Any] = {}
-    clamp, series, slope = None, None, None
+    clamp, stiffness, slope = None, None, None
     if args.joint in MODELS:
-        clamp, series, slope = clamp_from_args(args)
+        clamp, stiffness, slope = _clamp_args(args)
     else:
-        values = {key: _need(args, dest) for dest, key in _KEYS.items() if dest in uses}
+        values = {key: _need(args, dest) for dest, key in _KEYS.items()
+                  if dest in uses and dest != "elements"}
     if "elements" in uses:
         values["elements"] = elements_from_args(args)
-    return JointSpec(number=0, dofs=(), model=args.joint, coupling=getattr(args, "coupling", None),
-                     values=MappingProxyType(values), clamp=clamp, series_stiffness=series,
-                     transverse=getattr(args, "transverse", None),
-                     pairing=getattr(args, "pairing", None), fe_mesh=getattr(args, "fe_mesh", None),
-                     stick_slope=slope)
+    return joint_spec(args.joint, values, clamp=clamp, stiffness=stiffness, stick_slope=slope,
+                      coupling=getattr(args, "coupling", None),
+                      transverse=getattr(args, "transverse", None),
+                      pairing=getattr(args, "pairing", None),
+                      fe_mesh=getattr(args, "fe_mesh", None))
 
 
 def joint_from_args(args: argparse.Namespace) -> IwanOperator:

@@ -45,9 +45,13 @@ import math
 
 import numpy as np
 
+from ..contactlaw import get_contact_law
 from .kernels import njit
 
 __all__ = ["circular_periodic_kernel", "return_map"]
+
+#: The elements' contact law (:mod:`microslip.contactlaw`), compiled for these kernels.
+_law = njit(cache=True, fastmath=False, nogil=True)(get_contact_law("coulomb").return_map)
 
 #: Passes at most of the per-element fixed-point (Newton) iteration for the periodic state.
 MAX_PASSES = 200
@@ -83,17 +87,20 @@ def _skew(dx: float, dy: float, rho: float, ph: float) -> float:
 def _slip(ux: float, uy: float, zx: float, zy: float, rho: float, ph: float
           ) -> tuple[float, float, float, float, float, float]:
     """New slider (zx, zy) of a slipping step, the direction (nx, ny) of the new stretch
-    ``phi n`` (``|(n_x, rho n_y)| = 1``: the force on the circle) and (c_x, c_y). For
-    rho = 1 exactly the radial return ``u - phi (u - z) / |u - z|``."""
+    ``phi n`` (``|(n_x, rho n_y)| = 1``: the force on the circle) and (c_x, c_y).
+
+    The contact law (:mod:`microslip.contactlaw`, in x-displacement units: force over k,
+    limit phi) projects the trial force over k, skewed by the anisotropic spring to
+    ``(d_x, rho q d_y)``, radially onto the circle; for rho = 1 (q = 1) that is the law's
+    radial return of the element itself, ``z = u - phi (u - z) / |u - z|``."""
     dx = ux - zx
     dy = uy - zy
     q = _skew(dx, dy, rho, ph)
     wy = q * dy
+    fx, fy, _, _, _, _, _, nx, _, _ = _law(dx, rho * wy, 0.0, 0.0, 1.0, ph)
     norm = math.hypot(dx, rho * wy)
-    nx = dx / norm
-    ny = wy / norm
     cx = ph / norm
-    return ux - ph * nx, uy - ph * ny, nx, ny, cx, q * cx
+    return ux - fx, uy - fy / rho, nx, wy / norm, cx, q * cx
 
 
 @njit(cache=True, fastmath=False, nogil=True)

@@ -12,9 +12,10 @@ normal force):
 * open state: a node the clamping step left lifted off has a *signed* preload
   ``N_0 = -k_n g_0 <= 0`` (g_0 its gap, mm); it carries nothing (``f = 0``, its slider
   follows it) until ``k_n u_n`` closes the gap, then presses with ``N(t)`` as any node;
-* tangential: slider w (2-D), trial ``f* = k_t (u_t - w)``; ``|f*| <= mu N``: stick,
-  ``f_t = f*``; else slip along f*, ``f_t = mu N f* / |f*|``, ``w = u_t - f_t / k_t``;
-  lifted off (N = 0): ``f_t = 0``, ``w = u_t``.
+* tangential: slider w (2-D), the contact law of :mod:`microslip.contactlaw` with the
+  limit mu N: trial ``f* = k_t (u_t - w)``; ``|f*| <= mu N``: stick, ``f_t = f*``; else
+  slip along f*, ``f_t = mu N f* / |f*|``, ``w = u_t - f_t / k_t``; lifted off (N = 0):
+  ``f_t = 0``, ``w = u_t``.
 
 The same element as the built-in FE's contact node (:mod:`microslip.fe.builtin.contact`,
 :mod:`~microslip.fe.builtin.normal`: stick slope x area, k_n A_i) and as the 3-D friction
@@ -40,6 +41,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from ..contactlaw import get_contact_law
 from ..errors import ParameterError
 from ..named import result
 from ..params import check_positive
@@ -47,6 +49,9 @@ from ..params import check_positive
 __all__ = ["Contact3D"]
 
 Array = NDArray[np.float64]
+
+#: The tangential law (:mod:`microslip.contactlaw`), compiled for the element's kernel.
+_law = njit(cache=True, nogil=True)(get_contact_law("coulomb").return_map)
 
 #: Periods repeated at most until the slider's state at the period's start repeats; a
 #: slider that walks (normal and tangential motion out of phase can ratchet it, or its 2-D
@@ -86,38 +91,26 @@ def _periodic(u: Array, basis: Array, kt: float, kn: float, n0: float, mu: float
             f[t, 2] = nc - normal  # k_n u_n when closed after clamping
             for c in range(m):
                 jb[t, 2, 2, c] = kn * basis[t, c]
-            # trial force and its derivative
-            g0 = kt * (u[t, 0] - w[0])
-            g1 = kt * (u[t, 1] - w[1])
-            dg = np.zeros((2, 3, m))
-            for a in range(2):
-                for b in range(3):
-                    for c in range(m):
-                        dg[a, b, c] = -kt * dw[a, b, c]
-                for c in range(m):
-                    dg[a, a, c] += kt * basis[t, c]
-            size = math.sqrt(g0 * g0 + g1 * g1)
-            limit = mu * normal
-            if size <= limit:
-                f[t, 0], f[t, 1] = g0, g1
-                jb[t, 0:2] = dg
-                continue
-            # slip: f_t = limit g / |g|
-            e0, e1 = g0 / size, g1 / size
-            f[t, 0], f[t, 1] = limit * e0, limit * e1
-            dlimit = np.zeros((3, m))
-            for c in range(m):
-                dlimit[2, c] = -mu * kn * basis[t, c]
+            # the law at the trial force, then its derivative through the chain rule
+            fx, fy, wx, wy, txx, txy, tyy, e0, e1, slipping = _law(
+                u[t, 0], u[t, 1], w[0], w[1], kt, mu * normal)
+            f[t, 0], f[t, 1] = fx, fy
             for b in range(3):
                 for c in range(m):
-                    # d(g/|g|) = (I - e e^T) dg / |g|
-                    p = e0 * dg[0, b, c] + e1 * dg[1, b, c]
-                    d0 = (dg[0, b, c] - e0 * p) / size
-                    d1 = (dg[1, b, c] - e1 * p) / size
-                    jb[t, 0, b, c] = dlimit[b, c] * e0 + limit * d0
-                    jb[t, 1, b, c] = dlimit[b, c] * e1 + limit * d1
-            w[0] = u[t, 0] - f[t, 0] / kt
-            w[1] = u[t, 1] - f[t, 1] / kt
+                    # dg = d(u_t - w) in the coefficients; df = T dg + slipping n dlimit
+                    dg0 = -dw[0, b, c]
+                    dg1 = -dw[1, b, c]
+                    if b == 0:
+                        dg0 += basis[t, c]
+                    elif b == 1:
+                        dg1 += basis[t, c]
+                    dlimit = -mu * kn * basis[t, c] * slipping if b == 2 else 0.0
+                    jb[t, 0, b, c] = txx * dg0 + txy * dg1 + dlimit * e0
+                    jb[t, 1, b, c] = txy * dg0 + tyy * dg1 + dlimit * e1
+            if slipping == 0.0:
+                continue
+            # slip: w = u_t - f_t / k_t
+            w[0], w[1] = wx, wy
             for b in range(3):
                 for c in range(m):
                     dw[0, b, c] = -jb[t, 0, b, c] / kt

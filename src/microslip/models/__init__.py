@@ -11,31 +11,35 @@ and adding one :class:`ModelSpec` entry, which must provide:
   registry :mod:`microslip.loading`: ``"tip"`` or ``"centre"``);
 * ``macroslip_factor(options)``: the macroslip force as a multiple of mu F_N;
 * ``reading(options)``: the name of the reading of the paper it follows, or None;
-* ``backbone``: a compiled function recording the first loading of one case, with the
+* ``backbone``: a kernel (``@jit``) recording the first loading of one case, with the
   signature of :func:`~microslip.models.tip.tip_backbone` (the seven ClampParams fields
   as numbers, then the three :attr:`ModelOptions.codes`);
-* ``batch_kernel``: a compiled function running many cases with the signature of
-  :func:`~microslip.models.batch_kernels.tip_kernel`; both call the model's one scalar
+* ``batch_kernel``: a compiled function (loaded on first use) running many cases with the
+  signature of :func:`~microslip.models.batch_kernels.tip_kernel`; both call the model's one scalar
   step function (state in, state out, a per-case constants tuple), so the physics is
   written once;
 * ``layer_backbone`` and ``layer_kernel``: the same two on a contact (shear layer and
   pressure law, :mod:`~microslip.models.layered`), taking after the options' codes the
   contact's :attr:`~microslip.models.contact.Contact.kernel_args`; both call the model's one
   compiled layer step;
-* ``stored_energy``: the compiled elastic energy of a state (what strain energy ``stored``
+* ``stored_energy``: the kernel of the elastic energy of a state (what strain energy ``stored``
   reports);
 * ``exact``: the closed forms of its rigid-foundation limit (:class:`RigidLimit`).
 
 The step functions return flat tuples (state first, then what is observed): numba's parallel
-analysis fails on a nested tuple returned by a function inlined in ``prange``. numba's
-on-disk cache is stamped with the whole folder (:mod:`microslip._kernelcache`), so that a
-kernel inlining an edited step (``layered.py`` and ``batch_kernels.py`` inline those of
-``tip.py``, ``centre.py``, ``layer.py`` and ``masing.py``) is rebuilt, never loaded stale.
+analysis fails on a nested tuple returned by a function inlined in ``prange``.
+
+**Plain and compiled, one text** (issue 27). The kernels are plain Python functions marked
+``@jit`` (:mod:`._jit`; their modules do not import numba). The batch kernels and long loops
+run their compiled copies (:mod:`.compiled`, numba's on-disk cache stamped with the whole
+folder, :mod:`microslip._kernelcache`, so that a kernel inlining an edited step is rebuilt,
+never loaded stale); a short single loop runs the plain functions, which is cheaper than
+loading numba (:func:`kernel`, :data:`PLAIN_STEPS`, :mod:`.dispatch`). The two agree bit for bit.
 
 This package may import ``closedform``, ``options``, ``params``, ``results``, ``named``,
-``errors`` and ``_kernelcache``; never ``energy`` (it imports the models; the compiled Masing
-sums the kernels share with it are :mod:`.masing`, here), ``batch``, ``planar``, the FE code
-or the command line.
+``errors`` and (:mod:`.compiled`, :mod:`.batch_kernels`) ``_kernelcache``; never ``energy``
+(it imports the models; the Masing sums the kernels share with it are :mod:`.masing`,
+here), ``batch``, ``planar``, the FE code or the command line.
 
 >>> from microslip import preset, first_loading, ModelOptions
 >>> b = first_loading("tip", preset("table1"), 267.0, increments=100,
@@ -54,25 +58,24 @@ from typing import Any
 
 import numpy as np
 
-from .. import (
-    _kernelcache,  # noqa: F401  (before any kernel: the folder-stamped cache)
-    closedform,
-)
+from .. import closedform
 from ..errors import MacroslipError, ParameterError
 from ..options import ModelOptions
 from ..params import ClampParams, check_amplitude
 from ..results import Backbone
-from .batch_kernels import centre_kernel, centre_layer_kernel, tip_kernel, tip_layer_kernel
 from .centre import centre_backbone, centre_step, centre_stored_energy
 from .contact import DEFAULT_CONTACT, Contact, check_reading
+from .dispatch import LAYER_STEP, PLAIN_STEPS, kernel
 from .layered import centre_layer_backbone, tip_layer_backbone
 from .tip import tip_backbone, tip_step, tip_stored_energy
 
 __all__ = [
     "DEFAULT_CONTACT",
+    "LAYER_STEP",
     "MAX_INCREMENTS",
     "MAX_STRAIN",
     "MODELS",
+    "PLAIN_STEPS",
     "Contact",
     "ModelSpec",
     "RigidLimit",
@@ -81,6 +84,7 @@ __all__ = [
     "check_small_strain",
     "first_loading",
     "get_model",
+    "kernel",
     "macroslip_force",
     "tip_step",
 ]
@@ -124,11 +128,21 @@ class ModelSpec:
     #: Name of the reading of the paper the model follows (None: only one reading).
     reading: Callable[[ModelOptions], str | None]
     backbone: Callable[..., tuple[np.ndarray, ...]]
-    batch_kernel: Callable[..., None]
     layer_backbone: Callable[..., tuple[np.ndarray, ...]]
-    layer_kernel: Callable[..., None]
     stored_energy: Callable[..., float]
     exact: RigidLimit
+
+    @property
+    def batch_kernel(self) -> Callable[..., None]:
+        """The compiled batch kernel (:mod:`.batch_kernels`; loads numba on first use)."""
+        from .batch_kernels import BATCH_KERNELS
+        return BATCH_KERNELS[self.name][0]
+
+    @property
+    def layer_kernel(self) -> Callable[..., None]:
+        """The compiled batch kernel on a contact (:mod:`.batch_kernels`)."""
+        from .batch_kernels import BATCH_KERNELS
+        return BATCH_KERNELS[self.name][1]
 
 
 def _one(opt: ModelOptions) -> float:
@@ -157,9 +171,7 @@ MODELS: dict[str, ModelSpec] = {
         macroslip_factor=_one,
         reading=_no_reading,
         backbone=tip_backbone,
-        batch_kernel=tip_kernel,
         layer_backbone=tip_layer_backbone,
-        layer_kernel=tip_layer_kernel,
         stored_energy=tip_stored_energy,
         exact=RigidLimit(closedform.tip_displacement, closedform.tip_slip_length,
                          closedform.tip_dissipated_energy, closedform.tip_stored_energy),
@@ -173,9 +185,7 @@ MODELS: dict[str, ModelSpec] = {
         macroslip_factor=_centre_factor,
         reading=_centre_reading,
         backbone=centre_backbone,
-        batch_kernel=centre_kernel,
         layer_backbone=centre_layer_backbone,
-        layer_kernel=centre_layer_kernel,
         stored_energy=centre_stored_energy,
         exact=RigidLimit(closedform.centre_displacement, closedform.centre_slip_length,
                          closedform.centre_dissipated_energy, closedform.centre_stored_energy),
@@ -312,9 +322,10 @@ def _loading(spec: ModelSpec, params: ClampParams, f0: float, n: int, opt: Model
     args = (f0, n, p.length, p.width, p.thickness, p.modulus, p.poisson_ratio, p.friction,
             p.normal_force, *opt.codes)
     if contact is None:
-        forces, disp, stored, slip, width, thickness = spec.backbone(*args)
+        forces, disp, stored, slip, width, thickness = kernel(spec.backbone, n)(*args)
     else:
-        forces, disp, stored, slip, width, thickness = spec.layer_backbone(
+        forces, disp, stored, slip, width, thickness = kernel(spec.layer_backbone,
+                                                              n * LAYER_STEP)(
             *args, *contact.kernel_args)
     section_ok = np.all(width > 0) and np.all(thickness > 0)
     if not (np.all(np.isfinite(disp)) and section_ok):

@@ -44,12 +44,25 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from .centre import centre_constants, centre_flags, centre_step, centre_stored_energy
-from .layered import centre_layer_setup, centre_layer_step, tip_layer_setup, tip_layer_step
-from .masing import masing_energies
-from .tip import tip_constants, tip_flags, tip_step, tip_stored_energy
+# the models' steps and the Masing sums, compiled (:mod:`.compiled`), inlined per lane
+from .compiled import (
+    centre_constants,
+    centre_flags,
+    centre_layer_setup,
+    centre_layer_step,
+    centre_step,
+    centre_stored_energy,
+    masing_energies,
+    tip_constants,
+    tip_flags,
+    tip_layer_setup,
+    tip_layer_step,
+    tip_step,
+    tip_stored_energy,
+)
 
-__all__ = ["CHUNK", "centre_kernel", "centre_layer_kernel", "tip_kernel", "tip_layer_kernel"]
+__all__ = ["BATCH_KERNELS", "CHUNK", "centre_kernel", "centre_layer_kernel", "tip_kernel",
+           "tip_layer_kernel"]
 
 #: Cases per chunk (one thread works on one chunk at a time; the state fits in L1).
 CHUNK = 256
@@ -339,3 +352,8 @@ def centre_layer_kernel(amplitude, length, width, thickness, modulus, poisson_ra
             fr_prev = fr
         _write_out(lo, m, n, k0, kind, f0, d, q, q_k0, d_km1, d_k0, stored, gmin,
                    out_d0, out_w, out_u, out_eta, out_section)
+
+
+#: Model name -> its batch kernels (rigid foundation, on a contact).
+BATCH_KERNELS = {"tip": (tip_kernel, tip_layer_kernel),
+                 "centre": (centre_kernel, centre_layer_kernel)}

@@ -1,6 +1,6 @@
-"""Centre-loaded microslip model (paper, Section 2.2, Eqs 11-18): its one compiled kernel.
+"""Centre-loaded microslip model (paper, Section 2.2, Eqs 11-18): its one kernel.
 
-:func:`centre_step` is the whole recurrence of one increment of one case, a scalar ``@njit``
+:func:`centre_step` is the whole recurrence of one increment of one case, a scalar ``@jit``
 function. The batch engine (:func:`microslip.models.batch_kernels.centre_kernel`) inlines it per
 lane of a chunk of cases; :func:`centre_backbone` calls it to record the virgin curve of one
 case (:func:`microslip.first_loading`). There is no other copy of the arithmetic.
@@ -8,15 +8,14 @@ case (:func:`microslip.first_loading`). There is no other copy of the arithmetic
 
 from __future__ import annotations
 
-from numba import njit
-
+from ._jit import jit
 from .columns import backbone_columns
 
 __all__ = ["centre_backbone", "centre_constants", "centre_flags", "centre_step",
            "centre_stored_energy"]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_flags(poisson_code, length_update, reading):
     """Switches of the recurrence: (lu, t_sign, f_share, c_sign, len_share, u_share, nu_on).
 
@@ -31,7 +30,7 @@ def centre_flags(poisson_code, length_update, reading):
     return lu, t_sign, 1.0, 1.0, 1.0, 0.25, nu_on
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_constants(length, width, thickness, modulus, poisson_ratio, friction, normal_force,
                      flags):
     """Per-case constants ``l_d, u_share/(mu F_N), nu, 1/(2E), A`` followed by the unloaded
@@ -41,7 +40,7 @@ def centre_constants(length, width, thickness, modulus, poisson_ratio, friction,
             0.5 / modulus, width * thickness, 0.0, 0.0, 0.0, 0.0)
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_step(f, fp, state, c, flags):
     """Advance one case of the centre model by one force increment.
 
@@ -113,14 +112,14 @@ def centre_step(f, fp, state, c, flags):
     return dt, dc, et, ec, dn, ut, uc, gt, ht, gc
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_stored_energy(force, dt, dc):
     """Elastic energy in both halves: each carries F/2 over its slip length, whatever the
     reading, (F/2)(delta_t + delta_c) / 3, N·mm."""
     return 0.5 * force * (dt + dc) / 3.0
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def centre_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, friction,
                     normal_force, poisson_code, length_update, reading):
     """Record the first loading of one case from rest to ``f0`` in ``n`` equal increments.

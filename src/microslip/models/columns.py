@@ -9,12 +9,13 @@ rest, filled increment by increment by the caller.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from ._jit import jit
 
 __all__ = ["backbone_columns"]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def backbone_columns(n, domains, width, thickness, stored):
     """``force, displacement, stored`` of shape (n + 1,) and ``slip, width, thickness`` of
     shape (n + 1, domains) for n increments: zeros, the stored energy column filled with

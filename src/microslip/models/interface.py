@@ -39,6 +39,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import ParameterError
 from ..params import ClampParams
 from . import layer as kernel
+from .dispatch import LAYER_STEP
+from .dispatch import kernel as _run
 
 __all__ = [
     "PRESSURE_LAWS",
@@ -89,7 +91,7 @@ def _compiled_law(name: str, code: int, data: FloatArray, description: str,
         def evaluate(xi: FloatArray) -> FloatArray:
             x = np.asarray(xi, dtype=np.float64)
             flat = np.ascontiguousarray(x.reshape(-1))
-            return kernel.law_values(which, code, data, flat).reshape(x.shape)
+            return _run(kernel.law_values, flat.size)(which, code, data, flat).reshape(x.shape)
         return evaluate
 
     return PressureLaw(name, values(0), values(2), values(3), description, symmetric, code,
@@ -286,7 +288,8 @@ def backbone_force(bar: Domain, force: ArrayLike, *,
     if check and np.any(f >= bar.total):
         raise ParameterError(f"force must stay below the macroslip force {bar.total:g} N")
     flat = np.ascontiguousarray(f.reshape(-1))
-    a, d = kernel.domain_curve(bar.constants, bar.law.code, bar.law.data, flat)
+    curve = _run(kernel.domain_curve, flat.size * LAYER_STEP)
+    a, d = curve(bar.constants, bar.law.code, bar.law.data, flat)
     return a.reshape(f.shape), d.reshape(f.shape)
 
 
@@ -317,7 +320,8 @@ def _curve(domains: tuple[Domain, ...], f: FloatArray,
         (a1, d), (a2, _) = (backbone_force(first, share, check=False),
                             backbone_force(second, share, check=False))
         return np.array([a1, a2]), d
-    a1, a2, d = kernel.split_curve(first.constants, second.constants, law.code, law.data, f)
+    curve = _run(kernel.split_curve, f.size * LAYER_STEP)
+    a1, a2, d = curve(first.constants, second.constants, law.code, law.data, f)
     return np.array([a1, a2]), d
 
 

@@ -5,7 +5,7 @@ on an elastic-perfectly-plastic shear layer under a pressure law, see that modul
 the NumPy API there (:class:`~microslip.models.interface.PressureLaw`, ``virgin_curve``,
 ``masing_dissipation``), the single loop (:func:`microslip.first_loading` on a
 :class:`~microslip.models.contact.Contact`) and the batch engine's layer kernels all call
-the scalar ``@njit`` functions below.
+the scalar ``@jit`` functions below.
 
 A pressure law is ``(code, data)``: :data:`LAW_UNIFORM` (data unused), :data:`LAW_POWER`
 (``data[0] = c, b, n, w`` of p = c (1 + b |2 xi - 1|^n), w = n when n is a whole number
@@ -24,7 +24,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from ._jit import jit
 
 __all__ = ["LAW_POWER", "LAW_TABLE", "LAW_UNIFORM", "domain_constants", "domain_curve",
            "domain_force", "domain_law", "domain_point", "domain_total", "front", "law_eval",
@@ -44,7 +45,7 @@ NEWTON_ITERATIONS = 40
 MAX_ITERATIONS = 200
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def layer_k(width, thickness, modulus, poisson_ratio, stick_slope, shear_lag):
     """Layer stiffness per unit length, N/mm^2: the contact's stick slope (N/mm^3) over the
     width in series with the body's shear lag t / (3 G w) (``shear_lag`` 0 or 1); inf when
@@ -56,7 +57,7 @@ def layer_k(width, thickness, modulus, poisson_ratio, stick_slope, shear_lag):
     return math.inf if compliance == 0.0 else 1.0 / compliance
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def _segment(x, xi):
     """Index j of the table interval holding xi (np.searchsorted(x, xi, 'right') - 1, clipped
     to the first and last intervals)."""
@@ -71,7 +72,7 @@ def _segment(x, xi):
     return min(max(lo - 1, 0), x.shape[0] - 2)
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def law_eval(code, data, xi):
     """The law at xi: p (mean 1), dp/dxi (0 at a kink's apex), P = integral_0^xi p and
     PP = integral_0^xi P; a power law costs one ``pow``."""
@@ -96,11 +97,13 @@ def law_eval(code, data, xi):
     j = _segment(data[0], xi)
     e = xi - data[0, j]
     p, s = data[1, j], data[2, j]
-    return (p + s * e, s, data[3, j] + p * e + s * e ** 2 / 2,
-            data[4, j] + data[3, j] * e + p * e ** 2 / 2 + s * e ** 3 / 6)
+    # e * e * e, not e ** 3: numba compiles a whole power to these products, Python calls
+    # pow(); written out, the plain and the compiled kernel agree bit for bit
+    return (p + s * e, s, data[3, j] + p * e + s * (e * e) / 2,
+            data[4, j] + data[3, j] * e + p * (e * e) / 2 + s * (e * e * e) / 6)
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def law_values(which, code, data, xi):
     """p (``which`` 0), P (2) or PP (3) at every xi of a 1-D array: the NumPy face of the
     law (:class:`~microslip.models.interface.PressureLaw`)."""
@@ -110,7 +113,7 @@ def law_values(which, code, data, xi):
     return out
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def domain_constants(length, axial, k, limit, span, xi0, direction, code, data):
     """The flat tuple of one loaded domain (see ``interface.Domain`` for the arguments):
     ``length, axial, k, lam, limit, span, xi0, direction, P(xi0), PP(xi0), limit / span,
@@ -129,13 +132,13 @@ def domain_constants(length, axial, k, limit, span, xi0, direction, code, data):
             stiff)
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def domain_total(dom):
     """The domain's macroslip force, N."""
     return dom[11]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def domain_law(dom, code, data, s):
     """At distance s from the loaded section: q (N/mm), dq/ds (N/mm^2), Q = integral_0^s q
     (N) and R = integral_0^s Q (N mm); one evaluation of the law."""
@@ -147,7 +150,7 @@ def domain_law(dom, code, data, s):
             limit * span * (big_pp - pp0 - p0 * (xi - xi0)))
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def domain_force(dom, code, data, a):
     """F(a) = Q(a) + (q(a)/lambda) tanh(lambda (L - a)), the load that puts the slip front
     at a, and dF/da."""
@@ -159,7 +162,7 @@ def domain_force(dom, code, data, a):
     return big_q + q / lam * t, q * t * t + dq * t / lam
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def front(dom, code, data, f, guess):
     """The slip front a in (0, L] under the force f > onset, and dF/da near it.
 
@@ -196,7 +199,7 @@ def front(dom, code, data, f, guess):
     return a, slope
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def domain_point(dom, code, data, f, guess):
     """(a, d, dd/dF) of the virgin curve at force f: slip front (0 while stuck), displacement
     of the loaded section (mm) and the curve's compliance (mm/N, for the centre split)."""
@@ -212,7 +215,7 @@ def domain_point(dom, code, data, f, guess):
     return a, d, a / axial + (dq_k + (f - big_q) / axial) / slope
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def split_point(dom1, dom2, code, data, f, guess1, guess2, share):
     """Two domains in parallel under f with an asymmetric law: the share F_1 of the first at
     which both move the loaded section equally, by bracketed Newton from ``share`` (the
@@ -243,7 +246,7 @@ def split_point(dom1, dom2, code, data, f, guess1, guess2, share):
     return a1, a2, d1, s
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def domain_curve(dom, code, data, force):
     """(a, d) of one domain's virgin curve at every force of a 1-D array, each front search
     started from the extrapolation of the two before, as the models' steps do (so that the
@@ -259,7 +262,7 @@ def domain_curve(dom, code, data, force):
     return a, d
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def split_curve(dom1, dom2, code, data, force):
     """(a_1, a_2, d) of two domains in parallel at every force (:func:`split_point`, started
     as :func:`domain_curve`)."""

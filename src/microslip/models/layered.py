@@ -21,9 +21,9 @@ centre load splits F/2 per half without a search).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from ..options import POISSON_CODES
+from ._jit import jit
 from .centre import centre_constants, centre_flags, centre_step
 from .columns import backbone_columns
 from .layer import domain_constants, domain_point, layer_k, split_point
@@ -36,7 +36,7 @@ __all__ = ["centre_layer_backbone", "centre_layer_setup", "centre_layer_step",
 POISSON_OFF = POISSON_CODES["off"]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_layer_setup(length, width, thickness, modulus, poisson_ratio, friction, normal_force,
                     poisson_code, length_update, reading, stick_slope, shear_lag, code, data):
     """Per-case flags, constants and unloaded state of the tip model on a layer:
@@ -55,7 +55,7 @@ def tip_layer_setup(length, width, thickness, modulus, poisson_ratio, friction, 
             (d0, ra0, pl[4], pl[5], 0.0, 0.0))
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_layer_step(f, fp, state, c, cp, flags, plain, dom, code, data):
     """One increment of the tip model on a layer.
 
@@ -73,7 +73,7 @@ def tip_layer_step(f, fp, state, c, cp, flags, plain, dom, code, data):
     return dn, ra_new, dpn, rap_new, a_new, a_new - a, disp, slip, g
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def tip_layer_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, friction,
                        normal_force, poisson_code, length_update, reading, stick_slope,
                        shear_lag, code, data, symmetric):
@@ -100,7 +100,7 @@ def tip_layer_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, 
     return force, disp, stored, slip, w, t
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_layer_setup(length, width, thickness, modulus, poisson_ratio, friction,
                        normal_force, poisson_code, length_update, reading, stick_slope,
                        shear_lag, code, data):
@@ -126,7 +126,7 @@ def centre_layer_setup(length, width, thickness, modulus, poisson_ratio, frictio
              0.0))
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def centre_layer_step(f, fp, state, c, cp, flags, plain, tension, compression, code, data,
                       symmetric, both):
     """One increment of the centre model (physical reading) on a layer.
@@ -160,7 +160,7 @@ def centre_layer_step(f, fp, state, c, cp, flags, plain, tension, compression, c
             share - share0, disp, st, sc, gt, ht, gc)
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def centre_layer_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, friction,
                           normal_force, poisson_code, length_update, reading, stick_slope,
                           shear_lag, code, data, symmetric):

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from ._jit import jit
 
 __all__ = ["backbone_sums", "masing_energies"]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def masing_energies(f0, d0, q, q_k0, d_km1, d_k0, fr_km1, fr_k0, stored, kind):
     """W_d, U and eta of the Masing loop of one backbone from sums along the first loading.
 
@@ -71,7 +71,7 @@ def masing_energies(f0, d0, q, q_k0, d_km1, d_k0, fr_km1, fr_k0, stored, kind):
     return w, u, w / (2.0 * math.pi * u)
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def backbone_sums(force, displacement):
     """(Q, Q_k0, d_(k0-1), d_k0, k0) of :func:`masing_energies` for a sampled backbone,
     accumulated in the order of the batch kernels."""

@@ -1,6 +1,6 @@
-"""Tip-loaded microslip model (paper, Section 2.1, Eqs 2-10): its one compiled kernel.
+"""Tip-loaded microslip model (paper, Section 2.1, Eqs 2-10): its one kernel.
 
-:func:`tip_step` is the whole recurrence of one increment of one case, a scalar ``@njit``
+:func:`tip_step` is the whole recurrence of one increment of one case, a scalar ``@jit``
 function. The batch engine (:func:`microslip.models.batch_kernels.tip_kernel`) inlines it per lane
 of a chunk of cases; :func:`tip_backbone` calls it to record the virgin curve of one case
 (:func:`microslip.first_loading`). There is no other copy of the arithmetic.
@@ -8,14 +8,13 @@ of a chunk of cases; :func:`tip_backbone` calls it to record the virgin curve of
 
 from __future__ import annotations
 
-from numba import njit
-
+from ._jit import jit
 from .columns import backbone_columns
 
 __all__ = ["tip_backbone", "tip_constants", "tip_flags", "tip_step", "tip_stored_energy"]
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_flags(poisson_code, length_update, reading):
     """Switches of the recurrence from the reading: (lu, keep_prev, nu_on).
 
@@ -28,7 +27,7 @@ def tip_flags(poisson_code, length_update, reading):
     return lu, keep_prev, nu_on
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_constants(length, width, thickness, modulus, poisson_ratio, friction, normal_force,
                   flags):
     """Per-case constants and the unloaded state of one case.
@@ -41,7 +40,7 @@ def tip_constants(length, width, thickness, modulus, poisson_ratio, friction, no
             0.5 / modulus, 0.0, 1.0 / (width * thickness))
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_step(f, fp, state, c, flags):
     """Advance one case of the tip model by one force increment.
 
@@ -93,13 +92,13 @@ def tip_step(f, fp, state, c, flags):
     return dn, ra_new, u, g
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@jit(inline="always")
 def tip_stored_energy(force, d):
     """Elastic energy in the bar, F delta / 3 (linear fall of the axial force over u), N·mm."""
     return force * d / 3.0
 
 
-@njit(cache=True, fastmath=False)
+@jit()
 def tip_backbone(f0, n, length, width, thickness, modulus, poisson_ratio, friction,
                  normal_force, poisson_code, length_update, reading):
     """Record the first loading of one case from rest to ``f0`` in ``n`` equal increments.

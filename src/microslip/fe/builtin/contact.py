@@ -1,5 +1,9 @@
 """Nodal Coulomb friction on a rigid base: circular limit, penalty stick, radial return.
 
+The law itself is :data:`microslip.contactlaw.CONTACT_LAWS` (``coulomb``), written once for
+this solver and the harmonic-balance elements; here it is applied to every contact node at
+once and its results named.
+
 Each contact node i carries a tangential spring of stiffness ``k_i = lambda A_i`` (the stick
 slope lambda in N/mm^3, as CalculiX's ``*FRICTION`` second value, times the node's tributary
 area A_i in mm^2) in series with a Coulomb slider whose limit is the *circle*
@@ -29,10 +33,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ...contactlaw import get_contact_law
+
 __all__ = ["FrictionResponse", "friction_dissipation", "return_map"]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
+
+#: The nodes' contact law.
+LAW = get_contact_law("coulomb")
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,19 +93,12 @@ def return_map(g: FloatArray, slip: FloatArray, stiffness: FloatArray, limit: Fl
     >>> r.slipping.tolist(), r.force.round(3).tolist(), r.slip.round(3).tolist()
     ([False, True], [[0.5, 0.0], [0.6, 0.8]], [[0.0, 0.0], [2.4, 3.2]])
     """
-    trial = stiffness[:, None] * (g - slip)
-    norm = np.hypot(trial[:, 0], trial[:, 1])
-    slipping = norm > limit
-    scale = np.where(slipping, limit / np.where(slipping, norm, 1.0), 1.0)
-    force = trial * scale[:, None]
-    n = trial / np.where(norm > 0.0, norm, 1.0)[:, None]
-    ks = stiffness * scale
-    sl = slipping.astype(float)
-    tangent = np.empty((g.shape[0], 3))
-    tangent[:, 0] = ks * (1.0 - sl * n[:, 0] * n[:, 0])
-    tangent[:, 1] = -ks * sl * n[:, 0] * n[:, 1]
-    tangent[:, 2] = ks * (1.0 - sl * n[:, 1] * n[:, 1])
-    new_slip = np.where(slipping[:, None], g - force / stiffness[:, None], slip)
+    fx, fy, sx, sy, txx, txy, tyy, _, _, sl = LAW.return_map(
+        g[:, 0], g[:, 1], slip[:, 0], slip[:, 1], stiffness, limit)
+    force = np.column_stack([fx, fy])
+    tangent = np.column_stack([txx, txy, tyy])
+    slipping = sl > 0.0
+    new_slip = np.column_stack([sx, sy])
     return FrictionResponse(force, tangent, slipping, new_slip)
 
 
