@@ -335,6 +335,10 @@ _OPTIONS: tuple[Option, ...] = (
     Option("response_set", "set of the mesh whose mean displacement along the mode is the "
            "amplitude", "", "a set name of the mesh file", type=set_name, metavar="NAME",
            key="mesh.response_set", check=text, scope="mesh"),
+    # the interface-reduced model of modal --mesh (--solver interface; issue 28, item 4)
+    Option("interface_modes", "interface: characteristic constraint modes of the contact "
+           "kept (the studied mode's first-loading shapes come on top)", "", "[1, the "
+           "contact's boundary dofs]", type=int, metavar="N", scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

@@ -19,6 +19,7 @@ from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
 from .ownmesh import given
 
 __all__ = [
+    "DEFAULT_INTERFACE_MODES",
     "DEFAULT_ROM_MODES",
     "MAX_MODE",
     "NOT_WITH_MESH",
@@ -45,6 +46,9 @@ REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
 #: Fixed-interface modes of the ROM unless --rom-modes says (the cantilever's stuck
 #: frequencies then equal the full FE's to about 1e-6).
 DEFAULT_ROM_MODES = 60
+#: Characteristic constraint modes of the interface-reduced model unless --interface-modes
+#: says (the studied mode's first-loading shapes come on top; docs/interpretation.md 14).
+DEFAULT_INTERFACE_MODES = 10
 #: The whole joint's backbones (the keys of :data:`microslip.fe.builtin.wholejoint.BACKBONES`,
 #: named here so that the parser does not import the FE; a test holds the two equal).
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")

@@ -16,9 +16,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..case.table import add_option
 from ..errors import ParameterError
 from .common import check_plot, print_json
 from .meshstructure import (
+    DEFAULT_INTERFACE_MODES,
     DEFAULT_ROM_MODES,
     MeshModes,
     add_mesh_structure_options,
@@ -35,7 +37,7 @@ __all__ = ["MESH_SOLVERS", "add_modal_mesh_options", "run_modal_mesh"]
 # frf --mesh).
 #: Options of --mesh only.
 MESH_ONLY = ("contact_set", "clamp_set", "normal_contact", "normal_slope", "density",
-             "response_set", "solver", "workers", "rom_modes", "backbone")
+             "response_set", "solver", "workers", "rom_modes", "backbone", "interface_modes")
 #: ``--solver`` that runs every solver of :data:`MESH_SOLVERS` (:mod:`.modalcompare`).
 ALL = "all"
 
@@ -48,6 +50,8 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                    + f"; {ALL}: every one of them side by side, with a verdict on each "
                    "against the full FE (default fe)")
     add_reduced_model_options(g)
+    add_option(g, "interface_modes", default=None,
+               note=f"default {DEFAULT_INTERFACE_MODES}")
     g.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes for the amplitudes (independent runs; default 1)")
     g.add_argument("--scheduler", metavar="ADDRESS", default=None,
@@ -272,6 +276,37 @@ def _rom(study: MeshStudy) -> MeshCurve:
         warnings=[])
 
 
+def _interface(study: MeshStudy) -> MeshCurve:
+    """EPMC on the interface-reduced model (:mod:`microslip.fe.builtin.interfacerom`)."""
+    from ..fe.builtin.interfacerom import interface_epmc
+    from .structure import balance_from_args
+
+    args = study.args
+    harmonics, samples = balance_from_args(args)
+    model, curve = interface_epmc(
+        study.model, args.density, study.mode.direction, study.number - 1, study.amplitudes,
+        harmonics, samples, response_set=args.response_set,
+        rom_modes=args.rom_modes or DEFAULT_ROM_MODES,
+        interface_modes=args.interface_modes or DEFAULT_INTERFACE_MODES)
+    count = len(study.stuck.frequencies_Hz)
+    return MeshCurve(
+        label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
+              f"{model.interface_modes} interface modes for {len(model.rom.slip_force)} "
+              f"contact nodes, {curve.harmonics} harmonics)",
+        columns=dict(BASE_COLUMNS),
+        values={"amplitude_mm": [float(a) for a in curve.amplitude],
+                "frequency_Hz": [float(f) for f in curve.frequency],
+                "damping_ratio": [float(z) for z in curve.damping_ratio]},
+        extra={"interface_frequencies_Hz": [float(f) for f in model.stuck_frequencies(count)],
+               "interface": {"dofs": model.dofs, "interface_modes": model.interface_modes,
+                             "characteristic_modes": args.interface_modes
+                             or DEFAULT_INTERFACE_MODES, "basis": model.basis,
+                             "fixed_interface_modes": model.rom.modes,
+                             "contact_nodes": len(model.rom.slip_force),
+                             "harmonics": curve.harmonics, "samples": curve.samples}},
+        warnings=[])
+
+
 def _joint(study: MeshStudy) -> MeshCurve:
     """EPMC on the whole-joint model (:mod:`microslip.fe.builtin.wholejoint`) at the grid's
     amplitudes: the ROM reduced to the interface's rigid motion, one joint from the FE's
@@ -327,6 +362,11 @@ MESH_SOLVERS: dict[str, MeshSolver] = {
     "rom": MeshSolver("EPMC by harmonic balance on a Craig-Bampton model that keeps every "
                       "contact node with the FE's own contact law (--rom-modes "
                       "fixed-interface modes)", ("harmonics", "rom_modes"), _rom),
+    "interface": MeshSolver("EPMC by harmonic balance on the ROM with its contact reduced "
+                            "to a few interface modes (--interface-modes characteristic "
+                            "constraint modes and the mode's first-loading shapes), every "
+                            "contact node keeping its own law",
+                            ("harmonics", "rom_modes", "interface_modes"), _interface),
     "joint": MeshSolver("EPMC by harmonic balance on the whole-joint model: the contact "
                         "reduced to its rigid motion in its plane, one joint whose backbone "
                         "is the FE's first loading by the mode (or --backbone tip|centre)",

@@ -41,22 +41,26 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
+from ...dynamics.modal import ModalCurve
 from ...dynamics.nodecontacts import NodeContacts
 from ...dynamics.structure import JointLink, Structure
 from ...errors import ParameterError
-from .reduce import SI_FACTOR, Rom
+from .meshmodel import MeshModel
+from .reduce import SI_FACTOR, Rom, build_rom
 
-__all__ = ["DEFAULT_INTERFACE_MODES", "InterfaceRom", "build_interface_rom",
-           "characteristic_modes", "first_loading_shapes", "loading_shapes"]
+__all__ = [
+    "InterfaceRom",
+    "build_interface_rom",
+    "characteristic_modes",
+    "first_loading_shapes",
+    "interface_epmc",
+    "loading_shapes",
+]
 
 FloatArray = NDArray[np.float64]
-
-#: Characteristic constraint modes kept unless told (the first-loading shapes of the studied
-#: mode come on top; docs/interpretation.md, issue 28 item 4).
-DEFAULT_INTERFACE_MODES = 10
 
 
 @dataclass(frozen=True, eq=False)
@@ -271,8 +275,7 @@ def loading_shapes(rom: Rom, shapes: FloatArray, mode: int) -> FloatArray:
 RANK_TOLERANCE = 1e-8
 
 
-def build_interface_rom(rom: Rom, count: int = DEFAULT_INTERFACE_MODES,
-                        mode: int | None = None) -> InterfaceRom:
+def build_interface_rom(rom: Rom, count: int, mode: int | None = None) -> InterfaceRom:
     """The ROM ``rom`` with its boundary reduced to ``count`` characteristic constraint
     modes (at most the boundary dofs; all of them: the ROM itself in other coordinates),
     and, if ``mode`` (0-based, by stuck frequency) is given, the first-loading shapes of
@@ -300,3 +303,24 @@ def build_interface_rom(rom: Rom, count: int = DEFAULT_INTERFACE_MODES,
     m[n:, n:] = m_r[nb:, nb:]
     return InterfaceRom(rom=rom, shapes=g, mass=m, stiffness=k, basis=basis,
                         build_s=time.perf_counter() - t0)
+
+
+def interface_epmc(model: MeshModel, density_kg_m3: float, direction: FloatArray, mode: int,
+                   amplitudes: ArrayLike, harmonics: int, samples: int, *,
+                   response_set: str | None, rom_modes: int, interface_modes: int
+                   ) -> tuple[InterfaceRom, ModalCurve]:
+    """The interface-reduced model of ``model`` for stuck mode ``mode`` (0-based) and its
+    EPMC curve at ``amplitudes`` (mm, of the response set's mean motion along the global
+    ``direction``): the contact-node ROM with ``rom_modes`` fixed-interface modes, reduced
+    to ``interface_modes`` characteristic constraint modes plus the mode's first-loading
+    shapes; the odd-harmonic balance with ``fixed`` normal contact (odd node forces), every
+    harmonic with ``penalty``."""
+    from ...dynamics.modal import epmc
+    from ...dynamics.modal_odd import epmc_odd
+
+    rom = build_rom(model, density_kg_m3, modes=rom_modes, response_set=response_set)
+    reduced = build_interface_rom(rom, interface_modes, mode)
+    out = reduced.output
+    structure = reduced.structure(None if out is None else np.asarray(direction) @ out)
+    method = epmc_odd if rom.per_node == 2 else epmc
+    return reduced, method(structure, np.asarray(amplitudes), harmonics, samples, mode)
