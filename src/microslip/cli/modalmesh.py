@@ -287,7 +287,8 @@ def _interface(study: MeshStudy) -> MeshCurve:
         study.model, args.density, study.mode.direction, study.number - 1, study.amplitudes,
         harmonics, samples, response_set=args.response_set,
         rom_modes=args.rom_modes or DEFAULT_ROM_MODES,
-        interface_modes=args.interface_modes or DEFAULT_INTERFACE_MODES)
+        interface_modes=DEFAULT_INTERFACE_MODES if args.interface_modes is None
+        else args.interface_modes)
     count = len(study.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
@@ -299,8 +300,8 @@ def _interface(study: MeshStudy) -> MeshCurve:
                 "damping_ratio": [float(z) for z in curve.damping_ratio]},
         extra={"interface_frequencies_Hz": [float(f) for f in model.stuck_frequencies(count)],
                "interface": {"dofs": model.dofs, "interface_modes": model.interface_modes,
-                             "characteristic_modes": args.interface_modes
-                             or DEFAULT_INTERFACE_MODES, "basis": model.basis,
+                             "characteristic_modes": model.characteristic_modes,
+                             "basis": model.basis,
                              "fixed_interface_modes": model.rom.modes,
                              "contact_nodes": len(model.rom.slip_force),
                              "harmonics": curve.harmonics, "samples": curve.samples}},

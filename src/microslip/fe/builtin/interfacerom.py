@@ -81,6 +81,8 @@ class InterfaceRom:
         first-loading shapes).
     build_s : float
         Seconds to reduce (the ROM's own build not included).
+    characteristic_modes : int
+        Of the shapes, the characteristic constraint modes (the first ones).
     """
 
     rom: Rom = field(repr=False)
@@ -89,6 +91,7 @@ class InterfaceRom:
     stiffness: FloatArray = field(repr=False)
     basis: str
     build_s: float
+    characteristic_modes: int = 0
 
     @property
     def interface_modes(self) -> int:
@@ -255,23 +258,25 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
 def loading_shapes(rom: Rom, shapes: FloatArray, mode: int) -> FloatArray:
     """The first-loading shapes of stuck mode ``mode`` (:func:`first_loading_shapes`) that
     ``shapes`` (n_b, n) do not already span: made M_bb~-orthogonal to them, then the
-    singular vectors above :data:`RANK_TOLERANCE` of the largest, each scaled to a largest
+    singular vectors above :data:`RANK_TOLERANCE` of the shapes' own norm, each scaled to a largest
     entry of +1 (n_b, <= :data:`LOADING_LEVELS`)."""
     nb = rom.boundary.size
     x = first_loading_shapes(rom, mode)
     if x.shape[1] == 0:
         return x
     m = rom.mass[:nb, :nb]
+    size = float(np.linalg.norm(x, 2))
     if shapes.shape[1]:
         mg = m @ shapes
         x = x - shapes @ np.linalg.solve(shapes.T @ mg, mg.T @ x)
     u, sv, _ = np.linalg.svd(x, full_matrices=False)
-    keep = int(np.sum(sv > RANK_TOLERANCE * sv[0])) if sv.size and sv[0] > 0.0 else 0
+    keep = int(np.sum(sv > RANK_TOLERANCE * size))  # what the shapes leave, not round-off
     u = u[:, :keep]
     return np.asarray(u / u[np.argmax(np.abs(u), axis=0), np.arange(keep)])
 
 
-#: Singular values of the first-loading shapes kept, relative to the largest.
+#: Singular values of the first-loading shapes kept, relative to their norm before the
+#: characteristic modes are taken out.
 RANK_TOLERANCE = 1e-8
 
 
@@ -302,7 +307,7 @@ def build_interface_rom(rom: Rom, count: int, mode: int | None = None) -> Interf
     m[n:, :n] = m[:n, n:].T
     m[n:, n:] = m_r[nb:, nb:]
     return InterfaceRom(rom=rom, shapes=g, mass=m, stiffness=k, basis=basis,
-                        build_s=time.perf_counter() - t0)
+                        build_s=time.perf_counter() - t0, characteristic_modes=int(count))
 
 
 def interface_epmc(model: MeshModel, density_kg_m3: float, direction: FloatArray, mode: int,
