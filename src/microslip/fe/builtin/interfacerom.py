@@ -44,6 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import eigh
 
+from ...blas import single_threaded_blas
 from ...dynamics.modal import ModalCurve
 from ...dynamics.nodecontacts import NodeContacts
 from ...dynamics.structure import JointLink, Structure
@@ -212,7 +213,7 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
     q = float(np.min(phi_slip / np.where(reach > 0.0, reach, np.inf)))
     z = np.zeros((kt.size, 2))
-    u = stuck.reshape(-1) * 0.0
+    u = np.zeros(nb)
     shapes = []
     for _ in range(levels):
         q *= LOADING_STEP
@@ -286,12 +287,15 @@ def build_interface_rom(rom: Rom, count: int, mode: int | None = None) -> Interf
     and, if ``mode`` (0-based, by stuck frequency) is given, the first-loading shapes of
     that mode besides (:func:`loading_shapes`)."""
     t0 = time.perf_counter()
-    g = characteristic_modes(rom, count)[1]
-    basis = "cc"
-    if mode is not None:
-        extra = loading_shapes(rom, g, mode)
-        g = np.column_stack([g, extra])
-        basis = f"cc+loading{mode + 1}"
+    # dense solves of the boundary's size: a threaded BLAS only fights for the cores there
+    # (24x6x2 on a loaded 2-core machine: the first loading 6 s, single-threaded 0.14 s)
+    with single_threaded_blas():
+        g = characteristic_modes(rom, count)[1]
+        basis = "cc"
+        if mode is not None:
+            extra = loading_shapes(rom, g, mode)
+            g = np.column_stack([g, extra])
+            basis = f"cc+loading{mode + 1}"
     nb = rom.boundary.size
     n = g.shape[1]
     k_r, m_r = rom.stiffness, rom.mass
