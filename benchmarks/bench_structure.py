@@ -23,10 +23,11 @@ model's set-up, the assembly and the clamping step, is timed apart and not count
 * ``--penalty``, beyond the targets, on 24x6x2: the ROM's EPMC with ``penalty`` normal
   contact (a 3-D contact element per node, normal slope 1e6 N/mm^3), on every harmonic
   (the odd-harmonic balance refuses it: the normal preload makes its force not odd);
-* interface model (issue 28, item 5): the ten stuck modes, the ROM build (20 fixed-interface
-  modes), its reduction to 10 characteristic constraint modes plus mode 2's first-loading
-  shapes and the EPMC of mode 2 over 20 amplitudes, 7 harmonics, one row (target 15 s on
-  48x12x4, 1.5 s on 24x6x2), each stage's time and resident peak in the note;
+* interface model (issue 28, item 5): the ten stuck modes, the interface model built on the
+  full FE directly (20 fixed-interface modes, 10 characteristic constraint modes plus mode
+  2's first-loading shapes; no contact-node ROM) and the EPMC of mode 2 over 20
+  amplitudes, 7 harmonics, one row (target 15 s on 48x12x4, 1.5 s on 24x6x2), each stage's
+  time and resident peak in the note;
 * ``--large``: the interface model's row on the 96x24x12 mesh (about 94k DOF; 120 s, 4 GB;
   stopped after 30 min, with the stages it finished);
 * ``--large``: the 96x24x6 mesh (about 50k DOF): modes, ROM build and one QSMA amplitude
@@ -194,14 +195,15 @@ def child(row: str, counts: tuple[int, int, int]) -> dict[str, Any]:
 
 
 def _interface_row(model: Any, out: dict[str, Any]) -> dict[str, Any]:
-    """The interface model's row: the ten stuck modes, the ROM build (``INTERFACE[0]``
-    fixed-interface modes) and its reduction to ``INTERFACE[1]`` characteristic modes plus
-    mode 2's first-loading shapes, and the EPMC of mode 2 over 20 amplitudes with 7
+    """The interface model's row: the ten stuck modes, the interface model built on the full
+    FE (:func:`~microslip.fe.builtin.interfacerom.build_interface_model`: ``INTERFACE[0]``
+    fixed-interface modes, ``INTERFACE[1]`` static characteristic modes plus mode 2's
+    first-loading shapes; no contact-node ROM), and the EPMC of mode 2 over 20 amplitudes with 7
     harmonics (the kernels compiled before the clock, on a tiny model). Each stage's time
     and resident peak; a JSON line after each stage, so that a row stopped by its timeout
     still shows the stages it finished."""
     from microslip.dynamics.modal_odd import epmc_odd
-    from microslip.fe.builtin.interfacerom import build_interface_rom
+    from microslip.fe.builtin.interfacerom import build_interface_model, build_interface_rom
     from microslip.fe.builtin.modes import linear_modes
     from microslip.fe.builtin.reduce import build_rom
 
@@ -228,10 +230,8 @@ def _interface_row(model: Any, out: dict[str, Any]) -> dict[str, Any]:
     modes = linear_modes(model, RHO, 10, response_set="response")
     stage("modes", t0)
     t0 = time.perf_counter()
-    rom = build_rom(model, RHO, modes=INTERFACE[0], response_set="response")
-    stage(f"ROM ({rom.dofs} DOF)", t0)
-    t0 = time.perf_counter()
-    reduced = build_interface_rom(rom, INTERFACE[1], mode=1)
+    reduced = build_interface_model(model, RHO, INTERFACE[1], INTERFACE[0], modes.select(2),
+                                    "response")
     stage(f"reduction ({reduced.dofs} DOF)", t0)
     assert reduced.output is not None
     s = reduced.structure(modes.select(2).direction @ reduced.output)

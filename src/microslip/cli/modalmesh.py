@@ -284,15 +284,15 @@ def _interface(study: MeshStudy) -> MeshCurve:
     args = study.args
     harmonics, samples = balance_from_args(args)
     model, curve = interface_epmc(
-        study.model, args.density, study.mode.direction, study.number - 1, study.amplitudes,
-        harmonics, samples, response_set=args.response_set,
+        study.model, args.density, study.mode, study.amplitudes, harmonics, samples,
+        response_set=args.response_set,
         rom_modes=args.rom_modes or DEFAULT_ROM_MODES,
         interface_modes=DEFAULT_INTERFACE_MODES if args.interface_modes is None
         else args.interface_modes)
     count = len(study.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
-              f"{model.interface_modes} interface modes for {len(model.rom.slip_force)} "
+              f"{model.interface_modes} interface modes for {model.contact_nodes} "
               f"contact nodes, {curve.harmonics} harmonics)",
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": [float(a) for a in curve.amplitude],
@@ -302,8 +302,8 @@ def _interface(study: MeshStudy) -> MeshCurve:
                "interface": {"dofs": model.dofs, "interface_modes": model.interface_modes,
                              "characteristic_modes": model.characteristic_modes,
                              "basis": model.basis,
-                             "fixed_interface_modes": model.rom.modes,
-                             "contact_nodes": len(model.rom.slip_force),
+                             "fixed_interface_modes": model.fixed_interface_modes,
+                             "contact_nodes": model.contact_nodes,
                              "harmonics": curve.harmonics, "samples": curve.samples}},
         warnings=[])
 

@@ -50,7 +50,8 @@ from ...dynamics.nodecontacts import NodeContacts
 from ...dynamics.structure import JointLink, Structure
 from ...errors import ParameterError
 from .meshmodel import MeshModel
-from .reduce import SI_FACTOR, Rom, build_rom
+from .modes import Mode
+from .reduce import SI_FACTOR, Rom, build_rom, clamped_stick_force, full_mass
 
 __all__ = [
     "InterfaceRom",
@@ -66,33 +67,52 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True, eq=False)
 class InterfaceRom:
-    """A contact-node ROM with its boundary reduced to a few interface modes.
+    """A clamped body reduced to a few interface modes and fixed-interface modes, every
+    contact node keeping its own law.
 
     Attributes
     ----------
-    rom : Rom
-        The Craig-Bampton model it reduces (its contact laws, its fixed-interface modes).
     shapes : ndarray, shape (n_b, n)
-        G: boundary dofs (:attr:`Rom.boundary` order) per unit interface coordinate, mm/mm
-        (largest entry 1).
+        G: the boundary dofs (node-major: e1, e2 (, e3) of each contact node, as
+        :attr:`.reduce.Rom.boundary`) per unit interface coordinate, mm/mm (largest entry 1).
     mass, stiffness : ndarray, shape (n + n_m, n + n_m)
-        M (t) and K (N/mm, the contact removed) on ``[eta, modal coordinates]``.
+        M (t) and K (N/mm, the contact removed) on ``[eta, fixed-interface modal
+        coordinates]``.
+    output : ndarray, shape (3, n + n_m) or None
+        The response set's mean displacement along global x, y, z per unit coordinate.
+    contact_stiffness, slip_force, normal_stiffness : ndarray, shape (n_c,)
+        lambda A_i (N/mm), mu N_i (N), k_n A_i (N/mm; zeros with ``fixed``) per node.
+    friction : float
+        mu.
+    stick_force : ndarray, shape (n_c, 2) or None
+        The clamping step's tangential force per node (``penalty``), N.
+    per_node : int
+        Boundary dofs per node: 2 (``fixed``) or 3 (``penalty``).
+    fixed_interface_modes : int
+        n_m.
     basis : str
         ``cc`` (characteristic constraint modes) or ``cc+loadingK`` (and mode K's
         first-loading shapes).
     build_s : float
-        Seconds to reduce (the ROM's own build not included).
+        Seconds to reduce (a contact-node ROM's own build not included).
     characteristic_modes : int
         Of the shapes, the characteristic constraint modes (the first ones).
     """
 
-    rom: Rom = field(repr=False)
     shapes: FloatArray = field(repr=False)
     mass: FloatArray = field(repr=False)
     stiffness: FloatArray = field(repr=False)
+    output: FloatArray | None = field(repr=False)
+    contact_stiffness: FloatArray = field(repr=False)
+    slip_force: FloatArray = field(repr=False)
+    normal_stiffness: FloatArray = field(repr=False)
+    friction: float
+    stick_force: FloatArray | None = field(repr=False)
+    per_node: int
+    fixed_interface_modes: int
     basis: str
     build_s: float
-    characteristic_modes: int = 0
+    characteristic_modes: int
 
     @property
     def interface_modes(self) -> int:
@@ -105,36 +125,23 @@ class InterfaceRom:
         return int(self.mass.shape[0])
 
     @property
-    def output(self) -> FloatArray | None:
-        """(3, n + n_m): the response set's mean displacement along global x, y, z per unit
-        coordinate, or None (the ROM has no response set)."""
-        if self.rom.output is None:
-            return None
-        return np.asarray(self.rom.output @ self._transform())
-
-    def _transform(self) -> FloatArray:
-        """T (n_b + n_m, n + n_m): the ROM's coordinates per unit coordinate of this one."""
-        nb, n, nm = self.shapes.shape[0], self.interface_modes, self.rom.modes
-        t = np.zeros((nb + nm, n + nm))
-        t[:nb, :n] = self.shapes
-        t[nb:, n:] = np.eye(nm)
-        return t
+    def contact_nodes(self) -> int:
+        """Contact nodes, each with its own law."""
+        return int(self.slip_force.size)
 
     def contacts(self) -> NodeContacts:
         """Every contact node's law on the interface coordinates."""
-        r = self.rom
-        if r.per_node == 3:
-            return NodeContacts(self.shapes, r.contact_stiffness, r.slip_force,
-                                normal_stiffness=r.normal_stiffness, friction=r.friction,
-                                stick_force=r.stick_force)
-        return NodeContacts(self.shapes, r.contact_stiffness, r.slip_force)
+        if self.per_node == 3:
+            return NodeContacts(self.shapes, self.contact_stiffness, self.slip_force,
+                                normal_stiffness=self.normal_stiffness, friction=self.friction,
+                                stick_force=self.stick_force)
+        return NodeContacts(self.shapes, self.contact_stiffness, self.slip_force)
 
     def stuck_stiffness(self) -> FloatArray:
         """K with every node stuck, N/mm."""
         k = np.array(self.stiffness)
         n = self.interface_modes
-        g = self.shapes
-        k[:n, :n] += g.T @ (self.rom.contact_springs()[:g.shape[0], None] * g)
+        k[:n, :n] += self.contacts().stuck_stiffness
         return k
 
     def stuck_frequencies(self, count: int | None = None) -> FloatArray:
@@ -167,9 +174,7 @@ def characteristic_modes(rom: Rom, count: int) -> tuple[FloatArray, FloatArray]:
     contact stuck: eigenvalues (rad/s)^2 and shapes (n_b, count), each scaled to a largest
     entry of +1."""
     nb = rom.boundary.size
-    if not (isinstance(count, (int, np.integer)) and 1 <= count <= nb):
-        raise ParameterError(f"interface modes must be an integer in [1, {nb}] (the contact's "
-                             f"{nb} boundary dofs), got {count!r}")
+    count = _count(count, nb)
     k = rom.stiffness[:nb, :nb] + np.diag(rom.contact_springs()[:nb])
     lam, vec = eigh(k, rom.mass[:nb, :nb], subset_by_index=[0, int(count) - 1])
     big = np.argmax(np.abs(vec), axis=0)
@@ -201,15 +206,25 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
     subspace, the model's own law is exact). Semi-smooth Newton per level (dense, n_b
     unknowns), load levels ``q_1 LOADING_STEP^k`` from the first slip q_1 while a node
     sticks (:data:`LOADING_STOP`)."""
-    nb, d = rom.boundary.size, rom.per_node
+    nb = rom.boundary.size
     springs = rom.contact_springs()
-    k_b = rom.stiffness[:nb, :nb]
-    kc = springs[:nb]
     _, vec = eigh(rom.stiffness + np.diag(springs), rom.mass, subset_by_index=[mode, mode])
     p = (rom.mass @ vec[:, 0])[:nb]
-    kt, s = rom.contact_stiffness, rom.slip_force
+    return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
+                          rom.normal_stiffness if rom.per_node == 3 else None, levels)
+
+
+def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
+                   kn: FloatArray | None, levels: int = LOADING_LEVELS) -> FloatArray:
+    """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
+    :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None."""
+    nb = p.size
+    d = 2 if kn is None else 3
+    kc = np.repeat(kt[:, None], d, axis=1)
+    if kn is not None:
+        kc[:, 2] = kn
     phi_slip = s / kt
-    stuck = np.linalg.solve(k_b + np.diag(kc), p).reshape(-1, d)[:, :2]
+    stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
     q = float(np.min(phi_slip / np.where(reach > 0.0, reach, np.inf)))
     z = np.zeros((kt.size, 2))
@@ -227,7 +242,7 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
             force = np.zeros((kt.size, d))
             force[:, :2] = (kt * scale)[:, None] * t
             if d == 3:
-                force[:, 2] = rom.normal_stiffness * u.reshape(-1, d)[:, 2]
+                force[:, 2] = kn * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
             if np.max(np.abs(res)) <= 1e-10 * q * np.max(np.abs(p)):
                 ok = True
@@ -242,7 +257,7 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
                 for b in range(2):
                     tan[idx + a, idx + b] += blocks[:, a, b]
             if d == 3:
-                tan[idx + 2, idx + 2] += rom.normal_stiffness
+                tan[idx + 2, idx + 2] += kn
             u = u - np.linalg.solve(tan, res)
         if not ok:
             break
@@ -258,14 +273,16 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
 
 def loading_shapes(rom: Rom, shapes: FloatArray, mode: int) -> FloatArray:
     """The first-loading shapes of stuck mode ``mode`` (:func:`first_loading_shapes`) that
-    ``shapes`` (n_b, n) do not already span: made M_bb~-orthogonal to them, then the
-    singular vectors above :data:`RANK_TOLERANCE` of the shapes' own norm, each scaled to a largest
-    entry of +1 (n_b, <= :data:`LOADING_LEVELS`)."""
+    ``shapes`` (n_b, n) do not already span (:func:`_new_directions` in M_bb~)."""
     nb = rom.boundary.size
-    x = first_loading_shapes(rom, mode)
+    return _new_directions(first_loading_shapes(rom, mode), shapes, rom.mass[:nb, :nb])
+
+
+def _new_directions(x: FloatArray, shapes: FloatArray, m: FloatArray) -> FloatArray:
+    """The fields ``x`` made m-orthogonal to ``shapes``, then their singular vectors above
+    :data:`RANK_TOLERANCE` of the fields' own norm, each scaled to a largest entry of +1."""
     if x.shape[1] == 0:
         return x
-    m = rom.mass[:nb, :nb]
     size = float(np.linalg.norm(x, 2))
     if shapes.shape[1]:
         mg = m @ shapes
@@ -310,26 +327,144 @@ def build_interface_rom(rom: Rom, count: int, mode: int | None = None) -> Interf
     m[:n, n:] = g.T @ m_r[:nb, nb:]
     m[n:, :n] = m[:n, n:].T
     m[n:, n:] = m_r[nb:, nb:]
-    return InterfaceRom(rom=rom, shapes=g, mass=m, stiffness=k, basis=basis,
+    t = np.zeros((nb + rom.modes, size))
+    t[:nb, :n] = g
+    t[nb:, n:] = np.eye(rom.modes)
+    return InterfaceRom(shapes=g, mass=m, stiffness=k,
+                        output=None if rom.output is None else np.asarray(rom.output @ t),
+                        contact_stiffness=rom.contact_stiffness, slip_force=rom.slip_force,
+                        normal_stiffness=rom.normal_stiffness, friction=rom.friction,
+                        stick_force=rom.stick_force, per_node=rom.per_node,
+                        fixed_interface_modes=rom.modes, basis=basis,
                         build_s=time.perf_counter() - t0, characteristic_modes=int(count))
 
 
-def interface_epmc(model: MeshModel, density_kg_m3: float, direction: FloatArray, mode: int,
-                   amplitudes: ArrayLike, harmonics: int, samples: int, *,
-                   response_set: str | None, rom_modes: int, interface_modes: int
-                   ) -> tuple[InterfaceRom, ModalCurve]:
-    """The interface-reduced model of ``model`` for stuck mode ``mode`` (0-based) and its
-    EPMC curve at ``amplitudes`` (mm, of the response set's mean motion along the global
-    ``direction``): the contact-node ROM with ``rom_modes`` fixed-interface modes, reduced
-    to ``interface_modes`` characteristic constraint modes plus the mode's first-loading
-    shapes; the odd-harmonic balance with ``fixed`` normal contact (odd node forces), every
-    harmonic with ``penalty``."""
+def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
+                          fixed_modes: int, mode: Mode | None = None,
+                          response_set: str | None = None) -> InterfaceRom:
+    """The interface-reduced model built on the full FE directly, without the contact-node
+    ROM's constraint modes (the scalable path; needs the body condensed onto its contact,
+    ``model.reduced``, as :func:`~.meshmodel.build_mesh_model` does on meshes of 1000 dofs
+    and more).
+
+    Notes
+    -----
+    The ROM needs one solve with K_ii per boundary dof (its constraint modes, for K_bb~ and
+    M_bb~); on 94k dofs with 1650 boundary dofs that is out of reach. Here
+
+    * K_bb~ is the condensed body's S (:mod:`.condense`, computed at the model's set-up);
+    * the interface shapes are the *static* characteristic modes, the lowest eigenvectors
+      of ``(S + K_c) g = lambda M_bb g`` (M_bb the boundary block of the mass, the
+      constraint modes' own mass left out: a basis, not a model; with every one kept the
+      span is the whole boundary and the model is the ROM's), plus the first-loading shapes
+      of ``mode``'s inertial load, the full FE's stuck mode condensed onto the boundary,
+      ``p_b = (M phi)_b - K_bi K_ii^-1 (M phi)_i``;
+    * the shapes are lifted into the body by ``Y = -K_ii^-1 K_ib G`` (n solves, with the
+      condensed body's own factor of K_ii) and the fixed-interface modes Phi are the lowest
+      of ``(K_ii, M_ii)`` through the same factor; the model is the Galerkin projection on
+      ``[[G, 0], [Y, Phi]]`` (the Craig-Bampton basis restricted to ``u_b = G eta``).
+    """
+    from .reduce import _boundary, _interface_modes, _response_rows
+
+    t0 = time.perf_counter()
+    red = model.reduced
+    if red is None:
+        raise ParameterError("the direct interface model needs the body condensed onto its "
+                             "contact (build the model with condensed=True)")
+    b, per_node = _boundary(model)
+    pos = np.searchsorted(red.keep, b)
+    if not np.array_equal(red.keep[pos], b):
+        raise ParameterError("the condensed body does not keep the contact's boundary dofs")
+    inner = red.interior
+    m_full = full_mass(model, density_kg_m3)
+    k_full = model.stiffness.tocsr()
+    kt = np.asarray(model.contact_stiffness, dtype=float)
+    kn = None if per_node == 2 else np.asarray(model.normal.stiffness, dtype=float)  # type: ignore[union-attr]
+    laws = NodeContacts(np.zeros((b.size, 1)), kt, model.friction_limit,
+                        normal_stiffness=kn, friction=model.friction,
+                        stick_force=None if kn is None else clamped_stick_force(model))
+    with single_threaded_blas():
+        s_b = red.stiffness[np.ix_(pos, pos)]
+        m_bb = m_full[b][:, b].toarray()
+        _, g = eigh(s_b + np.diag(laws.node_springs()), m_bb,
+                    subset_by_index=[0, _count(count, b.size) - 1])
+        g = g / g[np.argmax(np.abs(g), axis=0), np.arange(g.shape[1])]
+        basis = "cc"
+        k_ib = k_full[inner][:, b].tocsc()
+        if mode is not None:
+            load = m_full @ mode.vector
+            p = load[b] - k_ib.T @ red.solver.solve(load[inner])
+            x = _first_loading(s_b, p, kt, model.friction_limit, kn)
+            g = np.column_stack([g, _new_directions(x, g, m_bb)])
+            basis = f"cc+loading{mode.number}"
+        n = g.shape[1]
+        y = -red.solver.solve(np.asarray(k_ib @ g))
+        k_ii = k_full[inner][:, inner].tocsc()
+        m_ii = m_full[inner][:, inner].tocsc()
+        freq, phi = _interface_modes(k_ii, m_ii, fixed_modes, None, red.solver)  # type: ignore[arg-type]
+        phi = phi / np.max(np.abs(phi), axis=0) * np.sign(
+            phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])])
+        m_ib = m_full[inner][:, b]
+        mu = np.einsum("ij,ij->j", phi, m_ii @ phi)
+        size = n + phi.shape[1]
+        k = np.zeros((size, size))
+        m = np.zeros((size, size))
+        k_eta = g.T @ s_b @ g
+        k[:n, :n] = 0.5 * (k_eta + k_eta.T)
+        k[n:, n:] = np.diag(mu * (2.0 * np.pi * freq) ** 2)
+        mib_g = np.asarray(m_ib @ g)
+        cross = mib_g.T @ y  # G^T M_bi Y
+        m_eta = g.T @ m_bb @ g + cross + cross.T + y.T @ (m_ii @ y)
+        m[:n, :n] = 0.5 * (m_eta + m_eta.T)
+        m[:n, n:] = mib_g.T @ phi + (m_ii @ y).T @ phi
+        m[n:, :n] = m[:n, n:].T
+        m[n:, n:] = np.diag(mu)
+    out = None
+    if response_set is not None:
+        rows = _response_rows(model, response_set, b, inner)
+        local = np.zeros((3, size))
+        for c in range(3):
+            local[c, :n] = rows.boundary[c] @ g + y[rows.interior[c]].sum(axis=0)
+            local[c, n:] = phi[rows.interior[c]].sum(axis=0)
+        out = np.asarray(model.rotation.T @ (local / rows.nodes))
+    return InterfaceRom(shapes=g, mass=m, stiffness=k, output=out, contact_stiffness=kt,
+                        slip_force=np.asarray(model.friction_limit, dtype=float),
+                        normal_stiffness=np.zeros_like(kt) if kn is None else kn,
+                        friction=float(model.friction),
+                        stick_force=laws.stick_force, per_node=per_node,
+                        fixed_interface_modes=int(phi.shape[1]), basis=basis,
+                        build_s=time.perf_counter() - t0, characteristic_modes=int(count))
+
+
+def _count(count: int, nb: int) -> int:
+    if not (isinstance(count, (int, np.integer)) and 1 <= count <= nb):
+        raise ParameterError(f"interface modes must be an integer in [1, {nb}] (the contact's "
+                             f"{nb} boundary dofs), got {count!r}")
+    return int(count)
+
+
+def interface_epmc(model: MeshModel, density_kg_m3: float, mode: Mode, amplitudes: ArrayLike,
+                   harmonics: int, samples: int, *, response_set: str | None, rom_modes: int,
+                   interface_modes: int) -> tuple[InterfaceRom, ModalCurve]:
+    """The interface-reduced model of ``model`` for its stuck mode ``mode`` and its EPMC
+    curve at ``amplitudes`` (mm, of the response set's mean motion along the mode's
+    direction): ``interface_modes`` characteristic constraint modes plus the mode's
+    first-loading shapes and ``rom_modes`` fixed-interface modes, built on the full FE
+    directly (:func:`build_interface_model`) when the body is condensed onto its contact,
+    else through the contact-node ROM (:func:`build_interface_rom`); the odd-harmonic
+    balance with ``fixed`` normal contact (odd node forces), every harmonic with
+    ``penalty``."""
     from ...dynamics.modal import epmc
     from ...dynamics.modal_odd import epmc_odd
 
-    rom = build_rom(model, density_kg_m3, modes=rom_modes, response_set=response_set)
-    reduced = build_interface_rom(rom, interface_modes, mode)
+    if model.reduced is not None:
+        reduced = build_interface_model(model, density_kg_m3, interface_modes, rom_modes,
+                                        mode, response_set)
+    else:
+        rom = build_rom(model, density_kg_m3, modes=rom_modes, response_set=response_set)
+        reduced = build_interface_rom(rom, interface_modes, mode.number - 1)
     out = reduced.output
-    structure = reduced.structure(None if out is None else np.asarray(direction) @ out)
-    method = epmc_odd if rom.per_node == 2 else epmc
-    return reduced, method(structure, np.asarray(amplitudes), harmonics, samples, mode)
+    structure = reduced.structure(None if out is None else np.asarray(mode.direction) @ out)
+    method = epmc_odd if reduced.per_node == 2 else epmc
+    return reduced, method(structure, np.asarray(amplitudes), harmonics, samples,
+                           mode.number - 1)
