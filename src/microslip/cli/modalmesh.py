@@ -81,6 +81,10 @@ def _check(args: argparse.Namespace) -> None:
             owners = [n for n, s in MESH_SOLVERS.items() if dest in s.options]
             raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver "
                                  f"{' or '.join(owners)} only")
+    modes = getattr(args, "interface_modes", None)
+    if modes is not None and modes < 1:
+        raise ParameterError(f"--interface-modes must be in [1, the contact's boundary "
+                             f"dofs], got {modes}")
     if not 1 <= args.amplitudes <= 200:
         raise ParameterError(f"--amplitudes must be in [1, 200] with --mesh, got "
                              f"{args.amplitudes}")

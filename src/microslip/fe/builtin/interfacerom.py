@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.linalg import eigh
+from scipy.linalg import cho_factor, cho_solve, eigh
 
 from ...blas import single_threaded_blas
 from ...dynamics.modal import ModalCurve
@@ -189,6 +189,9 @@ LOADING_STEP = 1.2
 LOADING_LEVELS = 16
 #: Slipping share of the nodes at which the first loading stops (near gross sliding).
 LOADING_STOP = 0.98
+#: Newton's tolerance of a first-loading level: the residual's largest entry relative to the
+#: load's (the fields are a basis; 1e-9 leaves them exact to far below its rank tolerance).
+LOADING_TOLERANCE = 1e-9
 
 
 def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> FloatArray:
@@ -232,7 +235,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     shapes = []
     for _ in range(levels):
         q *= LOADING_STEP
-        u = np.array(u)
+        u = u * LOADING_STEP  # the previous level scaled: exact while every node sticks
         ok = False
         for _it in range(60):
             t = u.reshape(-1, d)[:, :2] - z
@@ -244,7 +247,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             if d == 3:
                 force[:, 2] = kn * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
-            if np.max(np.abs(res)) <= 1e-10 * q * np.max(np.abs(p)):
+            if np.max(np.abs(res)) <= LOADING_TOLERANCE * q * np.max(np.abs(p)):
                 ok = True
                 break
             tan = np.array(k_b)
@@ -258,7 +261,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
                     tan[idx + a, idx + b] += blocks[:, a, b]
             if d == 3:
                 tan[idx + 2, idx + 2] += kn
-            u = u - np.linalg.solve(tan, res)
+            u = u - _spd_solve(tan, res)
         if not ok:
             break
         t = u.reshape(-1, d)[:, :2] - z
@@ -269,6 +272,16 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
         if np.mean(slip) >= LOADING_STOP:
             break
     return np.asarray(np.column_stack(shapes)) if shapes else np.zeros((nb, 0))
+
+
+def _spd_solve(a: FloatArray, b: FloatArray) -> FloatArray:
+    """a^-1 b by Cholesky (the first loading's tangent is symmetric and, while a node
+    sticks, positive definite: half an LU's work), by LU where it is not."""
+    try:
+        return np.asarray(cho_solve(cho_factor(a, overwrite_a=True, check_finite=False), b,
+                                    check_finite=False))
+    except np.linalg.LinAlgError:
+        return np.asarray(np.linalg.solve(a, b))
 
 
 def loading_shapes(rom: Rom, shapes: FloatArray, mode: int) -> FloatArray:
