@@ -204,3 +204,20 @@ def test_the_direct_build_meets_the_target() -> None:
     c = epmc_odd(reduced.structure(mode.direction @ reduced.output), a, 7, mode=1)
     assert np.max(np.abs(c.frequency / ref.frequency - 1.0)) < 2e-3
     assert np.max(np.abs(c.damping_ratio / ref.damping_ratio - 1.0)) < 0.02
+
+
+def test_solver_all_leaves_the_rom_out_on_a_large_contact() -> None:
+    """--solver all: the contact-node ROM is left out above ROM_NODE_LIMIT contact nodes
+    with fixed normal contact (the interface model stands in), kept at and below it and
+    with penalty contact (where the interface model is not yet measured at scale)."""
+    from types import SimpleNamespace
+
+    from microslip.cli.modalcompare import ROM_NODE_LIMIT, stood_in
+
+    def study(nodes: int, normal: object = None) -> SimpleNamespace:
+        return SimpleNamespace(model=SimpleNamespace(contact_nodes=np.arange(nodes),
+                                                     normal=normal))
+
+    assert set(stood_in(study(ROM_NODE_LIMIT + 1))) == {"rom"}  # type: ignore[arg-type]
+    assert stood_in(study(ROM_NODE_LIMIT)) == {}  # type: ignore[arg-type]
+    assert stood_in(study(ROM_NODE_LIMIT + 1, object())) == {}  # type: ignore[arg-type]
