@@ -19,8 +19,8 @@ from microslip.fe.builtin.interfacerom import (
     build_interface_rom,
     first_loading_shapes,
 )
-from microslip.fe.builtin.modes import linear_modes
 from microslip.fe.builtin.meshmodel import build_mesh_model
+from microslip.fe.builtin.modes import linear_modes
 from microslip.fe.builtin.reduce import build_rom, rom_structure
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp

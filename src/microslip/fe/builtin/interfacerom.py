@@ -262,7 +262,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             scale = np.where(slip, phi_slip / np.where(slip, r, 1.0), 1.0)
             force = np.zeros((kt.size, d))
             force[:, :2] = (kt * scale)[:, None] * t - t0
-            if d == 3:
+            if kn is not None:
                 force[:, 2] = kn * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
             if np.max(np.abs(res)) <= LOADING_TOLERANCE * q * np.max(np.abs(p)):
@@ -277,7 +277,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             for a in range(2):
                 for b in range(2):
                     tan[idx + a, idx + b] += blocks[:, a, b]
-            if d == 3:
+            if kn is not None:
                 tan[idx + 2, idx + 2] += kn
             u = u - _spd_solve(tan, res)
         if not ok:
@@ -433,7 +433,7 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
         y = -red.solver.solve(np.asarray(k_ib @ g))
         k_ii = k_full[inner][:, inner].tocsc()
         m_ii = m_full[inner][:, inner].tocsc()
-        freq, phi = _interface_modes(k_ii, m_ii, fixed_modes, None, red.solver)  # type: ignore[arg-type]
+        freq, phi = _interface_modes(k_ii, m_ii, fixed_modes, None, red.solver)
         phi = phi / np.max(np.abs(phi), axis=0) * np.sign(
             phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])])
         m_ib = m_full[inner][:, b]
