@@ -186,15 +186,12 @@ def characteristic_modes(rom: Rom, count: int) -> tuple[FloatArray, FloatArray]:
 #: this factor each, while it converges and some node sticks.
 LOADING_STEP = 1.2
 #: Most load levels of the first loading.
-LOADING_LEVELS = 24
+LOADING_LEVELS = 16
 #: Slipping share of the nodes at which the first loading stops (near gross sliding).
 LOADING_STOP = 0.98
 #: Newton's tolerance of a first-loading level: the residual's largest entry relative to the
 #: load's (the fields are a basis; 1e-9 leaves them exact to far below its rank tolerance).
 LOADING_TOLERANCE = 1e-9
-#: With a clamping stick force, the first loading starts at most this many steps below the
-#: unstressed first slip.
-PRESTRESS_LEVELS = 8
 
 
 def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> FloatArray:
@@ -216,21 +213,16 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
     springs = rom.contact_springs()
     _, vec = eigh(rom.stiffness + np.diag(springs), rom.mass, subset_by_index=[mode, mode])
     p = (rom.mass @ vec[:, 0])[:nb]
-    penalty = rom.per_node == 3
     return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
-                          rom.normal_stiffness if penalty else None, levels,
-                          rom.stick_force if penalty else None)
+                          rom.normal_stiffness if rom.per_node == 3 else None, levels)
 
 
 def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
-                   kn: FloatArray | None, levels: int = LOADING_LEVELS,
-                   stick: FloatArray | None = None) -> FloatArray:
+                   kn: FloatArray | None, levels: int = LOADING_LEVELS) -> FloatArray:
     """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
-    :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None;
-    ``stick`` (n_c, 2) the clamping step's tangential force the sliders start from (N;
-    ``penalty``, as its 3-D elements do): nodes left near their limit slip first, and the
-    levels start at that earlier first slip (at most :data:`PRESTRESS_LEVELS` steps below
-    the unstressed one)."""
+    :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None.
+    The sliders start at zero: starting them from the clamping step's stick force (as the
+    3-D elements do) was measured worse with ``penalty`` (docs/interpretation.md 14)."""
     nb = p.size
     d = 2 if kn is None else 3
     kc = np.repeat(kt[:, None], d, axis=1)
@@ -240,15 +232,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
     q = float(np.min(phi_slip / np.where(reach > 0.0, reach, np.inf)))
-    t0 = np.zeros((kt.size, 2)) if stick is None else np.asarray(stick, dtype=float)
-    z = -t0 / kt[:, None]  # the clamped slider: k_t (0 - z) = t0
-    if stick is not None:  # first slip with the stick force: |q a - z| = phi, per node
-        aa = np.einsum("ij,ij->i", stuck, stuck)
-        ab = -np.einsum("ij,ij->i", stuck, z)
-        cc = np.einsum("ij,ij->i", z, z) - phi_slip**2
-        root = (-ab + np.sqrt(np.maximum(ab * ab - aa * cc, 0.0))) / np.where(aa > 0, aa, 1)
-        first = float(np.min(np.where(aa > 0.0, root, np.inf)))
-        q = max(min(q, first), q * LOADING_STEP ** -PRESTRESS_LEVELS)
+    z = np.zeros((kt.size, 2))
     u = np.zeros(nb)
     shapes = []
     for _ in range(levels):
@@ -261,7 +245,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             slip = r > phi_slip
             scale = np.where(slip, phi_slip / np.where(slip, r, 1.0), 1.0)
             force = np.zeros((kt.size, d))
-            force[:, :2] = (kt * scale)[:, None] * t - t0
+            force[:, :2] = (kt * scale)[:, None] * t
             if kn is not None:
                 force[:, 2] = kn * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
@@ -425,8 +409,7 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
         if mode is not None:
             load = m_full @ mode.vector
             p = load[b] - k_ib.T @ red.solver.solve(load[inner])
-            x = _first_loading(s_b, p, kt, model.friction_limit, kn,
-                               stick=laws.stick_force)
+            x = _first_loading(s_b, p, kt, model.friction_limit, kn)
             g = np.column_stack([g, _new_directions(x, g, m_bb)])
             basis = f"cc+loading{mode.number}"
         n = g.shape[1]
