@@ -221,3 +221,25 @@ def test_solver_all_leaves_the_rom_out_on_a_large_contact() -> None:
     assert set(stood_in(study(ROM_NODE_LIMIT + 1))) == {"rom"}  # type: ignore[arg-type]
     assert stood_in(study(ROM_NODE_LIMIT)) == {}  # type: ignore[arg-type]
     assert stood_in(study(ROM_NODE_LIMIT + 1, object())) == {}  # type: ignore[arg-type]
+
+
+def test_an_open_node_carries_nothing() -> None:
+    """A node the clamp leaves open (slip force 0, fixed normal contact) has no stuck slope
+    and no force: the joint equals the one without it."""
+    from microslip.dynamics.nodecontacts import NodeContacts
+
+    rng = np.random.default_rng(5)
+    g = rng.normal(size=(6, 2))
+    kt = np.array([100.0, 200.0, 300.0])
+    both = NodeContacts(g, kt, np.array([5.0, 0.0, 7.0]))
+    kept = NodeContacts(g[[0, 1, 4, 5]], kt[[0, 2]], np.array([5.0, 7.0]))
+    np.testing.assert_allclose(both.stuck_stiffness, kept.stuck_stiffness, rtol=1e-14)
+    hb_synth = np.cos(np.outer(np.arange(16) * 2 * np.pi / 16, [1.0, 0.0]))
+    hb_synth[:, 1] = np.sin(np.arange(16) * 2 * np.pi / 16)
+    analysis = np.linalg.pinv(hb_synth)
+    x = rng.normal(size=4) * 0.2
+    f1, j1 = both.periodic_harmonics(x, hb_synth, analysis)
+    f2, j2 = kept.periodic_harmonics(x, hb_synth, analysis)
+    assert np.max(np.abs(f1)) > 0.0
+    np.testing.assert_allclose(f1, f2, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(j1, j2, rtol=1e-12, atol=1e-12)

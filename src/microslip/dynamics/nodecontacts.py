@@ -65,6 +65,8 @@ def _circular_nodes(u: Array, k: Array, phi: Array, basis: Array, f: Array, jb: 
             if r > best:
                 best = r
                 start = t
+        if phi[i] <= 0.0:  # an open node (no normal force): it carries nothing
+            continue
         kk[0] = k[i]
         pp[0] = phi[i]
         failed += circular_periodic_kernel(u[i], kk, kk, pp, start, basis, f[i], jb[i])
@@ -95,7 +97,8 @@ class NodeContacts:
     tangential_stiffness : ndarray, shape (n_c,)
         k_t = lambda A_i, N/mm, > 0.
     slip_force : ndarray, shape (n_c,)
-        mu N_i, N, > 0 (the clamping step's normal force; ``fixed`` normal contact).
+        mu N_i, N, >= 0 (the clamping step's normal force); 0: an open node, which carries
+        nothing (``fixed``) or only the penalty law with separation (``penalty``).
     normal_stiffness : ndarray, shape (n_c,), optional
         k_n A_i, N/mm: with it each node carries the 3-D element (``penalty``), its preload
         ``slip_force / friction``.
@@ -121,8 +124,9 @@ class NodeContacts:
         if g.ndim != 2 or g.shape[0] != d * n_c or not np.all(np.isfinite(g)):
             raise ParameterError(f"shapes must be finite of shape ({d * n_c}, n) for {n_c} "
                                  f"nodes of {d} dofs, got {g.shape}")
-        if s.shape != kt.shape or not (np.all(kt > 0.0) and np.all(s > 0.0)):
-            raise ParameterError("each node needs a stiffness > 0 N/mm and a slip force > 0 N")
+        if s.shape != kt.shape or not (np.all(kt > 0.0) and np.all(s >= 0.0)):
+            raise ParameterError("each node needs a stiffness > 0 N/mm and a slip force "
+                                 ">= 0 N")
         object.__setattr__(self, "shapes", readonly(np.ascontiguousarray(g)))
         object.__setattr__(self, "tangential_stiffness", readonly(kt))
         object.__setattr__(self, "slip_force", readonly(s))
@@ -160,10 +164,13 @@ class NodeContacts:
     initial_stiffness = 0.0
 
     def node_springs(self) -> Array:
-        """The stuck slopes on the boundary dofs, diagonal of K_c (n_c d,), N/mm."""
+        """The stuck slopes on the boundary dofs, diagonal of K_c (n_c d,), N/mm; zero at an
+        open node (slip force 0: no normal force after clamping), which carries nothing at
+        rest (with ``penalty`` its element closes if the node is pressed back)."""
         d = np.repeat(self.tangential_stiffness[:, None], self.per_node, axis=1)
         if self.normal_stiffness is not None:
             d[:, 2] = self.normal_stiffness
+        d[self.slip_force <= 0.0] = 0.0
         return np.asarray(d.reshape(-1))
 
     @property

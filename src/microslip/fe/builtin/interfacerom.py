@@ -228,10 +228,12 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     kc = np.repeat(kt[:, None], d, axis=1)
     if kn is not None:
         kc[:, 2] = kn
+    open_ = s <= 0.0  # open nodes (no normal force) carry nothing: no spring, no force
+    kc[open_] = 0.0
     phi_slip = s / kt
     stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
-    q = float(np.min(phi_slip / np.where(reach > 0.0, reach, np.inf)))
+    q = float(np.min(phi_slip / np.where((reach > 0.0) & ~open_, reach, np.inf)))
     z = np.zeros((kt.size, 2))
     u = np.zeros(nb)
     shapes = []
@@ -242,12 +244,12 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
         for _it in range(60):
             t = u.reshape(-1, d)[:, :2] - z
             r = np.hypot(t[:, 0], t[:, 1])
-            slip = r > phi_slip
-            scale = np.where(slip, phi_slip / np.where(slip, r, 1.0), 1.0)
+            slip = (r > phi_slip) | open_
+            scale = np.where(slip, phi_slip / np.where(r > 0.0, r, 1.0), 1.0)
             force = np.zeros((kt.size, d))
             force[:, :2] = (kt * scale)[:, None] * t
             if kn is not None:
-                force[:, 2] = kn * u.reshape(-1, d)[:, 2]
+                force[:, 2] = np.where(open_, 0.0, kn) * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
             if np.max(np.abs(res)) <= LOADING_TOLERANCE * q * np.max(np.abs(p)):
                 ok = True
@@ -262,14 +264,15 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
                 for b in range(2):
                     tan[idx + a, idx + b] += blocks[:, a, b]
             if kn is not None:
-                tan[idx + 2, idx + 2] += kn
+                tan[idx + 2, idx + 2] += np.where(open_, 0.0, kn)
             u = u - _spd_solve(tan, res)
         if not ok:
             break
         t = u.reshape(-1, d)[:, :2] - z
         r = np.hypot(t[:, 0], t[:, 1])
         slip = r > phi_slip
-        z[slip] = (u.reshape(-1, d)[:, :2] - phi_slip[:, None] * t / r[:, None])[slip]
+        z[slip] = (u.reshape(-1, d)[:, :2]
+                   - phi_slip[:, None] * t / np.where(r > 0.0, r, 1.0)[:, None])[slip]
         shapes.append(u.copy())
         if np.mean(slip) >= LOADING_STOP:
             break
