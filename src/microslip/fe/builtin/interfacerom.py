@@ -192,6 +192,10 @@ LOADING_STOP = 0.98
 #: Newton's tolerance of a first-loading level: the residual's largest entry relative to the
 #: load's (the fields are a basis; 1e-9 leaves them exact to far below its rank tolerance).
 LOADING_TOLERANCE = 1e-9
+#: With a clamping stick force (``penalty``), the first loading starts at most this many
+#: steps below the unstressed first slip, and runs at most this many levels.
+PRESTRESS_LEVELS = 8
+PRESTRESS_LEVELS_MAX = 24
 
 
 def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> FloatArray:
@@ -208,21 +212,42 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
     normal dofs carry their linear spring and the limit stays mu N_0: the shapes are a
     subspace, the model's own law is exact). Semi-smooth Newton per level (dense, n_b
     unknowns), load levels ``q_1 LOADING_STEP^k`` from the first slip q_1 while a node
-    sticks (:data:`LOADING_STOP`)."""
+    sticks (:data:`LOADING_STOP`). With ``penalty`` a second loading starts the sliders from
+    the clamping step's stick force, as the 3-D elements start their cycles, and both sets
+    of fields are returned (the onset of slip at the nodes the clamp left near their limit
+    needs them: docs/interpretation.md 14)."""
     nb = rom.boundary.size
     springs = rom.contact_springs()
     _, vec = eigh(rom.stiffness + np.diag(springs), rom.mass, subset_by_index=[mode, mode])
     p = (rom.mass @ vec[:, 0])[:nb]
-    return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
-                          rom.normal_stiffness if rom.per_node == 3 else None, levels)
+    penalty = rom.per_node == 3
+    if not penalty:
+        return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness,
+                              rom.slip_force, None, levels)
+    return _loadings(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
+                     rom.normal_stiffness, rom.stick_force)
+
+
+def _loadings(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
+              kn: FloatArray | None, stick: FloatArray | None) -> FloatArray:
+    """The first-loading fields: from sliders at zero, and with ``penalty`` (``kn``) also
+    from the clamping step's stick force ``stick`` (n_c, 2), side by side (n_b, m)."""
+    x = _first_loading(k_b, p, kt, s, kn)
+    if kn is None or stick is None:
+        return x
+    return np.column_stack([x, _first_loading(k_b, p, kt, s, kn, PRESTRESS_LEVELS_MAX,
+                                              stick)])
 
 
 def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
-                   kn: FloatArray | None, levels: int = LOADING_LEVELS) -> FloatArray:
+                   kn: FloatArray | None, levels: int = LOADING_LEVELS,
+                   stick: FloatArray | None = None) -> FloatArray:
     """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
-    :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None.
-    The sliders start at zero: starting them from the clamping step's stick force (as the
-    3-D elements do) was measured worse with ``penalty`` (docs/interpretation.md 14)."""
+    :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None;
+    ``stick`` (n_c, 2), if given, the clamping step's tangential force the sliders start
+    from (N; the 3-D elements start their cycles from it): nodes left near their limit slip
+    first, and the levels start at that earlier first slip (at most
+    :data:`PRESTRESS_LEVELS` steps below the unstressed one)."""
     nb = p.size
     d = 2 if kn is None else 3
     kc = np.repeat(kt[:, None], d, axis=1)
@@ -234,7 +259,15 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
     q = float(np.min(phi_slip / np.where((reach > 0.0) & ~open_, reach, np.inf)))
-    z = np.zeros((kt.size, 2))
+    t0 = np.zeros((kt.size, 2)) if stick is None else np.asarray(stick, dtype=float)
+    z = -t0 / kt[:, None]  # the clamped slider: k_t (0 - z) = t0
+    if stick is not None:  # first slip with the stick force: |q a - z| = phi, per node
+        aa = np.einsum("ij,ij->i", stuck, stuck)
+        ab = -np.einsum("ij,ij->i", stuck, z)
+        cc = np.einsum("ij,ij->i", z, z) - phi_slip**2
+        root = (-ab + np.sqrt(np.maximum(ab * ab - aa * cc, 0.0))) / np.where(aa > 0, aa, 1)
+        first = float(np.min(np.where((aa > 0.0) & ~open_, root, np.inf)))
+        q = max(min(q, first), q * LOADING_STEP ** -PRESTRESS_LEVELS)
     u = np.zeros(nb)
     shapes = []
     for _ in range(levels):
@@ -247,7 +280,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             slip = (r > phi_slip) | open_
             scale = np.where(slip, phi_slip / np.where(r > 0.0, r, 1.0), 1.0)
             force = np.zeros((kt.size, d))
-            force[:, :2] = (kt * scale)[:, None] * t
+            force[:, :2] = (kt * scale)[:, None] * t - t0
             if kn is not None:
                 force[:, 2] = np.where(open_, 0.0, kn) * u.reshape(-1, d)[:, 2]
             res = k_b @ u + force.reshape(-1) - q * p
@@ -412,7 +445,7 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
         if mode is not None:
             load = m_full @ mode.vector
             p = load[b] - k_ib.T @ red.solver.solve(load[inner])
-            x = _first_loading(s_b, p, kt, model.friction_limit, kn)
+            x = _loadings(s_b, p, kt, model.friction_limit, kn, laws.stick_force)
             g = np.column_stack([g, _new_directions(x, g, m_bb)])
             basis = f"cc+loading{mode.number}"
         n = g.shape[1]
