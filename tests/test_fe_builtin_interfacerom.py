@@ -243,3 +243,37 @@ def test_an_open_node_carries_nothing() -> None:
     assert np.max(np.abs(f1)) > 0.0
     np.testing.assert_allclose(f1, f2, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(j1, j2, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_penalty_with_every_mode_kept_is_the_rom() -> None:
+    """Penalty normal contact (3-D elements, lift-off, the clamping step's stick force): all
+    interface modes kept, the EPMC on every harmonic equals the penalty ROM's; the
+    projected Jacobian of the 3-D elements against central differences."""
+    from microslip.dynamics.modal import epmc
+
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
+                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
+                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
+                             normal_contact="penalty", normal_slope=1e6)
+    rom = build_rom(model, RHO, modes=20, response_set="response")
+    full = build_interface_rom(rom, rom.boundary.size)
+    a = np.geomspace(2e-3, 3e-2, 5)
+    r1 = epmc(rom_structure(rom, rom.output[1]), a, 3, 32, mode=1)
+    r2 = epmc(full.structure(full.output[1]), a, 3, 32, mode=1)
+    assert r1.damping_ratio[-1] > 0.01
+    np.testing.assert_allclose(r2.frequency, r1.frequency, rtol=1e-12)
+    np.testing.assert_allclose(r2.damping_ratio, r1.damping_ratio, rtol=1e-8, atol=1e-15)
+    reduced = build_interface_rom(rom, 6, mode=1)
+    s = reduced.structure()
+    hb = HarmonicBalance(s, 3, 32)
+    contacts = s.joints[0].operator
+    x = np.random.default_rng(2).normal(size=contacts.directions * hb.width) * 0.003
+    f, jac = contacts.periodic_harmonics(x, hb._synth, hb._analysis)
+    fd = np.empty_like(jac)
+    for j in range(x.size):
+        e = np.zeros(x.size)
+        e[j] = 1e-7
+        fd[:, j] = (contacts.periodic_harmonics(x + e, hb._synth, hb._analysis)[0]
+                    - contacts.periodic_harmonics(x - e, hb._synth, hb._analysis)[0]) / 2e-7
+    assert np.max(np.abs(fd - jac)) < 1e-6 * np.max(np.abs(jac))
