@@ -225,23 +225,24 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
         return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness,
                               rom.slip_force, None, levels)
     return _loadings(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
-                     rom.normal_stiffness, rom.stick_force)
+                     rom.normal_stiffness, rom.stick_force, rom.friction)
 
 
 def _loadings(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
-              kn: FloatArray | None, stick: FloatArray | None) -> FloatArray:
+              kn: FloatArray | None, stick: FloatArray | None, friction: float
+              ) -> FloatArray:
     """The first-loading fields: from sliders at zero, and with ``penalty`` (``kn``) also
     from the clamping step's stick force ``stick`` (n_c, 2), side by side (n_b, m)."""
-    x = _first_loading(k_b, p, kt, s, kn)
+    x = _first_loading(k_b, p, kt, s, kn, friction=friction)
     if kn is None or stick is None:
         return x
     return np.column_stack([x, _first_loading(k_b, p, kt, s, kn, PRESTRESS_LEVELS_MAX,
-                                              stick)])
+                                              stick, friction)])
 
 
 def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
                    kn: FloatArray | None, levels: int = LOADING_LEVELS,
-                   stick: FloatArray | None = None) -> FloatArray:
+                   stick: FloatArray | None = None, friction: float = 1.0) -> FloatArray:
     """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
     :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None;
     ``stick`` (n_c, 2), if given, the clamping step's tangential force the sliders start
@@ -275,41 +276,64 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
         u = u * LOADING_STEP  # the previous level scaled: exact while every node sticks
         ok = False
         for _it in range(60):
-            t = u.reshape(-1, d)[:, :2] - z
-            r = np.hypot(t[:, 0], t[:, 1])
-            slip = (r > phi_slip) | open_
-            scale = np.where(slip, phi_slip / np.where(r > 0.0, r, 1.0), 1.0)
-            force = np.zeros((kt.size, d))
-            force[:, :2] = (kt * scale)[:, None] * t - t0
-            if kn is not None:
-                force[:, 2] = np.where(open_, 0.0, kn) * u.reshape(-1, d)[:, 2]
+            force, blocks, _, _ = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction)
             res = k_b @ u + force.reshape(-1) - q * p
             if np.max(np.abs(res)) <= LOADING_TOLERANCE * q * np.max(np.abs(p)):
                 ok = True
                 break
             tan = np.array(k_b)
-            nvec = t / np.where(r > 0.0, r, 1.0)[:, None]
-            blocks = (kt * scale)[:, None, None] * (
-                np.eye(2)[None] - np.where(slip, 1.0, 0.0)[:, None, None]
-                * nvec[:, :, None] * nvec[:, None, :])
             idx = np.arange(kt.size) * d
-            for a in range(2):
-                for b in range(2):
-                    tan[idx + a, idx + b] += blocks[:, a, b]
-            if kn is not None:
-                tan[idx + 2, idx + 2] += np.where(open_, 0.0, kn)
-            u = u - _spd_solve(tan, res)
+            for i in range(d):
+                for j in range(d):
+                    tan[idx + i, idx + j] += blocks[:, i, j]
+            # symmetric without lift-off's coupling (fixed normal contact): Cholesky
+            u = u - (_spd_solve(tan, res) if kn is None else np.linalg.solve(tan, res))
         if not ok:
             break
-        t = u.reshape(-1, d)[:, :2] - z
-        r = np.hypot(t[:, 0], t[:, 1])
-        slip = r > phi_slip
-        z[slip] = (u.reshape(-1, d)[:, :2]
-                   - phi_slip[:, None] * t / np.where(r > 0.0, r, 1.0)[:, None])[slip]
+        _, _, slip, z = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction)
         shapes.append(u.copy())
         if np.mean(slip) >= LOADING_STOP:
             break
     return np.asarray(np.column_stack(shapes)) if shapes else np.zeros((nb, 0))
+
+
+def _node_law(u: FloatArray, z: FloatArray, t0: FloatArray, kt: FloatArray,
+              kn: FloatArray | None, s: FloatArray, friction: float
+              ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_], FloatArray]:
+    """Each node's force (n_c, d; the tangential counted from the stick force t0), its
+    tangent blocks (n_c, d, d), whether it slips (or is open / lifted off) and its new
+    slider (n_c, 2), from the slider z of the previous level at the displacements u
+    (n_c, d; mm): the circular Jenkins element (``kn`` None) or, with ``penalty``, the 3-D
+    element's law, normal ``N = N_0 - k_n u_n`` with lift-off and the limit mu N."""
+    n_c, d = u.shape
+    ut = u[:, :2]
+    t = ut - z
+    r = np.hypot(t[:, 0], t[:, 1])
+    e = t / np.where(r > 0.0, r, 1.0)[:, None]
+    if kn is None:
+        limit = s
+        touching = s > 0.0
+    else:
+        normal = s / friction - kn * u[:, 2]
+        touching = normal > 0.0
+        limit = friction * np.maximum(normal, 0.0)
+    slip = touching & (kt * r > limit)
+    stick = touching & ~slip
+    force = np.zeros((n_c, d))
+    force[:, :2] = np.where(stick[:, None], kt[:, None] * t,
+                            np.where(slip[:, None], limit[:, None] * e, 0.0)) - t0
+    blocks = np.zeros((n_c, d, d))
+    eye = np.eye(2)[None]
+    sec = np.where(slip, limit / np.where(r > 0.0, r, 1.0), 0.0)
+    blocks[:, :2, :2] = (np.where(stick, kt, 0.0)[:, None, None] * eye
+                         + sec[:, None, None] * (eye - e[:, :, None] * e[:, None, :]))
+    z_new = np.where(stick[:, None], z, np.where(
+        slip[:, None], ut - (limit / kt)[:, None] * e, ut))
+    if kn is not None:
+        force[:, 2] = np.where(touching, kn * u[:, 2], s / friction)
+        blocks[:, 2, 2] = np.where(touching, kn, 0.0)
+        blocks[:, :2, 2] = np.where(slip[:, None], -friction * kn[:, None] * e, 0.0)
+    return force, blocks, ~stick, z_new
 
 
 def _spd_solve(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -445,7 +469,8 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
         if mode is not None:
             load = m_full @ mode.vector
             p = load[b] - k_ib.T @ red.solver.solve(load[inner])
-            x = _loadings(s_b, p, kt, model.friction_limit, kn, laws.stick_force)
+            x = _loadings(s_b, p, kt, model.friction_limit, kn, laws.stick_force,
+                          float(model.friction))
             g = np.column_stack([g, _new_directions(x, g, m_bb)])
             basis = f"cc+loading{mode.number}"
         n = g.shape[1]
