@@ -209,7 +209,7 @@ def test_the_direct_build_meets_the_target() -> None:
 def test_solver_all_leaves_the_rom_out_on_a_large_contact() -> None:
     """--solver all: the contact-node ROM is left out above ROM_NODE_LIMIT contact nodes
     with fixed normal contact (the interface model stands in), kept at and below it and
-    with penalty contact (where the interface model is not yet measured at scale)."""
+    with penalty contact (where the interface model misses mode 1's damping)."""
     from types import SimpleNamespace
 
     from microslip.cli.modalcompare import ROM_NODE_LIMIT, stood_in
