@@ -26,8 +26,12 @@ Interface shapes:
   rising amplitude, from first slip to near gross sliding, made orthogonal to the
   characteristic modes. They span the slip patterns the cycle passes through (Masing:
   the unloading fields are differences of first-loading ones); 10 characteristic modes
-  and them (26 coordinates) put the 24x6x2 cantilever's in-plane mode within 0.2 % in
+  and them (23 coordinates) put the 24x6x2 cantilever's in-plane mode within 0.2 % in
   damping ratio and 1.2e-4 in frequency of the ROM.
+
+:func:`build_interface_rom` reduces a contact-node ROM; :func:`build_interface_model`
+builds the same kind of model on the full FE directly, without the ROM's constraint modes
+(the scalable path, used whenever the body is condensed onto its contact).
 
 Each shape is scaled to a largest boundary displacement of 1 mm (every coordinate is a
 displacement in mm, as in the ROM).
@@ -208,9 +212,9 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
     The ROM's stiffness is block-diagonal (boundary, fixed-interface modes), so the static
     boundary equations are ``K_bb~ u + f(u) = q p_b`` with ``p = M_r phi``; each node's
     tangential force is its circular Jenkins element's (radial return from the previous
-    level's slider, stiffness k_i, limit s_i = mu N_i; with ``penalty`` normal contact the
-    normal dofs carry their linear spring and the limit stays mu N_0: the shapes are a
-    subspace, the model's own law is exact). Semi-smooth Newton per level (dense, n_b
+    level's slider, stiffness k_i, limit s_i = mu N_i) or, with ``penalty`` normal contact,
+    the 3-D element's (:func:`_node_law`: the normal force N_0 - k_n u_n with lift-off, the
+    limit mu N). Semi-smooth Newton per level (dense, n_b
     unknowns), load levels ``q_1 LOADING_STEP^k`` from the first slip q_1 while a node
     sticks (:data:`LOADING_STOP`). With ``penalty`` a second loading starts the sliders from
     the clamping step's stick force, as the 3-D elements start their cycles, and both sets
