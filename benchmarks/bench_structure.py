@@ -28,8 +28,8 @@ model's set-up, the assembly and the clamping step, is timed apart and not count
   2's first-loading shapes; no contact-node ROM) and the EPMC of mode 2 over 20
   amplitudes, 7 harmonics, one row (target 15 s on 48x12x4, 1.5 s on 24x6x2), each stage's
   time and resident peak in the note;
-* ``--large``: the interface model's row on the 96x24x12 mesh (about 94k DOF; 120 s, 4 GB;
-  stopped after 30 min, with the stages it finished);
+* ``--large``: the interface model's row on the 96x24x12 mesh (93,750 DOF; 120 s, 4 GB;
+  stopped after 30 min, with the stages it finished; measured 43 s and 2.0 GB at load 6-7);
 * ``--large``: the 96x24x6 mesh (about 50k DOF): modes, ROM build and one QSMA amplitude
   in one process, its peak resident memory (target 2 GB) and the peak of each stage (the
   model's set-up, modes, ROM build, QSMA; Linux's VmHWM, reset between stages).
