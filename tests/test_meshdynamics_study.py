@@ -104,7 +104,7 @@ def test_modal_all_builds_the_rom_once(mesh: str, builds: list, capsys: pytest.C
                  "--amplitude-range", "1e-4", "1e-4", "--rom-modes", "10", "--harmonics",
                  "1", "--solver", "all", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert list(out["solvers"]) == ["fe", "rom", "joint"]
+    assert list(out["solvers"]) == ["fe", "rom", "interface", "joint"]
     assert out["amplitude_coordinate"] == "response_set"
     assert builds == [("response", ())]
 

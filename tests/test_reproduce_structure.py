@@ -20,9 +20,9 @@ def test_structure_study_writes_every_mode(tmp_path) -> None:  # type: ignore[no
     for n in STRUCTURE_MODES:
         out = json.loads((tmp_path / "structure" / f"mode{n}.json").read_text())
         assert out["mode"] == n and out["mesh"] == "cantilever_12x3x1.inp"
-        assert set(out["solvers"]) == {"fe", "rom", "joint"}
-        assert set(out["verdicts"]) == {"rom", "joint"}
+        assert set(out["solvers"]) == {"fe", "rom", "interface", "joint"}
+        assert set(out["verdicts"]) == {"rom", "interface", "joint"}
         assert (tmp_path / "structure" / f"mode{n}.png").stat().st_size > 10_000
     verdicts = [line for line in lines if line.startswith("- ")]
-    assert len(verdicts) == 2 * len(STRUCTURE_MODES)
-    assert all(("rom:" in v or "joint:" in v) for v in verdicts)
+    assert len(verdicts) == 3 * len(STRUCTURE_MODES)
+    assert all(v.split()[1] in ("rom:", "interface:", "joint:") for v in verdicts)

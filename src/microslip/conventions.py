@@ -31,6 +31,7 @@ __all__ = [
     "COUPLINGS",
     "DEFAULT_COUPLING",
     "DEFAULT_ELEMENTS",
+    "DEFAULT_INTERFACE_MODES",
     "DEFAULT_MESH",
     "DEFAULT_NORMAL_CONTACT",
     "DEFAULT_NORMAL_SLOPE",
@@ -100,6 +101,9 @@ MAX_MODE = 50
 DEFAULT_ROM_MODES = 60
 #: Most fixed-interface modes ``--rom-modes`` takes.
 MAX_ROM_MODES = 2000
+#: Characteristic constraint modes of the interface-reduced model unless the case says (the
+#: studied mode's first-loading shapes come on top; docs/interpretation.md, "interface").
+DEFAULT_INTERFACE_MODES = 10
 #: The whole joint's backbones (the keys of
 #: :data:`microslip.meshdynamics.jointbackbone.BACKBONES`; a test holds the two equal).
 BACKBONE_NAMES = ("fe", "work", "tip", "centre")

@@ -196,6 +196,10 @@ _OPTIONS: tuple[Option, ...] = (
            "(C3D20R; an 8-node mesh gets a node at the middle of every edge, its sets carried)",
            "", "hex8 | hex20", type=None, metavar=None, choices=("hex8", "hex20"),
            spelling="--element", scope="mesh"),
+    # the interface-reduced model of modal --mesh (--solver interface; issue 28, item 4)
+    Option("interface_modes", "interface: characteristic constraint modes of the contact "
+           "kept (the studied mode's first-loading shapes come on top)", "", "[1, the "
+           "contact's boundary dofs]", type=int, metavar="N", scope="mesh"),
     # a structure and its joints
     Option("structure", "reduced model: FILE.npz (M, K, optional C, joints) or a Matrix "
            "Market directory, SI units", "", "path", type=None, metavar="FILE",

@@ -109,6 +109,7 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
     optional = {k: v for k, v in (
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None)),
+        ("interface_modes", getattr(args, "interface_modes", None)),
         ("element", getattr(args, "mesh_element", None))) if v is not None}
     with flagged():
         return StructureCase(args.mesh, clamp, density=args.density,

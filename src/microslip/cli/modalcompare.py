@@ -12,7 +12,7 @@ from __future__ import annotations
 import sys
 from typing import Any
 
-from ..meshdynamics.modalstudy import MESH_SOLVERS, ModalStudy, compare_output, run_solvers
+from ..meshdynamics.modalstudy import ModalStudy, compare_all
 from ..meshdynamics.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR
 from .common import print_json
 from .convergence import frequency_convergence
@@ -28,8 +28,7 @@ def run_modal_all(study: ModalStudy, args: Any) -> int:
         if not args.json:
             print(line, file=sys.stderr, flush=True)
 
-    curves = run_solvers(study, tuple(MESH_SOLVERS), progress_printer(args), echo)
-    out = compare_output(study, curves)
+    curves, out = compare_all(study, progress_printer(args), echo)
     table = frequency_convergence(study, args, out)  # --convergence: the stuck frequencies
     for w in out["warnings"]:
         print(f"warning: {w}", file=sys.stderr)

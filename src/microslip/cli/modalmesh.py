@@ -15,6 +15,7 @@ import sys
 from typing import Any
 
 from ..case.table import MODE_MESH, add_option, add_solver, mode_options
+from ..conventions import DEFAULT_INTERFACE_MODES
 from ..errors import ParameterError
 from ..meshdynamics.modalstudy import MESH_SOLVERS, MeshCurve, ModalSettings, ModalStudy
 from .common import check_plot, flagged, print_json
@@ -43,6 +44,8 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
                                     ALL: "every one of them side by side, with a verdict on "
                                          "each against the full FE"}, mode=MODE_MESH)
     add_reduced_model_options(g)
+    add_option(g, "interface_modes", mode=MODE_MESH,
+               note=f"interface; default {DEFAULT_INTERFACE_MODES}")
     add_option(g, "workers", note="default 1", mode=MODE_MESH)
     add_option(g, "scheduler", help="a Dask scheduler (tcp://HOST:8786) to run the amplitudes "
                                     "on", mode=MODE_MESH)

@@ -57,7 +57,7 @@ WARN_ERROR = 0.05
 #: converges as h^2 (2.1 on the tip bar at R = 0.75, tests/test_fe_builtin_convergence.py);
 #: in microslip the zone spans a few nodes and the measured rate is 1.2 (the tip bar at
 #: R = 0.05, tests/test_fe_small_slip.py), and coarse meshes are not yet in the asymptotic
-#: range at all (the cantilever's W: 24x6x2 -> 96x24x8, docs/interpretation.md 14).
+#: range at all (the cantilever's W: 24x6x2 -> 96x24x8, docs/interpretation.md §15).
 #: Displacements and eigenvalues of linear elements converge as h^2 (Strang & Fix), the
 #: frequencies too.
 THEORETICAL_ORDER = {"dissipated_energy": 1.0, "peak_displacement": 2.0, "frequency": 2.0}

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..conventions import BACKBONE_NAMES, DEFAULT_ROM_MODES, MAX_MODE
+from ..conventions import BACKBONE_NAMES, DEFAULT_INTERFACE_MODES, DEFAULT_ROM_MODES, MAX_MODE
 from ..errors import ParameterError
 from ..fe.clamp import MeshClamp
 
@@ -66,6 +66,9 @@ class StructureCase:
         Fixed-interface modes of the contact-node ROM (>= 1).
     backbone : str
         The whole joint's backbone, one of :data:`BACKBONE_NAMES`.
+    interface_modes : int
+        Characteristic constraint modes of the interface-reduced model (>= 1; the studied
+        mode's first-loading shapes come on top).
     element : str, optional
         ``hex20`` runs an 8-node mesh as 20-node hexahedra
         (:func:`~microslip.fe.promote.as_element`), ``hex8`` refuses a 20-node mesh; None:
@@ -79,6 +82,7 @@ class StructureCase:
     response_set: str | None = None
     rom_modes: int = DEFAULT_ROM_MODES
     backbone: str = "fe"
+    interface_modes: int = DEFAULT_INTERFACE_MODES
     element: str | None = None
 
     def __post_init__(self) -> None:
@@ -99,6 +103,10 @@ class StructureCase:
         if isinstance(self.rom_modes, bool) or not isinstance(
                 self.rom_modes, int | np.integer) or self.rom_modes < 1:
             raise ParameterError(f"rom_modes must be >= 1, got {self.rom_modes}")
+        if isinstance(self.interface_modes, bool) or not isinstance(
+                self.interface_modes, int | np.integer) or self.interface_modes < 1:
+            raise ParameterError(f"interface_modes must be in [1, the contact's boundary dofs],"
+                                 f" got {self.interface_modes}")
         if self.backbone not in BACKBONE_NAMES:
             raise ParameterError(f"unknown backbone {self.backbone!r}; choose one of "
                                  f"{', '.join(BACKBONE_NAMES)}")

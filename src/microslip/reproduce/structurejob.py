@@ -49,8 +49,8 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
     lines = ["## The damping of the cantilever's modes (issue 23)", "",
              f"`microslip modal --mesh structure/{name} ... --solver all` "
              "(aluminium, F_N 2000 N, mu 0.5, stick slope 1e4 N/mm^3): the full FE's "
-             "quasi-static modal analysis (the truth), the contact-node ROM and the whole-joint "
-             "model on one amplitude grid.", ""]
+             "quasi-static modal analysis (the truth), the contact-node ROM, the interface-"
+             "reduced ROM and the whole-joint model on one amplitude grid.", ""]
     for number in STRUCTURE_MODES:
         if echo is not None:
             echo(f"structure: mode {number} of the cantilever, every model")
