@@ -71,14 +71,17 @@ from .meshhistory import _STARTUP_TEXT, LoadHistory, load_history
 
 __all__ = [
     "CLAMP_TIME",
+    "CONTACT_FORMULATIONS",
     "LOADED_NSET",
     "MESH_ELEMENTS",
     "NORMAL_CONTACTS",
     "BaseSlab",
+    "ContactFormulation",
     "MeshLoadPlan",
     "base_slab",
     "build_frequency_deck",
     "build_mesh_deck",
+    "check_formulation",
     "dsload_card",
     "element_surface_card",
     "load_plan",
@@ -93,6 +96,65 @@ MESH_ELEMENTS = {8: "C3D8I", 20: "C3D20R"}
 NORMAL_CONTACTS = {
     "penalty": "linear pressure-overclosure law (slope normal_slope, N/mm^3), lift-off allowed",
 }
+#: sigma_inf of node-to-surface contact relative to the mean contact pressure F_N / A_contact:
+#: CalculiX rounds the kink of p = K d over the overclosure eps = pi sigma_inf / K and shifts
+#: the pressure of a closed node by up to -sigma_inf (:func:`~.deck.surface_interaction_card`);
+#: 1e-4 of the mean pressure keeps that below the solvers' tolerances (docs/interpretation.md
+#: "CalculiX against the built-in solver").
+N2S_TENSION_RATIO = 1e-4
+
+
+@dataclass(frozen=True)
+class ContactFormulation:
+    """How CalculiX enforces the contact of the body with its base.
+
+    Attributes
+    ----------
+    pair : str
+        The ``*CONTACT PAIR`` type (a key of :data:`~.deck.CONTACT_PAIR_TYPES`).
+    description : str
+    tension_ratio : float or None
+        sigma_inf / mean contact pressure, for the types that need a sigma_inf.
+    """
+
+    pair: str
+    description: str
+    tension_ratio: float | None = None
+
+
+#: Contact formulations of the mesh deck: name -> formulation. ``node-to-surface`` is the one
+#: the built-in solver's nodal law equals (a spring per slave node of stiffness K A_i and
+#: lambda A_i, A_i the node's share of the contact faces, Coulomb limit mu N_i at the node);
+#: ``face-to-face`` integrates the penalty tractions over the faces (CalculiX's recommended,
+#: and this deck's, default).
+CONTACT_FORMULATIONS = {
+    "face-to-face": ContactFormulation(
+        "face-to-face", "face-to-face penalty (SURFACE TO SURFACE): tractions integrated over "
+        "the slave faces"),
+    "node-to-surface": ContactFormulation(
+        "node-to-surface", "node-to-surface penalty (NODE TO SURFACE): one spring per slave "
+        "node, stiffness K A_i and lambda A_i, Coulomb limit mu N_i at the node (the built-in "
+        "solver's nodal law)", N2S_TENSION_RATIO),
+}
+
+
+def check_formulation(name: str) -> ContactFormulation:
+    """The formulation called ``name``; one line naming the choices otherwise."""
+    if name not in CONTACT_FORMULATIONS:
+        raise ParameterError(f"contact formulation must be one of "
+                             f"{', '.join(CONTACT_FORMULATIONS)}, got {name!r}")
+    return CONTACT_FORMULATIONS[name]
+
+
+def _interaction_cards(formulation: str, normal_slope: float, friction: float,
+                       stick_slope: float, mean_pressure: float) -> list[str]:
+    """``*SURFACE INTERACTION`` and ``*CONTACT PAIR`` of the contact set on the base."""
+    f = check_formulation(formulation)
+    tension = None if f.tension_ratio is None else f.tension_ratio * mean_pressure
+    return [surface_interaction_card("SI", normal_slope, friction, stick_slope, tension),
+            contact_pair_card("SI", "SCONTACT", "SBASE", f.pair)]
+
+
 #: Name of the node set of every loaded node (its displacements go to the .dat file).
 LOADED_NSET = "NLOADED"
 #: Step time of the clamping step, s (step 2's increment times follow it).
@@ -410,8 +472,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
                     normal_contact: str = "penalty", normal_slope: float = 1.0e5,
                     modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                     cycles: int = 1, max_iterations: int = 26,
-                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter"
-                    ) -> str:
+                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
+                    formulation: str = "face-to-face") -> str:
     """The complete ``.inp`` deck of the user's mesh on a rigid frictional base.
 
     Parameters
@@ -445,6 +507,9 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
     startup : str
         How the loads start (:data:`~.meshhistory.STARTUPS`): ``"quarter"`` (the paper's load
         step) or ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
+    formulation : str
+        A key of :data:`CONTACT_FORMULATIONS`: ``"face-to-face"`` (default) or
+        ``"node-to-surface"`` (the built-in solver's nodal law).
 
     Returns
     -------
@@ -461,6 +526,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             "counterpart; compare with the built-in solver's 'penalty'")
     fn = _check_positive("normal_force", normal_force, "N")
     contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
+    interaction = _interaction_cards(formulation, normal_slope, friction, stick_slope,
+                                     fn / face_load(mesh, contact)[2])
     plan = load_plan(mesh, loads)
     history = load_history(plan.loads, increments_per_cycle, cycles, startup)
     base = base_slab(mesh, contact, contact_set)
@@ -484,8 +551,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         material_card("BODY", modulus, poisson_ratio),
         solid_section_card("BODY", "BODY"),
         solid_section_card("BASE", "BODY"),
-        surface_interaction_card("SI", normal_slope, friction, stick_slope),
-        contact_pair_card("SI", "SCONTACT", "SBASE"),
+        *interaction,
         boundary_card([("NBASE", 1, 3), *fixed_rows]),
         amps,
         *_clamping_step(fn, clamp_area, clamp_set),

@@ -30,7 +30,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -298,7 +298,9 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                       cycles: int = 1, max_iterations: int = 26,
                       fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
                       job_dir: str | Path | None = None, timeout: float | None = None,
-                      threads: int = 1, executable: str | None = None) -> MeshCalculixResult:
+                      threads: int = 1, executable: str | None = None,
+                      formulation: str = "face-to-face",
+                      progress: Callable[[int], None] | None = None) -> MeshCalculixResult:
     """Write the deck of the user's mesh (:func:`build_mesh_deck`, same parameters), run ccx
     and read each load's loop and the work of the last cycle.
 
@@ -313,6 +315,12 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         ``OMP_NUM_THREADS`` of the solver.
     executable : str, optional
         Solver name or path (default ``ccx`` on PATH).
+    formulation : str
+        The contact (:data:`~.meshdeck.CONTACT_FORMULATIONS`): ``"face-to-face"`` (default)
+        or ``"node-to-surface"`` (the built-in solver's nodal law).
+    progress : callable, optional
+        Called while ccx runs with the increments it has finished (both steps; the total is
+        ``len(history.time) + 1``: :func:`~.runner.run_ccx`'s ``watch``).
 
     Raises
     ------
@@ -328,7 +336,8 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                            normal_slope=normal_slope, modulus=modulus,
                            poisson_ratio=poisson_ratio,
                            increments_per_cycle=increments_per_cycle, cycles=cycles,
-                           max_iterations=max_iterations, fixed=fixed, startup=startup)
+                           max_iterations=max_iterations, fixed=fixed, startup=startup,
+                           formulation=formulation)
     plan = load_plan(mesh, loads)
     history = load_history(loads, increments_per_cycle, cycles, startup)
     exe = find_ccx(executable)  # fail before touching the directory
@@ -344,7 +353,7 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         with atomic_write(d / f"{JOBNAME}.inp") as fh:
             fh.write(deck)
         run = run_ccx(d, JOBNAME, timeout=timeout or mesh_timeout(mesh), threads=threads,
-                      executable=exe)
+                      executable=exe, watch=progress)
         try:
             return read_mesh_results(plan, history, d, JOBNAME,
                                      element=element, dof=dof, wall_s=run.wall_s,
