@@ -38,7 +38,8 @@ def add_parser(sub: Any) -> None:
                    help="load case, repeat for several (default: tip and centre)")
     add_option(p, "stick_slope", default=DEFAULT_STICK_SLOPE)
     p.add_argument("--timeout", type=number, metavar="S",
-                   help="time-out of each solver run, s (default 120 s + 0.15 s per DOF)")
+                   help="time-out of each solver run, s (default 120 s + 0.15 s per DOF, on a mesh "
+                   "file per 50 increments)")
     p.add_argument("--threads", type=int, default=1, metavar="N",
                    help="OpenMP threads of each solver run (default 1)")
     p.add_argument("--scheduler", metavar="ADDRESS",
