@@ -13,7 +13,8 @@ built-in solver"):
   over the faces instead, a different discretisation of the same continuum that only agrees
   under refinement;
 - the built-in solver runs cycles until W per cycle settles; CalculiX then runs as many
-  cycles from the same start, and its own cycles' W say whether it settled too (``settled``);
+  cycles from the same start, and its own cycles' W say whether it settled too (``settled``,
+  to :data:`CALCULIX_SETTLE_FACTOR` times the built-in's tolerance);
   the W of every cycle of both is in the result, so the comparison is cycle for cycle;
 - W's sensitivity to the normal slope: one more built-in run at ten times the slope.
 
@@ -36,7 +37,7 @@ from ..ownmesh import OwnMeshCase, run_own_mesh
 from .meshdeck import check_formulation
 from .meshhistory import load_history
 
-__all__ = ["BUILTIN_CONTACT", "DEFAULT_FORMULATION", "SLOPE_FACTOR", "TOLERANCE",
+__all__ = ["BUILTIN_CONTACT", "CALCULIX_SETTLE_FACTOR", "DEFAULT_FORMULATION", "SLOPE_FACTOR", "TOLERANCE",
            "compare_on_mesh", "settled"]
 
 #: CalculiX's contact formulation that ``validate --mesh`` compares with by default: the one
@@ -50,6 +51,11 @@ BUILTIN_CONTACT = ("nodal penalty: normal spring K A_i (lift-off allowed), stick
 TOLERANCE = {"dissipated_energy_Nmm": 0.01, "peak_displacement_mm": 0.001}
 #: The normal slope of the sensitivity run, as a multiple of the case's.
 SLOPE_FACTOR = 10.0
+#: CalculiX counts as settled when its last two cycles' W agree to this multiple of the
+#: built-in solver's tolerance: the built-in stops at the first cycle whose change falls below
+#: its tolerance, so CalculiX's change at that cycle sits about there too (the cantilever:
+#: built-in 9.3e-4, CalculiX 1.05e-3 with W equal to 1e-4).
+CALCULIX_SETTLE_FACTOR = 2.0
 
 
 def settled(works: list[float], tol: float) -> bool:
@@ -130,7 +136,7 @@ def compare_on_mesh(case: OwnMeshCase, out: str | Path | None = None, *,
     works = {"builtin": [float(w) for w in builtin["work_per_cycle_Nmm"]],
              "calculix": [float(w) for w in ccx["cycle_work_Nmm"]]}
     is_settled = {"builtin": bool(builtin["settled"]),
-                  "calculix": settled(works["calculix"], case.tol)}
+                  "calculix": settled(works["calculix"], CALCULIX_SETTLE_FACTOR * case.tol)}
     diff = {k: _rel(ccx[k], builtin[k]) for k in TOLERANCE}
     result: dict[str, Any] = {
         "mesh": str(case.mesh_file), "contact_formulation": formulation,
