@@ -37,7 +37,8 @@ from ..ownmesh import OwnMeshCase, run_own_mesh
 from .meshdeck import check_formulation
 from .meshhistory import load_history
 
-__all__ = ["BUILTIN_CONTACT", "CALCULIX_SETTLE_FACTOR", "DEFAULT_FORMULATION", "SLOPE_FACTOR", "TOLERANCE",
+__all__ = ["BUILTIN_CONTACT", "CALCULIX_SETTLE_FACTOR", "DEFAULT_FORMULATION", "SLOPE_FACTOR",
+           "TOLERANCE",
            "compare_on_mesh", "settled"]
 
 #: CalculiX's contact formulation that ``validate --mesh`` compares with by default: the one
