@@ -119,11 +119,11 @@ def _print_mesh(result: dict[str, Any], out: str) -> None:
     print(f"  contact built-in: {b['contact']}")
     print(f"  contact CalculiX: {c['contact']}")
     print(f"  W  built-in {b['dissipated_energy_Nmm']:.6g} N·mm, CalculiX "
-          f"{c['dissipated_energy_Nmm']:.6g} N·mm: {d['dissipated_energy_Nmm']:+.2%} "
-          f"(tolerance {tol['dissipated_energy_Nmm']:.0%})")
+          f"{c['dissipated_energy_Nmm']:.6g} N·mm: {d['dissipated_energy_Nmm']:+.3%} "
+          f"(tolerance {tol['dissipated_energy_Nmm']:.1%})")
     print(f"  d  built-in {b['peak_displacement_mm']:.6g} mm, CalculiX "
-          f"{c['peak_displacement_mm']:.6g} mm: {d['peak_displacement_mm']:+.2%} "
-          f"(tolerance {tol['peak_displacement_mm']:.0%})")
+          f"{c['peak_displacement_mm']:.6g} mm: {d['peak_displacement_mm']:+.4%} "
+          f"(tolerance {tol['peak_displacement_mm']:.1%})")
     for side in ("builtin", "calculix"):
         works = ", ".join(f"{w:.5g}" for w in result["cycle_work_Nmm"][side])
         print(f"  W per cycle {side:<8s} {works} N·mm: "
