@@ -12,7 +12,8 @@ named sets:
 3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the contact set's faces
    (slave) and the base's upper face (master): linear pressure-overclosure law with the normal
    slope (``normal_contact="penalty"``, lift-off allowed) and Coulomb friction mu with the stick
-   slope lambda (``*FRICTION``);
+   slope lambda (``*FRICTION``); or, with ``formulation="node-to-surface"``
+   (:mod:`.contactform`), node-to-surface penalty contact: the built-in solver's nodal law;
 4. step 1: the clamping pressure F_N / A on the clamp set's faces (``*DSLOAD``, P), friction
    active;
 5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
@@ -45,6 +46,13 @@ from numpy.typing import ArrayLike, NDArray
 from ...errors import ParameterError
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
+from .contactform import (
+    CONTACT_FORMULATIONS,
+    N2S_TENSION_RATIO,
+    ContactFormulation,
+    check_formulation,
+    interaction_cards,
+)
 from .deck import (
     _name,
     _num,
@@ -74,6 +82,7 @@ __all__ = [
     "CONTACT_FORMULATIONS",
     "LOADED_NSET",
     "MESH_ELEMENTS",
+    "N2S_TENSION_RATIO",
     "NORMAL_CONTACTS",
     "BaseSlab",
     "ContactFormulation",
@@ -96,66 +105,6 @@ MESH_ELEMENTS = {8: "C3D8I", 20: "C3D20R"}
 NORMAL_CONTACTS = {
     "penalty": "linear pressure-overclosure law (slope normal_slope, N/mm^3), lift-off allowed",
 }
-#: sigma_inf of node-to-surface contact relative to the mean contact pressure F_N / A_contact:
-#: CalculiX rounds the kink of p = K d over the overclosure eps = pi sigma_inf / K and shifts
-#: the pressure of a closed node by up to -sigma_inf (:func:`~.deck.surface_interaction_card`);
-#: 1e-5 of the mean pressure keeps W within 3e-4 of the built-in solver's sharp kink on the
-#: bolt pad, where the few slipping nodes carry little pressure (1e-4: 3.3e-3; docs/
-#: interpretation.md section 14).
-N2S_TENSION_RATIO = 1e-5
-
-
-@dataclass(frozen=True)
-class ContactFormulation:
-    """How CalculiX enforces the contact of the body with its base.
-
-    Attributes
-    ----------
-    pair : str
-        The ``*CONTACT PAIR`` type (a key of :data:`~.deck.CONTACT_PAIR_TYPES`).
-    description : str
-    tension_ratio : float or None
-        sigma_inf / mean contact pressure, for the types that need a sigma_inf.
-    """
-
-    pair: str
-    description: str
-    tension_ratio: float | None = None
-
-
-#: Contact formulations of the mesh deck: name -> formulation. ``node-to-surface`` is the one
-#: the built-in solver's nodal law equals (a spring per slave node of stiffness K A_i and
-#: lambda A_i, A_i the node's share of the contact faces, Coulomb limit mu N_i at the node);
-#: ``face-to-face`` integrates the penalty tractions over the faces (CalculiX's recommended,
-#: and this deck's, default).
-CONTACT_FORMULATIONS = {
-    "face-to-face": ContactFormulation(
-        "face-to-face", "face-to-face penalty (SURFACE TO SURFACE): tractions integrated over "
-        "the slave faces"),
-    "node-to-surface": ContactFormulation(
-        "node-to-surface", "node-to-surface penalty (NODE TO SURFACE): one spring per slave "
-        "node, stiffness K A_i and lambda A_i, Coulomb limit mu N_i at the node (the built-in "
-        "solver's nodal law)", N2S_TENSION_RATIO),
-}
-
-
-def check_formulation(name: str) -> ContactFormulation:
-    """The formulation called ``name``; one line naming the choices otherwise."""
-    if name not in CONTACT_FORMULATIONS:
-        raise ParameterError(f"contact formulation must be one of "
-                             f"{', '.join(CONTACT_FORMULATIONS)}, got {name!r}")
-    return CONTACT_FORMULATIONS[name]
-
-
-def _interaction_cards(formulation: str, normal_slope: float, friction: float,
-                       stick_slope: float, mean_pressure: float) -> list[str]:
-    """``*SURFACE INTERACTION`` and ``*CONTACT PAIR`` of the contact set on the base."""
-    f = check_formulation(formulation)
-    tension = None if f.tension_ratio is None else f.tension_ratio * mean_pressure
-    return [surface_interaction_card("SI", normal_slope, friction, stick_slope, tension),
-            contact_pair_card("SI", "SCONTACT", "SBASE", f.pair)]
-
-
 #: Name of the node set of every loaded node (its displacements go to the .dat file).
 LOADED_NSET = "NLOADED"
 #: Step time of the clamping step, s (step 2's increment times follow it).
@@ -527,7 +476,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             "counterpart; compare with the built-in solver's 'penalty'")
     fn = _check_positive("normal_force", normal_force, "N")
     contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
-    interaction = _interaction_cards(formulation, normal_slope, friction, stick_slope,
+    interaction = interaction_cards(formulation, normal_slope, friction, stick_slope,
                                      fn / face_load(mesh, contact)[2])
     plan = load_plan(mesh, loads)
     history = load_history(plan.loads, increments_per_cycle, cycles, startup)
