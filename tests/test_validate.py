@@ -228,3 +228,14 @@ def test_cli_user_errors_are_one_line(argv, code, text, capsys):
     assert main(argv) == code
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and text in err
+
+
+def test_the_box_validation_refuses_a_contact_formulation(capsys):
+    """--contact-formulation chooses CalculiX's contact on a mesh file; the box's validation
+    has its own deck, so the option is refused there (one line, exit 1)."""
+    from microslip.cli.main import main
+
+    assert main(["validate", "--out", "x", "--contact-formulation", "face-to-face"]) == 1
+    err = capsys.readouterr().err
+    assert "--contact-formulation applies to --mesh FILE" in err
+    assert len(err.strip().splitlines()) == 1

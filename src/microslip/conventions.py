@@ -27,6 +27,7 @@ from .errors import ParameterError
 
 __all__ = [
     "BACKBONE_NAMES",
+    "CCX_CONTACT_FORMULATIONS",
     "CLAMP_MODELS",
     "COUPLINGS",
     "DEFAULT_COUPLING",
@@ -92,6 +93,11 @@ DEFAULT_NORMAL_SLOPE = 1.0e5
 #: normal forces held (the paper's reading). CalculiX models ``penalty`` only and refuses it
 #: (docs/interpretation.md, "The mesh structure's library home").
 DEFAULT_NORMAL_CONTACT = "fixed"
+
+#: CalculiX's contact formulations on a mesh of the user's own, the first the one that solves
+#: the built-in solver's equations (validate --mesh's default); what each is:
+#: :data:`microslip.fe.calculix.meshdeck.CONTACT_FORMULATIONS`.
+CCX_CONTACT_FORMULATIONS = ("node-to-surface", "face-to-face")
 
 # -- the structure on a mesh (modal --mesh, frf --mesh, reduce; microslip.meshdynamics)
 #: Highest mode number a mesh study takes (the eigen-solve computes that many).

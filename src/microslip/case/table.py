@@ -21,6 +21,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..conventions import (
+    CCX_CONTACT_FORMULATIONS,
     CLAMP_MODELS,
     COUPLINGS,
     DEFAULT_ELEMENTS,
@@ -160,6 +161,10 @@ _OPTIONS: tuple[Option, ...] = (
     Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area", "",
            "a set name of the mesh file", type=set_name, metavar="NAME", key="mesh.clamp_set",
            check=text, scope="mesh"),
+    Option("contact_formulation", "CalculiX's contact on the mesh: node-to-surface solves the "
+           "built-in solver's nodal equations, face-to-face integrates the tractions over the "
+           "faces", "", " | ".join(CCX_CONTACT_FORMULATIONS), type=None,
+           choices=CCX_CONTACT_FORMULATIONS),
     # the structure of the user's own mesh (modal --mesh FILE; the report's structure section)
     Option("density", "density of the body of the mesh (aluminium 2700, steel 7850)",
            "kg/m^3", "> 0", metavar="KG/M3", key="mesh.density", check=positive("kg/m^3"),

@@ -12,5 +12,9 @@
   :class:`~microslip.fe.meshload.MeshLoad` loads (issue 22), and
   :mod:`~microslip.fe.calculix.meshhistory` its load history;
 - :mod:`~microslip.fe.calculix.meshrun`: that deck run and read into a
-  :class:`~microslip.fe.calculix.meshrun.MeshCalculixResult`.
+  :class:`~microslip.fe.calculix.meshrun.MeshCalculixResult`;
+- :mod:`~microslip.fe.calculix.contactform`: the deck's contact formulations (face-to-face,
+  node-to-surface);
+- :mod:`~microslip.fe.calculix.compare`: the built-in solver against CalculiX on the same
+  mesh, like with like (``validate --mesh``, issue 29).
 """

@@ -33,6 +33,7 @@ from .case import FECase
 from .mesh import BarMesh, bar_mesh
 
 __all__ = [
+    "CONTACT_PAIR_TYPES",
     "LOAD_AMPLITUDE",
     "LOAD_NSET",
     "amplitude_card",
@@ -215,12 +216,15 @@ def solid_section_card(elset: str, material: str) -> str:
 
 
 def surface_interaction_card(name: str, normal_slope: float, friction: float,
-                             stick_slope: float) -> str:
+                             stick_slope: float, tension: float | None = None) -> str:
     """``*SURFACE INTERACTION`` with a linear penalty law and Coulomb friction.
 
     ``*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR``: contact pressure = ``normal_slope``
     (N/mm^3) times the overclosure. ``*FRICTION``: coefficient mu and stick slope lambda
     (N/mm^3), the shear traction per unit of elastic (reversible) slip below mu p.
+    ``tension`` (MPa): sigma_inf, the second value that node-to-surface contact needs (its
+    law is p = K d (1/2 + atan(d / eps) / pi), eps = pi sigma_inf / K: the kink of p = K d
+    rounded over eps, p -> K d - sigma_inf deep in contact, -sigma_inf far open).
 
     >>> print(surface_interaction_card("SI", 1e5, 0.8, 1e4), end="")
     *SURFACE INTERACTION, NAME=SI
@@ -228,23 +232,40 @@ def surface_interaction_card(name: str, normal_slope: float, friction: float,
     100000
     *FRICTION
     0.8, 10000
+    >>> surface_interaction_card("SI", 1e5, 0.8, 1e4, tension=0.001).splitlines()[2]
+    '100000, 0.001'
     """
+    slope = _num(normal_slope, 'normal slope (N/mm^3)', positive=True)
+    if tension is not None:
+        slope += f", {_num(tension, 'tension at large clearance (MPa)', positive=True)}"
     return (f"*SURFACE INTERACTION, NAME={_name('interaction', name)}\n"
             "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-            f"{_num(normal_slope, 'normal slope (N/mm^3)', positive=True)}\n"
+            f"{slope}\n"
             "*FRICTION\n"
             f"{_num(friction, 'friction coefficient', positive=True)}, "
             f"{_num(stick_slope, 'stick slope (N/mm^3)', positive=True)}\n")
 
 
-def contact_pair_card(interaction: str, slave: str, master: str) -> str:
-    """Face-to-face penalty ``*CONTACT PAIR`` (slave surface first).
+#: ``*CONTACT PAIR`` types CalculiX takes (the deck's name -> the card's TYPE).
+CONTACT_PAIR_TYPES = {"face-to-face": "SURFACE TO SURFACE", "node-to-surface": "NODE TO SURFACE"}
+
+
+def contact_pair_card(interaction: str, slave: str, master: str,
+                      kind: str = "face-to-face") -> str:
+    """Penalty ``*CONTACT PAIR`` (slave surface first), face-to-face (the default) or
+    node-to-surface (:data:`CONTACT_PAIR_TYPES`).
 
     >>> contact_pair_card("SI", "SBOTTOM", "SBASE")
     '*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\\nSBOTTOM, SBASE\\n'
+    >>> contact_pair_card("SI", "SBOTTOM", "SBASE", "node-to-surface").split(", ")[2]
+    'TYPE=NODE TO SURFACE\\nSBOTTOM'
     """
+    if kind not in CONTACT_PAIR_TYPES:
+        raise ParameterError(f"contact pair type must be one of {', '.join(CONTACT_PAIR_TYPES)}"
+                             f", got {kind!r}")
     return (f"*CONTACT PAIR, INTERACTION={_name('interaction', interaction)}, "
-            f"TYPE=SURFACE TO SURFACE\n{_name('surface', slave)}, {_name('surface', master)}\n")
+            f"TYPE={CONTACT_PAIR_TYPES[kind]}\n{_name('surface', slave)}, "
+            f"{_name('surface', master)}\n")
 
 
 def boundary_card(rows: Iterable[tuple[str, int, int]]) -> str:

@@ -12,7 +12,8 @@ named sets:
 3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the contact set's faces
    (slave) and the base's upper face (master): linear pressure-overclosure law with the normal
    slope (``normal_contact="penalty"``, lift-off allowed) and Coulomb friction mu with the stick
-   slope lambda (``*FRICTION``);
+   slope lambda (``*FRICTION``); or, with ``formulation="node-to-surface"``
+   (:mod:`.contactform`), node-to-surface penalty contact: the built-in solver's nodal law;
 4. step 1: the clamping pressure F_N / A on the clamp set's faces (``*DSLOAD``, P), friction
    active;
 5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
@@ -46,6 +47,13 @@ from ...errors import ParameterError
 from ..constants import DEFAULT_NORMAL_SLOPE
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
+from .contactform import (
+    CONTACT_FORMULATIONS,
+    N2S_TENSION_RATIO,
+    ContactFormulation,
+    check_formulation,
+    interaction_cards,
+)
 from .deck import (
     _name,
     _num,
@@ -72,14 +80,18 @@ from .meshhistory import _STARTUP_TEXT, LoadHistory, load_history
 
 __all__ = [
     "CLAMP_TIME",
+    "CONTACT_FORMULATIONS",
     "LOADED_NSET",
     "MESH_ELEMENTS",
+    "N2S_TENSION_RATIO",
     "NORMAL_CONTACTS",
     "BaseSlab",
+    "ContactFormulation",
     "MeshLoadPlan",
     "base_slab",
     "build_frequency_deck",
     "build_mesh_deck",
+    "check_formulation",
     "dsload_card",
     "element_surface_card",
     "load_plan",
@@ -411,8 +423,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
                     normal_contact: str = "penalty", normal_slope: float = DEFAULT_NORMAL_SLOPE,
                     modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
                     cycles: int = 1, max_iterations: int = 26,
-                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter"
-                    ) -> str:
+                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
+                    formulation: str = "face-to-face") -> str:
     """The complete ``.inp`` deck of the user's mesh on a rigid frictional base.
 
     Parameters
@@ -446,6 +458,9 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
     startup : str
         How the loads start (:data:`~.meshhistory.STARTUPS`): ``"quarter"`` (the paper's load
         step) or ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
+    formulation : str
+        A key of :data:`CONTACT_FORMULATIONS`: ``"face-to-face"`` (default) or
+        ``"node-to-surface"`` (the built-in solver's nodal law).
 
     Returns
     -------
@@ -462,6 +477,8 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
             "counterpart; compare with the built-in solver's 'penalty'")
     fn = _check_positive("normal_force", normal_force, "N")
     contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
+    interaction = interaction_cards(formulation, normal_slope, friction, stick_slope,
+                                     fn / face_load(mesh, contact)[2])
     plan = load_plan(mesh, loads)
     history = load_history(plan.loads, increments_per_cycle, cycles, startup)
     base = base_slab(mesh, contact, contact_set)
@@ -485,8 +502,7 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         material_card("BODY", modulus, poisson_ratio),
         solid_section_card("BODY", "BODY"),
         solid_section_card("BASE", "BODY"),
-        surface_interaction_card("SI", normal_slope, friction, stick_slope),
-        contact_pair_card("SI", "SCONTACT", "SBASE"),
+        *interaction,
         boundary_card([("NBASE", 1, 3), *fixed_rows]),
         amps,
         *_clamping_step(fn, clamp_area, clamp_set),

@@ -30,7 +30,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -172,10 +172,19 @@ class MeshCalculixResult:
         return out
 
 
-def mesh_timeout(mesh: HexMesh) -> float:
+def mesh_timeout(mesh: HexMesh, increments: int = 50) -> float:
     """A generous time-out, s: 120 s plus 0.15 s per degree of freedom (the box's rule,
-    :func:`~microslip.fe.calculix.runner.default_timeout`)."""
-    return 120.0 + 0.15 * 3 * int(np.unique(mesh.elements).size)
+    :func:`~microslip.fe.calculix.runner.default_timeout`) for every 50 increments or fewer
+    (a run of several cycles, or of many increments per cycle, takes proportionally longer:
+    the post's 3 cycles of 160 increments took 282 s on a loaded machine).
+
+    >>> from microslip.fe.examples import cantilever_mesh
+    >>> m = cantilever_mesh(12, 3, 1)
+    >>> round(mesh_timeout(m), 6), round(mesh_timeout(m, 200), 6)
+    (166.8, 307.2)
+    """
+    dof = 3 * int(np.unique(mesh.elements).size)
+    return 120.0 + 0.15 * dof * max(1.0, increments / 50.0)
 
 
 def _states(blocks: list[Any], n: int, what: str, job_dir: Path) -> list[Any]:
@@ -299,7 +308,9 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                       cycles: int = 1, max_iterations: int = 26,
                       fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
                       job_dir: str | Path | None = None, timeout: float | None = None,
-                      threads: int = 1, executable: str | None = None) -> MeshCalculixResult:
+                      threads: int = 1, executable: str | None = None,
+                      formulation: str = "face-to-face",
+                      progress: Callable[[int], None] | None = None) -> MeshCalculixResult:
     """Write the deck of the user's mesh (:func:`build_mesh_deck`, same parameters), run ccx
     and read each load's loop and the work of the last cycle.
 
@@ -314,6 +325,12 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         ``OMP_NUM_THREADS`` of the solver.
     executable : str, optional
         Solver name or path (default ``ccx`` on PATH).
+    formulation : str
+        The contact (:data:`~.meshdeck.CONTACT_FORMULATIONS`): ``"face-to-face"`` (default)
+        or ``"node-to-surface"`` (the built-in solver's nodal law).
+    progress : callable, optional
+        Called while ccx runs with the increments it has finished (both steps; the total is
+        ``len(history.time) + 1``: :func:`~.runner.run_ccx`'s ``watch``).
 
     Raises
     ------
@@ -329,7 +346,8 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
                            normal_slope=normal_slope, modulus=modulus,
                            poisson_ratio=poisson_ratio,
                            increments_per_cycle=increments_per_cycle, cycles=cycles,
-                           max_iterations=max_iterations, fixed=fixed, startup=startup)
+                           max_iterations=max_iterations, fixed=fixed, startup=startup,
+                           formulation=formulation)
     plan = load_plan(mesh, loads)
     history = load_history(loads, increments_per_cycle, cycles, startup)
     exe = find_ccx(executable)  # fail before touching the directory
@@ -344,8 +362,8 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
             (d / f"{JOBNAME}{suffix}").unlink(missing_ok=True)
         with atomic_write(d / f"{JOBNAME}.inp") as fh:
             fh.write(deck)
-        run = run_ccx(d, JOBNAME, timeout=timeout or mesh_timeout(mesh), threads=threads,
-                      executable=exe)
+        run = run_ccx(d, JOBNAME, timeout=timeout or mesh_timeout(mesh, history.time.size),
+                      threads=threads, executable=exe, watch=progress)
         try:
             return read_mesh_results(plan, history, d, JOBNAME,
                                      element=element, dof=dof, wall_s=run.wall_s,

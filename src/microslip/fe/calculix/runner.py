@@ -17,6 +17,7 @@ import shutil
 import signal
 import subprocess
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -148,8 +149,19 @@ def _error_line(log: str) -> str:
     return ""
 
 
+def _sta_increments(path: Path) -> int:
+    """Converged increments listed so far in a ``.sta`` file (0 while it is missing)."""
+    try:
+        text = path.read_text(errors="replace")
+    except OSError:
+        return 0
+    rows = (ln.split() for ln in text.splitlines())
+    return sum(1 for r in rows if len(r) >= 3 and r[0].isdigit() and r[2].isdigit())
+
+
 def run_ccx(job_dir: str | Path, jobname: str = JOBNAME, *, timeout: float,
-            threads: int = 1, executable: str | None = None) -> SolverRun:
+            threads: int = 1, executable: str | None = None,
+            watch: Callable[[int], None] | None = None) -> SolverRun:
     """Run ``ccx -i jobname`` in ``job_dir`` and check how it ended.
 
     Parameters
@@ -163,6 +175,9 @@ def run_ccx(job_dir: str | Path, jobname: str = JOBNAME, *, timeout: float,
         ``OMP_NUM_THREADS`` for the solver (passed in its environment only).
     executable : str, optional
         Solver name or path (default ``ccx`` on PATH).
+    watch : callable, optional
+        Called about once a second while ccx runs with the number of increments (of all
+        steps) it has finished, from its ``.sta`` file: a progress display.
 
     Raises
     ------
@@ -181,18 +196,36 @@ def run_ccx(job_dir: str | Path, jobname: str = JOBNAME, *, timeout: float,
     log_path = job_dir / "ccx.log"
     start = time.perf_counter()
     try:
-        proc = subprocess.run([exe, "-i", jobname], cwd=job_dir, env=env, timeout=timeout,
-                              capture_output=True, check=False)
-    except subprocess.TimeoutExpired as exc:
-        log = _text(exc.stdout) + _text(exc.stderr)
-        log_path.write_text(log, encoding="utf-8")
-        raise SolverTimeoutError(f"ccx did not finish within {timeout:g} s and was stopped; "
-                                 "a partial loop is not a result", job_dir,
-                                 _tail(log)) from None
+        proc = subprocess.Popen([exe, "-i", jobname], cwd=job_dir, env=env,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     except OSError as exc:
         raise SolverError(f"could not start {exe}: {exc.strerror or exc}", job_dir) from None
+    try:
+        while True:
+            left = timeout - (time.perf_counter() - start)
+            try:
+                out, err = proc.communicate(timeout=max(min(1.0, left), 1e-3))
+                break
+            except subprocess.TimeoutExpired:
+                if time.perf_counter() - start >= timeout:
+                    proc.kill()
+                    out, err = proc.communicate()
+                    log = _text(out) + _text(err)
+                    log_path.write_text(log, encoding="utf-8")
+                    raise SolverTimeoutError(
+                        f"ccx did not finish within {timeout:g} s and was stopped; a partial "
+                        "loop is not a result", job_dir, _tail(log)) from None
+                if watch is not None:
+                    watch(_sta_increments(job_dir / f"{jobname}.sta"))
+    except BaseException:
+        if proc.poll() is None:  # interrupted: leave no ccx behind
+            proc.kill()
+            proc.wait()
+        raise
     wall = time.perf_counter() - start
-    log = _text(proc.stdout) + _text(proc.stderr)
+    if watch is not None:
+        watch(_sta_increments(job_dir / f"{jobname}.sta"))
+    log = _text(out) + _text(err)
     log_path.write_text(log, encoding="utf-8")
     tail = _tail(log)
     rc = proc.returncode
