@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
@@ -28,9 +28,17 @@ TIP = clamp_joint("tip", preset("table1"), 1e5, elements=60)
 @settings(max_examples=20, deadline=None)
 @given(coef=st.lists(st.floats(-1.0, 1.0, allow_nan=False), min_size=7, max_size=7),
        scale=st.floats(0.05, 3.0), axis=st.sampled_from([0, 1]))
+@example(coef=[1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], scale=1.0, axis=0)
+@example(coef=[0.9, 0.0, 0.1, 0.0, 0.0, 0.0, 0.0], scale=0.7, axis=1)
 def test_circular_operator_along_one_axis_is_the_1d_operator(coef, scale, axis):
-    """Force and Jacobian (J @ E) to 1e-12; no force across the axis."""
+    """Force and Jacobian (J @ E) to 1e-12; no force across the axis. A motion whose peak or
+    half range lands on a slider's slip displacement (to 1e-9) is left out: there the
+    Jacobian has a kink, and the two operators may take either one-sided derivative (the
+    example below, peak = the last slider's slip, found by hypothesis, is such a tie)."""
     x = to_time(np.asarray(coef) * float(TIP.slip.max()) * scale, 64)
+    tie = 1e-9 * float(TIP.slip.max())
+    for level in (np.abs(x).max(), 0.5 * (x.max() - x.min())):
+        assume(np.all(np.abs(TIP.slip - level) > tie))
     basis = np.ascontiguousarray(to_time(np.eye(7), 64).T)
     f1, j1 = TIP.periodic_force_projected(x, basis)
     u = np.zeros((64, 2))
