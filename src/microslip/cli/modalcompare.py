@@ -15,10 +15,12 @@ from typing import Any
 
 from ..case.model import Case
 from ..case.table import CASE_DESTS, OPTIONS
+from ..errors import MicroslipError
 from ..fe.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR, modal_verdict
 from .common import print_json
 from .modalmesh import (
     ALL,
+    BASE_COLUMNS,
     MESH_SOLVERS,
     MeshCurve,
     MeshStudy,
@@ -54,22 +56,53 @@ def compare_output(study: MeshStudy, curves: dict[str, MeshCurve]) -> dict[str, 
                       for name, o in outputs.items()}
     truth = out["solvers"].get(TRUTH)
     out["verdicts"] = ({} if truth is None else
-                       {name: modal_verdict(name, truth, o).summary()
+                       {name: _verdict(name, truth, o, curves[name].failures)
                         for name, o in out["solvers"].items() if name != TRUTH})
     out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
                        for w in o["warnings"]]
     return out
 
 
+def _verdict(name: str, truth: dict[str, Any], curve: dict[str, Any],
+             failures: tuple[str, ...]) -> dict[str, Any]:
+    """The model's verdict against the full FE; a model that failed at some amplitudes (or
+    as a whole) says so in its line, and one with nothing left to compare does not meet its
+    targets."""
+    v = modal_verdict(name, truth, curve).summary()
+    if failures:
+        v["verdict"] = (f"{name}: {failures[0]}" if not v["points"] else
+                        f"{v['verdict']}; {failures[0]}")
+        if len(failures) > 1:
+            v["verdict"] += f" (and {len(failures) - 1} more amplitudes)"
+        if not v["points"]:
+            v["meets_targets"] = False
+    return v
+
+
+def _failed(study: MeshStudy, why: str) -> MeshCurve:
+    """The curve of a solver that stopped: every amplitude failed, ``why`` its reason."""
+    empty: list[float | None] = [None] * len(study.amplitudes)
+    return MeshCurve(label=f"failed: {why}", columns=dict(BASE_COLUMNS),
+                     values={k: list(empty) for k in BASE_COLUMNS}, extra={},
+                     warnings=[why], failures=(why,))
+
+
 def run_all(study: MeshStudy) -> tuple[dict[str, MeshCurve], dict[str, Any]]:
-    """Every registered solver's curve on ``study``, and :func:`compare_output` of them."""
+    """Every registered solver's curve on ``study``, and :func:`compare_output` of them. A
+    solver that stops (one line, :class:`~microslip.errors.MicroslipError`) does not stop
+    the others: its rows are failed, its verdict says why."""
     args = study.args
     balance_from_args(args)  # a bad --harmonics must not wait for the full FE's runs
     curves: dict[str, MeshCurve] = {}
     for k, (name, solver) in enumerate(MESH_SOLVERS.items()):
         if not args.json:
             print(f"solver {k + 1}/{len(MESH_SOLVERS)}: {name}", file=sys.stderr, flush=True)
-        curves[name] = solver.run(study)
+        try:
+            curves[name] = solver.run(study)
+        except MicroslipError as exc:
+            if name == TRUTH:  # nothing to judge the others against
+                raise
+            curves[name] = _failed(study, str(exc))
     return curves, compare_output(study, curves)
 
 

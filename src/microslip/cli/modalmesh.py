@@ -194,6 +194,9 @@ class MeshCurve:
     values: dict[str, list[float | None]]
     extra: dict[str, Any]
     warnings: list[str]
+    #: Why amplitudes (or the whole solver) failed: each reason once, also in ``warnings``;
+    #: ``--solver all``'s verdict on the solver names them.
+    failures: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -254,22 +257,33 @@ def _rom(study: MeshStudy) -> MeshCurve:
     harmonics, samples = balance_from_args(args)
     modes = args.rom_modes or DEFAULT_ROM_MODES
     rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
-    structure = rom_structure(rom, mode.direction @ rom.output)
+    structure = rom_structure(rom, mode.direction @ _output(rom))
     method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
+    failures: list[str] = []  # an amplitude not reached is NaN, its reason a warning
     curve = method(structure, np.asarray(study.amplitudes), harmonics, samples,
-                   study.number - 1)
+                   study.number - 1, failures=failures)
     count = len(study.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
         columns=dict(BASE_COLUMNS),
-        values={"amplitude_mm": [float(a) for a in curve.amplitude],
-                "frequency_Hz": [float(f) for f in curve.frequency],
-                "damping_ratio": [float(z) for z in curve.damping_ratio]},
+        values={"amplitude_mm": _nulls(np.where(np.isnan(curve.frequency), np.nan,
+                                                curve.amplitude)),
+                "frequency_Hz": _nulls(curve.frequency),
+                "damping_ratio": _nulls(curve.damping_ratio)},
         extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
                "rom": {"dofs": rom.dofs, "fixed_interface_modes": modes,
                        "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
                        "samples": curve.samples}},
-        warnings=[])
+        warnings=failures, failures=tuple(failures))
+
+
+def _output(rom: Any) -> Any:
+    """The ROM's output rows (3, n): the response set's mean displacement; one line without
+    a response set."""
+    if rom.output is None:
+        raise ParameterError("the reduced models (--solver rom, joint) measure the amplitude "
+                             "on a node set: give --response-set NAME")
+    return rom.output
 
 
 def _joint(study: MeshStudy) -> MeshCurve:
@@ -286,8 +300,7 @@ def _joint(study: MeshStudy) -> MeshCurve:
     harmonics, samples = balance_from_args(args)
     modes = args.rom_modes or DEFAULT_ROM_MODES
     rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
-    assert rom.output is not None
-    joint = build_whole_joint(rom, study.model, mode, mode.direction @ rom.output,
+    joint = build_whole_joint(rom, study.model, mode, mode.direction @ _output(rom),
                               backbone=args.backbone or "fe")
     curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), harmonics,
                                      samples, mode.frequency_Hz)
