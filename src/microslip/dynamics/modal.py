@@ -35,11 +35,13 @@ Array = NDArray[np.float64]
 #: Newton tolerance of the extended periodic motion concept (relative).
 TOLERANCE = 1e-11
 
-#: Newton iterations at most at an amplitude of the grid, and at one in between.
-MAX_NEWTON, MAX_SUBSTEP_NEWTON = 50, 20
+#: Newton iterations at most at an amplitude of the grid, and at one in between (a Newton
+#: run that has not converged in 20 wanders: a shorter step from a nearer start is cheaper
+#: than more iterations; each is a dense LU of the whole balance).
+MAX_NEWTON, MAX_SUBSTEP_NEWTON = 20, 15
 #: Halvings (in log amplitude) at most of the step to an amplitude Newton does not reach
 #: directly, and the first amplitude's first intermediate step from the stuck mode (ai / it).
-SUBSTEPS, SUBSTEP_RATIO = 5, 16.0
+SUBSTEPS, SUBSTEP_RATIO = 4, 16.0
 
 #: Relative component across an axis below which the energy method takes an anisotropic
 #: joint's motion as along that axis.
