@@ -126,3 +126,22 @@ def test_w_about_zero_settles_against_the_loads_work_scale() -> None:
     w = d["work_per_cycle_Nmm"]
     assert d["cycles"] < 10 and abs(w[-1] - w[-2]) < 1e-8 and abs(w[-1]) < 1e-8
     assert w[0] > 1e-3  # the first cycle did slip: not an idle loop
+
+
+def test_fixed_bracket_qsma_is_stuck_below_first_slip_and_counts_open_nodes_apart() -> None:
+    """Under fixed contact the released nodes carry nothing in the stuck modes too: the full
+    FE's QSMA at half the first-slip force is the stuck frequency; above it the open nodes
+    (limit 0, their sliders follow them) are open, not slipping."""
+    from microslip.fe.builtin.modes import linear_modes
+    from microslip.fe.builtin.qsma import first_slip_force, qsma_point
+
+    m = fixed("bracket.inp")
+    mode = linear_modes(m, 2700.0, 1, "stuck", "response").select(1)
+    q1 = first_slip_force(m, mode)
+    stuck = qsma_point(m, mode, 0.5 * q1)
+    assert stuck.frequency_Hz == pytest.approx(mode.frequency_Hz, rel=1e-8)
+    p = qsma_point(m, mode, 1.05 * q1)
+    area = m.contact_area
+    assert p.open_fraction == pytest.approx(area[~m.closed].sum() / area.sum(), rel=1e-12)
+    assert not np.any(p.node_slipped[~m.closed])
+    assert 0.0 < p.slip_fraction < 0.2

@@ -424,6 +424,8 @@ class _Run:
                     n = self.normal_springs.forces(self.u)
                     status[n <= 0.0] = OPEN
                     self.normal.append(n)
+                else:  # fixed: the nodes the clamping step released stay open
+                    status[~model.closed] = OPEN
                 self.status.append(status)
                 self.slips.append(self.slip.copy())
                 if self.record:
