@@ -57,6 +57,14 @@ AMPLITUDE_COORDINATES = {
 #: Newton tolerance of the extended periodic motion concept (relative).
 TOLERANCE = 1e-11
 
+#: Newton iterations at most at an amplitude of the grid, and at one in between (a Newton
+#: run that has not converged in 20 wanders: a shorter step from a nearer start is cheaper
+#: than more iterations; each is a dense LU of the whole balance).
+MAX_NEWTON, MAX_SUBSTEP_NEWTON = 20, 15
+#: Halvings (in log amplitude) at most of the step to an amplitude Newton does not reach
+#: directly, and the first amplitude's first intermediate step from the stuck mode (ai / it).
+SUBSTEPS, SUBSTEP_RATIO = 4, 16.0
+
 #: Relative component across an axis below which the energy method takes an anisotropic
 #: joint's motion as along that axis.
 AXIS_TOLERANCE = 1e-9
@@ -159,7 +167,8 @@ def _on_line(op: CircularIwan, direction: Array) -> HystereticOperator:
 
 
 def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
-         samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
+         samples: int = DEFAULT_HB_SAMPLES, mode: int = 0, *,
+         failures: list[str] | None = None) -> ModalCurve:
     """Frequency and damping ratio by the extended periodic motion concept.
 
     Notes
@@ -169,14 +178,19 @@ def epmc(structure: Structure, amplitude: ArrayLike, harmonics: int,
     balance with the amplitude constraint ``output . c_1 = a`` and the phase constraint
     ``output . s_1 = 0`` gives X, w and xi, and the modal damping ratio is
     ``zeta = xi / (2 w)`` (Krack 2015). Each amplitude starts Newton's method from the
-    previous one (the first from the stuck linear mode).
+    previous one (the first from the stuck linear mode); where Newton does not reach it, from
+    amplitudes in between (halving the step in log amplitude, up to ``SUBSTEPS`` times).
+    An amplitude that is still not reached raises, or, with ``failures`` given, is NaN, its
+    reason appended to ``failures``, and the next amplitude starts from the last point
+    reached.
     """
     with single_threaded_blas():  # small dense solves: threads cost 10x on a shared machine
-        return _epmc(structure, _amplitudes(amplitude), harmonics, samples, mode)
+        return _epmc(structure, _amplitudes(amplitude), harmonics, samples, mode,
+                     failures=failures)
 
 
 def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: int,
-          odd: bool = False) -> ModalCurve:
+          odd: bool = False, failures: list[str] | None = None) -> ModalCurve:
     """EPMC on every harmonic, or (``odd``) on the odd ones only, the even ones held at zero
     (:func:`.modal_odd.epmc_odd`; the balance itself is then built on the odd harmonics,
     :class:`~.hb.HarmonicBalance`)."""
@@ -198,9 +212,11 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
     load = np.zeros(m_k)
     freq = np.empty(a.size)
     zeta = np.empty(a.size)
-    previous = 1.0
-    for i, ai in enumerate(a):
-        def fun(y: Array, ai: float = ai) -> tuple[Array, Array]:
+
+    def solve(start: Array, previous: float, ai: float, max_iter: int) -> tuple[Array, bool]:
+        """Newton at amplitude ``ai`` from the point ``start`` at amplitude ``previous``
+        (its harmonics scaled by ai / previous)."""
+        def fun(y: Array) -> tuple[Array, Array]:
             # the balance writes its rows in place, column-major: LAPACK factors it as it is
             jac = np.zeros((m_k + 2, m_k + 2), order="F")
             res = hb.residual(y[:m_k], float(y[m_k]), load, float(y[m_k + 1]),
@@ -209,15 +225,43 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
             jac[m_k:] = rows
             return np.concatenate([res.r, rows @ y - (ai, 0.0)]), jac
 
-        guess[:m_k] *= ai / previous
+        g = start.copy()
+        g[:m_k] *= ai / previous
         scale = np.concatenate([np.full(m_k, ai), [omega0, omega0]])
-        y, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=50)
+        y, ok, _ = newton(fun, g, scale, TOLERANCE, max_iter=max_iter)
+        return y, ok
+
+    def reach(start: Array, previous: float | None, ai: float, depth: int = 0
+              ) -> tuple[Array, bool]:
+        """Newton at ``ai`` from the last point (``previous`` None: the stuck mode, exact as
+        the amplitude goes to 0); if it fails, through amplitudes in between (the geometric
+        mean, or ai / SUBSTEP_RATIO from the stuck mode), halving the step in log amplitude
+        up to SUBSTEPS times: contact nodes that open, close or start slipping make the
+        balance piecewise smooth, and Newton from too far a start wanders."""
+        y, ok = solve(start, 1.0 if previous is None else previous, ai,
+                      MAX_NEWTON if depth == 0 else MAX_SUBSTEP_NEWTON)
+        if ok or depth >= SUBSTEPS:
+            return y, ok
+        mid = ai / SUBSTEP_RATIO if previous is None else float(np.sqrt(previous * ai))
+        y_mid, ok = reach(start, previous, mid, depth + 1)
         if not ok:
-            raise ParameterError(f"the extended periodic motion concept did not converge at "
-                                 f"amplitude {ai:.6g} mm")
+            return y_mid, False
+        return reach(y_mid, mid, ai, depth + 1)
+
+    previous: float | None = None
+    for i, ai in enumerate(a):
+        y, ok = reach(guess, previous, float(ai))
+        if not ok:
+            why = (f"the extended periodic motion concept did not converge at amplitude "
+                   f"{ai:.6g} mm")
+            if failures is None:
+                raise ParameterError(why)
+            failures.append(why)
+            freq[i] = zeta[i] = np.nan
+            continue
         freq[i] = y[m_k] / (2.0 * np.pi)
         zeta[i] = y[m_k + 1] / (2.0 * y[m_k])
-        guess, previous = y, ai
+        guess, previous = y, float(ai)
     return ModalCurve(method="epmc", amplitude=a, frequency=freq, damping_ratio=zeta,
                       harmonics=harmonics, samples=samples)
 

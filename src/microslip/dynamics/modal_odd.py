@@ -35,16 +35,19 @@ Array = NDArray[np.float64]
 
 
 def epmc_odd(structure: Structure, amplitude: ArrayLike, harmonics: int,
-             samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
+             samples: int = DEFAULT_HB_SAMPLES, mode: int = 0, *,
+             failures: list[str] | None = None) -> ModalCurve:
     """:func:`~.modal.epmc` restricted to the odd harmonics 1, 3, ..., <= ``harmonics``
-    (the same curve for odd joint forces; see the module's notes)."""
+    (the same curve for odd joint forces; see the module's notes; ``failures`` as
+    there)."""
     if any(isinstance(link.operator, Contact3D) for link in structure.joints):
         raise ParameterError("the odd-harmonic EPMC needs odd joint forces; the 3-D contact "
                              "element's normal lift-off is not: use epmc")
     with single_threaded_blas():
-        return _epmc_odd(structure, _amplitudes(amplitude), harmonics, samples, mode)
+        return _epmc_odd(structure, _amplitudes(amplitude), harmonics, samples, mode,
+                         failures)
 
 
-def _epmc_odd(structure: Structure, a: Array, harmonics: int, samples: int, mode: int
-              ) -> ModalCurve:
-    return _epmc(structure, a, harmonics, samples, mode, odd=True)
+def _epmc_odd(structure: Structure, a: Array, harmonics: int, samples: int, mode: int,
+              failures: list[str] | None = None) -> ModalCurve:
+    return _epmc(structure, a, harmonics, samples, mode, odd=True, failures=failures)

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
 from ..dynamics.modal import RESPONSE_SET_COORDINATE
-from ..errors import ParameterError
+from ..errors import MicroslipError, ParameterError
 from .case import (
     MAX_AMPLITUDES,
     OnStructure,
@@ -102,6 +102,9 @@ class MeshCurve:
     values: dict[str, list[float | None]]
     extra: dict[str, Any]
     warnings: list[str]
+    #: Why amplitudes (or the whole solver) failed: each reason once, also in ``warnings``;
+    #: the side-by-side verdict on the solver names them.
+    failures: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -163,22 +166,33 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from .reduce import rom_structure
 
     mode, s = study.mode, study.settings
-    structure = rom_structure(rom, mode.direction @ rom.output)
+    structure = rom_structure(rom, mode.direction @ _output(rom))
     method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
+    failures: list[str] = []  # an amplitude not reached is NaN, its reason a warning
     curve = method(structure, np.asarray(study.amplitudes), s.harmonics, s.samples,
-                   study.number - 1)
+                   study.number - 1, failures=failures)
     count = len(study.prepared.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
         columns=dict(BASE_COLUMNS),
-        values={"amplitude_mm": [float(a) for a in curve.amplitude],
-                "frequency_Hz": [float(f) for f in curve.frequency],
-                "damping_ratio": [float(z) for z in curve.damping_ratio]},
+        values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
+                                               curve.amplitude)),
+                "frequency_Hz": nulls(curve.frequency),
+                "damping_ratio": nulls(curve.damping_ratio)},
         extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
                "rom": {"dofs": rom.dofs, "fixed_interface_modes": study.case.rom_modes,
                        "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
                        "samples": curve.samples}},
-        warnings=[])
+        warnings=failures, failures=tuple(failures))
+
+
+def _output(rom: Any) -> Any:
+    """The ROM's output rows (3, n): the response set's mean displacement; one line without
+    a response set."""
+    if rom.output is None:
+        raise ParameterError("the reduced models (rom, interface, joint) measure the amplitude "
+                             "on a node set: give the response set (--response-set NAME)")
+    return rom.output
 
 
 def _interface(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
@@ -217,8 +231,7 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from .wholejoint import build_whole_joint, whole_joint_epmc
 
     mode, s = study.mode, study.settings
-    assert rom.output is not None
-    joint = build_whole_joint(rom, study.prepared.model, mode, mode.direction @ rom.output,
+    joint = build_whole_joint(rom, study.prepared.model, mode, mode.direction @ _output(rom),
                               backbone=study.case.backbone)
     curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), s.harmonics,
                                      s.samples, mode.frequency_Hz)
@@ -337,10 +350,23 @@ def run_solvers(study: ModalStudy, solvers: Sequence[str] = tuple(MESH_SOLVERS),
         solver = MESH_SOLVERS[name]
         if echo is not None:
             echo(f"solver {k + 1}/{len(names)}: {name}")
-        if solver.rom_needed(study) and rom is None:
-            rom = structure_rom(study.prepared)
-        curves[name] = solver.run(study, rom, progress)
+        try:
+            if solver.rom_needed(study) and rom is None:
+                rom = structure_rom(study.prepared)
+            curves[name] = solver.run(study, rom, progress)
+        except MicroslipError as exc:
+            if name == TRUTH or len(names) == 1:  # nothing to judge, or nothing else to show
+                raise
+            curves[name] = _failed(study, str(exc))
     return curves
+
+
+def _failed(study: ModalStudy, why: str) -> MeshCurve:
+    """The curve of a solver that stopped: every amplitude failed, ``why`` its reason."""
+    empty: list[float | None] = [None] * len(study.amplitudes)
+    return MeshCurve(label=f"failed: {why}", columns=dict(BASE_COLUMNS),
+                     values={k: list(empty) for k in BASE_COLUMNS}, extra={},
+                     warnings=[why], failures=(why,))
 
 
 def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, Any]:
@@ -367,11 +393,27 @@ def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str,
                       for name, o in outputs.items()}
     truth = out["solvers"].get(TRUTH)
     out["verdicts"] = ({} if truth is None else
-                       {name: modal_verdict(name, truth, o).summary()
+                       {name: _verdict(name, truth, o, curves[name].failures)
                         for name, o in out["solvers"].items() if name != TRUTH})
     out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
                        for w in o["warnings"]]
     return out
+
+
+def _verdict(name: str, truth: dict[str, Any], curve: dict[str, Any],
+             failures: tuple[str, ...]) -> dict[str, Any]:
+    """The model's verdict against the full FE; a model that failed at some amplitudes (or
+    as a whole) says so in its line, and one with nothing left to compare does not meet its
+    targets."""
+    v = modal_verdict(name, truth, curve).summary()
+    if failures:
+        v["verdict"] = (f"{name}: {failures[0]}" if not v["points"] else
+                        f"{v['verdict']}; {failures[0]}")
+        if len(failures) > 1:
+            v["verdict"] += f" (and {len(failures) - 1} more amplitudes)"
+        if not v["points"]:
+            v["meets_targets"] = False
+    return v
 
 
 def modal_study(case: StructureCase, settings: ModalSettings | None = None,

@@ -50,6 +50,7 @@ __all__ = [
     "QSMACurve",
     "QSMAPoint",
     "cyclic_ok",
+    "first_closing_force",
     "first_harmonic",
     "first_slip_force",
     "loop_stiffness",
@@ -66,6 +67,9 @@ GROSS_STICK = 0.1
 W_FLOOR = 1e-9
 #: The grid starts this factor above the first-slip force.
 FIRST_SLIP_MARGIN = 1.05
+#: The grid's first level as a fraction of the first closing force of a node the clamping
+#: left open, where that comes before first slip (the level stays linear).
+FIRST_CLOSING_MARGIN = 0.95
 Progress = Callable[[int, int, float], None]
 
 
@@ -328,11 +332,31 @@ def first_slip_force(model: MeshModel, mode: Mode) -> float:
     return float(np.min(mu * n0[ok] / rate[ok]))
 
 
+def first_closing_force(model: MeshModel, mode: Mode) -> float:
+    """The modal force q at which a contact node that the clamping step left open first
+    touches the base under the stuck (linear) response u = q K^-1 M phi: the smallest
+    g_i / |du_n,i| (g_i = -N0_i / (k_n A_i) its gap, du_n its normal motion per unit q);
+    inf with ``fixed`` normal contact or no open node. Below it and the first-slip force the
+    response is linear (every open node stays open, every closed one sticks)."""
+    normal = model.normal
+    open_ = ~model.closed
+    if normal is None or not np.any(open_):
+        return math.inf
+    du = shift_inverse(modal_stiffness(model, "stuck")).matvec(mode.inertia)
+    gap = -model.preload[open_] / normal.stiffness[open_]
+    motion = np.abs(du[normal.dofs[open_]])
+    moves = motion > 0.0
+    return float(np.min(gap[moves] / motion[moves])) if np.any(moves) else math.inf
+
+
 def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1.25,
                     max_steps: int = 80, history: SineCycles | None = None) -> FloatArray:
     """Modal forces q from first slip to near gross sliding, log-uniform, ``count`` of them.
 
-    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`. The last is found
+    The first is :data:`FIRST_SLIP_MARGIN` times :func:`first_slip_force`, or
+    :data:`FIRST_CLOSING_MARGIN` times :func:`first_closing_force` where an open node closes
+    before any node slips (a part that lifts off: the first level is then linear, its
+    frequency the stuck one). The last is found
     in two passes: a first loading (q raised from the first-slip force by factors ``step`` on
     the full FE) gives the largest level that converges with at least :data:`GROSS_STICK`
     of the contact area still stuck, below 0.99 of the level whose in-plane resultant reaches
@@ -345,7 +369,7 @@ def qsma_amplitudes(model: MeshModel, mode: Mode, count: int, *, step: float = 1
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
         raise ParameterError(f"count must be a whole number in [1, 1000], got {count!r}")
     q1 = first_slip_force(model, mode)
-    lo = FIRST_SLIP_MARGIN * q1
+    lo = min(FIRST_SLIP_MARGIN * q1, FIRST_CLOSING_MARGIN * first_closing_force(model, mode))
     top = max(_first_loading_top(model, mode, q1, step, max_steps), lo)
     if count == 1:
         return np.array([lo])

@@ -84,6 +84,9 @@ MESH_LINEAR_SOLVERS = ("auto", "banded", "splu", "cholmod")
 _IDENTITY = np.eye(3)
 #: Largest angle (rad) between the face normals of a set that counts as flat.
 FLAT_TOL = 1e-6
+#: Passes at most of the clamping step's active set under ``fixed`` normal contact (held
+#: nodes in tension released, released ones below the base pressed back).
+MAX_ACTIVE_SET = 30
 
 
 def set_faces(mesh: HexMesh, name: str, role: str, boundary: bool = False) -> IntArray:
@@ -492,29 +495,50 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     contact_nodes, contact = c_mesh[sort], c_model[sort]
     area = area[sort]
     n_all = 3 * order.size
-    held = 3 * contact + 2
-    free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
-        k_all, contact, area, lam, k_n, penalty)
+    # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
+    k_mesh, k_share, _ = face_load(mesh, clamp_faces)
+    push = -(rotation @ clamp_out)
+    full = np.zeros(n_all)
+    base = 3 * inv[k_mesh]
+    for c in range(3):
+        full[base + c] = f_n * k_share * push[c]
+    # fixed normal contact: nodes the clamp pulls off the base are released (active set);
+    # quadratic faces recover N_i from the pressure instead (their corner reactions are
+    # negative by the face's consistent weights, not by lift-off): one pass
+    released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
     try:
-        with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
-            backend = _backend(linear_solver, k_ff, cdofs, kc,
-                               None if springs is None else springs.stiffness)
-
-        # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
-        k_mesh, k_share, _ = face_load(mesh, clamp_faces)
-        push = -(rotation @ clamp_out)
-        full = np.zeros(n_all)
-        base = 3 * inv[k_mesh]
-        for c in range(3):
-            full[base + c] = f_n * k_share * push[c]
-        clamp = full[free]
-        clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
-        reactions: Any = k_rf
-        if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
-            reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
-            clamp_fixed = None
-        normal, limit, u, resp, iters = clamping_step(
-            k_ff, reactions, backend, cdofs, kc, springs, clamp, newton, mu, f_n, clamp_fixed)
+        for _ in range(MAX_ACTIVE_SET):
+            free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
+                k_all, contact, area, lam, k_n, penalty, released)
+            with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
+                backend = _backend(linear_solver, k_ff, cdofs, kc,
+                                   None if springs is None else springs.stiffness)
+            clamp = full[free]
+            held = 3 * (contact if released is None else contact[~released]) + 2
+            clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+            reactions: Any = k_rf
+            if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
+                reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
+                clamp_fixed = None
+            normal, limit, u, resp, iters = clamping_step(
+                k_ff, reactions, backend, cdofs, kc, springs, clamp, newton, mu, f_n,
+                clamp_fixed, released)
+            if released is None:
+                break
+            # release the held nodes in tension; press back the released ones below the base
+            below = np.zeros(contact.size, dtype=bool)
+            below[released] = u[index[3 * contact[released] + 2]] < 0.0
+            new = (released | ((normal <= 0.0) & ~released)) & ~below
+            if np.array_equal(new, released):
+                break
+            if np.all(new):
+                raise ParameterError(f"{mesh.source}: the clamp pulls every contact node off "
+                                     "the base: nothing holds the body")
+            released = new
+        else:
+            raise ParameterError(f"{mesh.source}: the clamping step's contact state (which "
+                                 f"nodes press, which lift off) did not settle in "
+                                 f"{MAX_ACTIVE_SET} passes")
     except (np.linalg.LinAlgError, RuntimeError) as err:
         raise ParameterError(
             f"{mesh.source}: the body is not held after clamping (its stiffness is "

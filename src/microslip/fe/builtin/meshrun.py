@@ -52,6 +52,10 @@ __all__ = ["LoadFactors", "MeshLoadResult", "MeshRunResult", "SineCycles", "Vect
            "solve_mesh"]
 
 FloatArray = NDArray[np.float64]
+#: W per cycle has settled when its change is within the tolerance times W, or within this
+#: times the loads' work scale sum_j max |F_j| max |d_j| (W about 0: nothing slips, W is
+#: rounding and its relative change means nothing).
+SETTLE_FLOOR = 1e-9
 IntArray = NDArray[np.int64]
 
 
@@ -399,6 +403,10 @@ class _Run:
                                       new, self.u, self.slip, model.newton.max_cuts)
                 why = (runaway_reason(self.normal_springs, step.u, model.size)
                        if step.converged
+                       else "has no static equilibrium: the tangent stiffness is singular "
+                            "(the body tips over on its unilateral contact, or the friction "
+                            "cannot hold the loads' moment)"
+                       if self.stepper.singular
                        else f"did not converge in {model.newton.max_iterations} Newton "
                             f"iterations, even cut into {model.newton.max_cuts} sub-increments "
                             "(are the loads, or their moment, more than the friction holds?)")
@@ -416,6 +424,8 @@ class _Run:
                     n = self.normal_springs.forces(self.u)
                     status[n <= 0.0] = OPEN
                     self.normal.append(n)
+                else:  # fixed: the nodes the clamping step released stay open
+                    status[~model.closed] = OPEN
                 self.status.append(status)
                 self.slips.append(self.slip.copy())
                 if self.record:
@@ -505,7 +515,9 @@ def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad | VectorLoad],
             a, b = k0 + c * n, k0 + (c + 1) * n + 1
             works.append(0.0 if run.idle(a) else _work(forces, run.displacements(), a, b))
             if len(works) >= history.min_cycles and (
-                    abs(works[-1] - works[-2]) <= history.tol * abs(works[-1])):
+                    abs(works[-1] - works[-2]) <= max(
+                        history.tol * abs(works[-1]),
+                        SETTLE_FLOOR * _work_scale(forces, run, a, b))):
                 break
             if len(works) >= history.max_cycles:
                 settled = False
@@ -518,6 +530,12 @@ def solve_mesh(model: MeshModel, loads: Sequence[MeshLoad | VectorLoad],
         raise ParameterError(f"history must be SineCycles or LoadFactors, got "
                              f"{type(history).__name__}")
     return _result(model, loads, run, times, forces, k0, np.array(works), settled, history)
+
+
+def _work_scale(forces: FloatArray, run: _Run, a: int, b: int) -> float:
+    """The loads' work scale over the samples a:b, sum_j max |F_j| max |d_j| (N·mm)."""
+    d = run.displacements()[a:b]
+    return float(np.sum(np.max(np.abs(forces[a:b]), axis=0) * np.max(np.abs(d), axis=0)))
 
 
 def _work(forces: FloatArray, d: FloatArray, a: int, b: int) -> float:
@@ -555,7 +573,10 @@ def _result(model: MeshModel, loads: tuple[AnyLoad, ...], run: _Run, times: Floa
     if isinstance(history, SineCycles):
         change = (abs(works[-1] - works[-2]) / abs(works[-1]) if works[-1] else 0.0)
         cyc_msg = (f"W per cycle settled to {change:.2e} (tolerance {history.tol:.1e}) after "
-                   f"{works.size} cycles" if settled else
+                   f"{works.size} cycles" if settled and change <= history.tol else
+                   f"W per cycle settled at {works[-1]:.3g} N·mm, a change of "
+                   f"{abs(works[-1] - works[-2]):.2e} N·mm within {SETTLE_FLOOR:g} times the "
+                   f"loads' work scale (W about 0), after {works.size} cycles" if settled else
                    f"W per cycle did not settle to {history.tol:.1e} in {works.size} cycles "
                    f"(last change {change:.2e})")
     else:

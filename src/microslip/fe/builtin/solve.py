@@ -162,7 +162,7 @@ def build_model(params: ClampParams, mesh: Any = DEFAULT_MESH, *, stick_slope: f
 
 
 def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray, lam: float,
-                      k_n: float, penalty: bool
+                      k_n: float, penalty: bool, released: BoolArray | None = None
                       ) -> tuple[IntArray, IntArray, sp.csr_matrix, sp.csr_matrix, IntArray,
                                  FloatArray, PenaltyNormal | None]:
     """The dofs of a body on its rigid base (any mesh), its contact nodes ``contact`` (with
@@ -173,9 +173,11 @@ def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
     ``k_ff`` and ``k_rf`` (the stiffness on the free dofs, and from them to the contact
     nodes' u_z), ``cdofs`` (the contact nodes' free x, y positions), ``kc`` (the stick
     springs lambda A_i, N/mm) and the penalty normal springs (None under ``fixed``).
+    ``released`` (``fixed`` only): contact nodes the clamping step lifted off, whose u_z is
+    free too (``k_rf`` then has the held nodes' rows only).
     """
     n_all = k_all.shape[0]
-    held = 3 * contact + 2
+    held = 3 * (contact if released is None else contact[~released]) + 2
     mask = np.ones(n_all, dtype=bool)
     if not penalty:
         mask[held] = False
@@ -186,14 +188,15 @@ def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
     k_rf = k_all[held][:, free].tocsr()
     cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
     kc = lam * area
-    springs = PenaltyNormal(k_n * area, index[held], k_n) if penalty else None
+    springs = PenaltyNormal(k_n * area, index[3 * contact + 2], k_n) if penalty else None
     return free, index, k_ff, k_rf, cdofs, kc, springs
 
 
 def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
                   cdofs: IntArray, kc: FloatArray, springs: PenaltyNormal | None,
                   clamp: FloatArray, newton: NewtonOptions, friction: float,
-                  normal_force: float, clamp_fixed: FloatArray | None = None
+                  normal_force: float, clamp_fixed: FloatArray | None = None,
+                  released: BoolArray | None = None
                   ) -> tuple[FloatArray, FloatArray, FloatArray, FrictionResponse, int]:
     """Solve the clamping step of a body on its rigid base (any mesh).
 
@@ -202,6 +205,11 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
     penalty forces with ``springs``). If a node's stick force then exceeds mu N_i, the step is
     solved again with the limits mu N_i until the normal forces stop changing (they depend on
     the slip).
+
+    ``released`` (``fixed`` normal contact, :func:`contact_partition`'s): the nodes whose u_z
+    is free carry N_i = 0, and a held node in tension (N_i <= 0) returns at once with its
+    normal force (the caller releases it:
+    :func:`~.meshmodel.build_mesh_model`'s active set) instead of refusing.
 
     Returns
     -------
@@ -221,24 +229,33 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
     normal = np.zeros(n_c)
     iters = 0
     for attempt in range(20):
+        stepper = _Stepper(k_ff, backend, cdofs, kc, limit, newton, friction * normal_force,
+                           springs)
         with single_threaded_blas():
-            ok, it, u, resp = _Stepper(k_ff, backend, cdofs, kc, limit, newton,
-                                       friction * normal_force, springs).solve(
-                np.zeros(k_ff.shape[0]), np.zeros((n_c, 2)), clamp)
+            ok, it, u, resp = stepper.solve(np.zeros(k_ff.shape[0]), np.zeros((n_c, 2)),
+                                            clamp)
         iters += it
+        if stepper.singular:  # nothing holds the body: the callers say so in one line
+            raise np.linalg.LinAlgError("singular tangent stiffness")
         if not ok:
             raise MacroslipError("the clamping step did not converge")
         new_normal = np.asarray(k_rf @ u) if springs is None else springs.forces(u)
         if springs is None and clamp_fixed is not None:
             new_normal = new_normal - clamp_fixed
+        if released is not None:
+            held, new_normal = new_normal, np.zeros(n_c)
+            new_normal[~released] = held
+            if np.any(held <= 0.0):  # tension: the caller releases these nodes
+                return new_normal, friction * new_normal, u, resp, iters
         # penalty normal contact: a node may lift off (N_i = 0); fixed: N_i must be > 0
-        bad = new_normal <= 0.0 if springs is None else np.array([np.all(new_normal <= 0.0)])
+        bad = (new_normal <= 0.0 if springs is None and released is None else
+               np.array([np.all(new_normal <= 0.0)]))
         if np.any(bad):
             raise ParameterError(
                 f"the clamping step gave a non-positive normal force at {int(bad.sum())} of "
                 f"{n_c} contact nodes (the clamp pulls them off the base); use the penalty "
                 "normal contact, which lets them lift off, or refine the mesh through the "
-                "thickness" if springs is None else
+                "thickness" if springs is None and released is None else
                 "the clamping step left no contact node pressed onto the base")
         change = float(np.max(np.abs(new_normal - normal)))
         normal = new_normal

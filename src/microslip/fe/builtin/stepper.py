@@ -50,6 +50,8 @@ class _Stepper:
         self.factorisations = 0
         self.fac: Any = None
         self.fac_set: BoolArray | None = None
+        #: the last solve met a tangent singular even when stiffened (:meth:`_factor`)
+        self.singular = False
         self._u: FloatArray | None = None
         self._ku: FloatArray | None = None
 
@@ -79,7 +81,10 @@ class _Stepper:
         self.limit = new
         return changed
 
-    def _factor(self, resp: FrictionResponse, u: FloatArray) -> None:
+    def _factor(self, resp: FrictionResponse, u: FloatArray) -> bool:
+        """Factor the consistent tangent at ``u``; False (``singular`` set) when it stays
+        singular even with its null directions stiffened: no static equilibrium nearby (the
+        body tips over on its unilateral contact)."""
         tangent = (resp.tangent if self.normal is None else
                    np.column_stack([resp.tangent, self.normal.tangent(u)]))
         try:
@@ -90,14 +95,20 @@ class _Stepper:
             d = tangent.copy()
             d[:, 0] += 1e-6 * self.kc
             d[:, 2] += 1e-6 * self.kc
-            self.fac = self.backend.factor(d)
+            try:
+                self.fac = self.backend.factor(d)
+            except np.linalg.LinAlgError:  # lifted off too: nothing holds the body
+                self.fac, self.fac_set, self.singular = None, None, True
+                return False
         self.fac_set = self._state(resp, u)
         self.factorisations += 1
+        return True
 
     def solve(self, u: FloatArray, slip: FloatArray, f: FloatArray
               ) -> tuple[bool, int, FloatArray, FrictionResponse]:
         """Solve r(u) = 0 from the start ``u`` with the slip ``slip`` of the last increment."""
         nw = self.newton
+        self.singular = False
         # K u of the start is kept from the last solve when the start is its answer.
         ku = self._ku if (u is self._u and self._ku is not None) else np.asarray(self.k @ u)
         u = u.copy()
@@ -116,8 +127,8 @@ class _Stepper:
                      and (it == 1 or not nw.same_set or (
                          self.fac_set is not None
                          and bool(np.array_equal(self._state(resp, u), self.fac_set)))))
-            if not reuse:
-                self._factor(resp, u)
+            if not reuse and not self._factor(resp, u):
+                return False, it - 1, u, resp
             fresh = not reuse
             du = self.fac.solve(r)
             kdu = np.asarray(self.k @ du)
