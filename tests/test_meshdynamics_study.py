@@ -107,6 +107,14 @@ def test_modal_all_builds_the_rom_once(mesh: str, builds: list, capsys: pytest.C
     assert list(out["solvers"]) == ["fe", "rom", "interface", "joint"]
     assert out["amplitude_coordinate"] == "response_set"
     assert builds == [("response", ())]
+    # each model's error and its cost side by side (issue 28 item 6): wall seconds, the
+    # ROM's build counted for each model that runs on it
+    for name, v in out["verdicts"].items():
+        cost = out["solvers"][name]["cost_s"]
+        assert v["cost_s"] == cost and cost > 0.0 and f"cost {cost:.3g} s" in v["verdict"]
+    from microslip.meshdynamics.modalstudy import MESH_SOLVERS
+
+    assert "pull-test model" in MESH_SOLVERS["joint"].help
 
 
 @pytest.mark.slow

@@ -13,8 +13,9 @@ kg/m^3; damping ratios dimensionless.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, cast
 
 import numpy as np
@@ -105,6 +106,9 @@ class MeshCurve:
     #: Why amplitudes (or the whole solver) failed: each reason once, also in ``warnings``;
     #: the side-by-side verdict on the solver names them.
     failures: tuple[str, ...] = ()
+    #: What the curve cost, wall s: the solver's run and, for a solver on the contact-node
+    #: ROM, the ROM's build (shared, counted for each); None where not measured.
+    cost_s: float | None = None
 
 
 @dataclass(frozen=True)
@@ -247,7 +251,7 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     share = (float(loading.rigid_work[-1] / loading.work[-1])
              if loading is not None and loading.work[-1] > 0 else None)
     return MeshCurve(
-        label=f"EPMC on the whole-joint model ({joint.structure.dofs} DOF, "
+        label=f"EPMC on the whole-joint (pull-test) model ({joint.structure.dofs} DOF, "
               f"{curve.harmonics} harmonics; stuck {stuck:.6g} Hz, "
               f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)",
         columns=dict(BASE_COLUMNS),
@@ -279,7 +283,9 @@ MESH_SOLVERS: dict[str, MeshSolver] = {
                             ("harmonics", "rom_modes", "interface_modes"),
                             # the ROM route where the body is not condensed (small meshes)
                             lambda study: study.prepared.model.reduced is None, _interface),
-    "joint": MeshSolver("EPMC by harmonic balance on the whole-joint model: the contact "
+    "joint": MeshSolver("EPMC by harmonic balance on the whole-joint model, the pull-test "
+                        "model (cheap, wrong by design where the contact's own distortion "
+                        "does the friction work): the contact "
                         "reduced to its rigid motion in its plane, one joint whose backbone "
                         "is the FE's first loading by the mode (or --backbone tip|centre)",
                         ("harmonics", "rom_modes", "backbone"), True, _joint),
@@ -350,14 +356,20 @@ def run_solvers(study: ModalStudy, solvers: Sequence[str] = tuple(MESH_SOLVERS),
         solver = MESH_SOLVERS[name]
         if echo is not None:
             echo(f"solver {k + 1}/{len(names)}: {name}")
+        start = time.perf_counter()
         try:
-            if solver.rom_needed(study) and rom is None:
+            needs = solver.rom_needed(study)
+            if needs and rom is None:
                 rom = structure_rom(study.prepared)
-            curves[name] = solver.run(study, rom, progress)
+                start += rom.build_s  # counted below with the ROM's own build time
+            curve = solver.run(study, rom, progress)
         except MicroslipError as exc:
             if name == TRUTH or len(names) == 1:  # nothing to judge, or nothing else to show
                 raise
-            curves[name] = _failed(study, str(exc))
+            curve = _failed(study, str(exc))
+            needs = False
+        cost = time.perf_counter() - start + (rom.build_s if needs and rom is not None else 0.0)
+        curves[name] = replace(curve, cost_s=cost)
     return curves
 
 
@@ -378,7 +390,7 @@ def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, 
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
             "modes": prepared.stuck.summary(), **curve.values, **curve.extra,
-            "warnings": curve.warnings}
+            "cost_s": curve.cost_s, "warnings": curve.warnings}
 
 
 def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str, Any]:
@@ -406,6 +418,11 @@ def _verdict(name: str, truth: dict[str, Any], curve: dict[str, Any],
     as a whole) says so in its line, and one with nothing left to compare does not meet its
     targets."""
     v = modal_verdict(name, truth, curve).summary()
+    cost, truth_cost = curve.get("cost_s"), truth.get("cost_s")
+    v["cost_s"] = cost
+    if cost is not None:  # what the model buys: its error (above) for its cost
+        v["verdict"] += (f"; cost {cost:.3g} s" + (f" ({cost / truth_cost:.2g}x the full FE's)"
+                                                   if truth_cost else ""))
     if failures:
         v["verdict"] = (f"{name}: {failures[0]}" if not v["points"] else
                         f"{v['verdict']}; {failures[0]}")
