@@ -107,6 +107,18 @@ def set_name(text: str) -> str:
     return text
 
 
+def harmonics_count(text: str) -> str | int:
+    """argparse type of ``--harmonics``: ``auto`` or a whole number (its range is checked
+    where the balance is built)."""
+    if text == "auto":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"not auto or a whole number: {text!r}") from None
+
+
 # --- case-value checks ---------------------------------------------------------------------
 
 def _u(unit: str) -> str:
@@ -371,6 +383,15 @@ _OPTIONS: tuple[Option, ...] = (
            "across are matched: by position on the bar (spatial, the default) or by slip "
            "order (ordered)", "", " | ".join(PAIRINGS), type=None, choices=PAIRINGS,
            joint_key="pairing", check=choice(PAIRINGS)),
+    # the harmonic balance (modal, frf: docs/dynamics.md, "Harmonics chosen by an error
+    # estimate")
+    Option("harmonics", "harmonics of the balance: auto raises them (and the AFT samples) "
+           "until the damping ratio and frequency change by less than --harmonic-tolerance; "
+           "a number fixes them, 1 = single-harmonic (describing-function) balance", "",
+           "auto | [1, 256]", type=harmonics_count, metavar="auto|H", scope="all"),
+    Option("harmonic_tolerance", "with --harmonics auto: largest relative change of the "
+           "damping ratio and frequency between two levels of harmonics (1, 3, 7, 15, 31, "
+           "63) that a point accepts", "", "(0, 0.5)", metavar="X", scope="all"),
     Option("fe_mesh", f"with transverse fe: the FE mesh, as --mesh ({', '.join(LEVELS)} or "
            f"NXxNYxNZ; default {DEFAULT_MESH})", "", f"{' | '.join(LEVELS)} | NXxNYxNZ",
            type=mesh_level, metavar="LEVEL", joint_key="fe_mesh", check=mesh_text,

@@ -347,14 +347,19 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     from ..dynamics.response import frequency_response
     from ..io import check_writable, write_csv
     from ..progress import progress
-    from .structure import balance_from_args
+    from .structure import balance_from_args, harmonic_control
 
     check_plot(args.plot)
     if args.csv:
         check_writable(args.csv)
     study = frf_study(args)
+    if args.harmonics == "auto":
+        raise ParameterError("--harmonics auto is not available with frf --mesh (each level "
+                             "a whole continuation on the ROM); give a number, default "
+                             f"{DEFAULT_MESH_HARMONICS}")
     if args.harmonics is None:
         args.harmonics = DEFAULT_MESH_HARMONICS
+    harmonic_control(args, auto=False)  # refuses --harmonic-tolerance with fixed harmonics
     harmonics, samples = balance_from_args(args)
     stuck_hz = float(study.stuck.frequencies_Hz[study.number - 1])
     frange = (check_range(*args.frequency_range) if args.frequency_range is not None

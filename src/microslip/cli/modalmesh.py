@@ -245,31 +245,41 @@ def _rom(study: MeshStudy) -> MeshCurve:
     """EPMC on the contact-node ROM at the grid's amplitudes."""
     import numpy as np
 
+    from ..dynamics.harmonics import adaptive_epmc, cap_warning
     from ..dynamics.modal import epmc
     from ..dynamics.modal_odd import epmc_odd
     from ..fe.builtin.reduce import build_rom, rom_structure
-    from .structure import balance_from_args
+    from .structure import balance_from_args, balance_json, balance_text, harmonic_control
 
     args, mode = study.args, study.mode
-    harmonics, samples = balance_from_args(args)
+    control = harmonic_control(args)
+    if control is None:
+        harmonics, samples = balance_from_args(args)
     modes = args.rom_modes or DEFAULT_ROM_MODES
     rom = build_rom(study.model, args.density, modes=modes, response_set=args.response_set)
     structure = rom_structure(rom, mode.direction @ rom.output)
-    method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
-    curve = method(structure, np.asarray(study.amplitudes), harmonics, samples,
-                   study.number - 1)
+    odd = rom.per_node != 3  # odd joint forces: odd harmonics only
+    if control is not None:
+        curve = adaptive_epmc(structure, np.asarray(study.amplitudes), control,
+                              study.number - 1, odd=odd)
+    else:
+        curve = (epmc_odd if odd else epmc)(structure, np.asarray(study.amplitudes),
+                                            harmonics, samples, study.number - 1)
+    capped = cap_warning(curve.harmonic_error_estimate, control) if control is not None else None
     count = len(study.stuck.frequencies_Hz)
     return MeshCurve(
-        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
+        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {balance_text(curve)})"
+        if control is not None else
+        f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": [float(a) for a in curve.amplitude],
                 "frequency_Hz": [float(f) for f in curve.frequency],
                 "damping_ratio": [float(z) for z in curve.damping_ratio]},
         extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
                "rom": {"dofs": rom.dofs, "fixed_interface_modes": modes,
-                       "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
-                       "samples": curve.samples}},
-        warnings=[])
+                       "contact_nodes": len(rom.slip_force),
+                       **balance_json(curve, control)}},
+        warnings=[capped] if capped else [])
 
 
 def _joint(study: MeshStudy) -> MeshCurve:
