@@ -132,7 +132,7 @@ def test_the_ladder_samples_and_checks():
     assert [c.samples(h) for h in c.ladder] == [32, 64, 128, 256, 512, 1024]
     assert HarmonicControl(cap=15).ladder == (1, 3, 7, 15)
     for bad in ({"tolerance": 0.0}, {"tolerance": 0.5}, {"tolerance": float("nan")},
-                {"cap": 8}, {"cap": 1}, {"cap": 511}):
+                {"cap": 8}, {"cap": 1}, {"cap": 511}, {"max_unknowns": 15}):
         with pytest.raises(ParameterError):
             HarmonicControl(**bad)  # type: ignore[arg-type]
 
@@ -169,11 +169,25 @@ def test_cap_is_reached_with_a_warning(mass_jenkins):
     c = adaptive_epmc(mass_jenkins, [0.02, 0.05], control, odd=True)
     assert list(c.point_harmonics) == [7, 7] and c.harmonics == 7 and c.samples == 128
     assert np.all(c.harmonic_error_estimate > 1e-6)
-    text = cap_warning(c.harmonic_error_estimate, control)
-    assert text is not None and "cap of 7" in text and "2 amplitude(s)" in text
+    text = cap_warning(c.harmonic_error_estimate, c.harmonics, control)
+    assert text is not None and "reached 7 (the cap)" in text and "2 amplitude(s)" in text
     fixed = epmc_odd(mass_jenkins, [0.02, 0.05], 7)  # the cap's answer is the fixed one
     np.testing.assert_allclose(c.damping_ratio, fixed.damping_ratio, rtol=1e-9)
-    assert cap_warning([1e-3, 2e-3], HarmonicControl()) is None
+    assert cap_warning([1e-3, 2e-3], 63, HarmonicControl()) is None
+
+
+def test_the_balance_size_caps_the_ladder(mass_jenkins):
+    """A structure too large for a level stops below it (never below 3 harmonics); the
+    warning names the size limit."""
+    control = HarmonicControl(max_unknowns=16)
+    assert control.levels(1, True) == (1, 3, 7, 15)  # 1 DOF x (H + 1) <= 16 (odd)
+    assert control.levels(1, False) == (1, 3, 7)  # 1 DOF x (2H + 1) <= 16
+    assert control.levels(100, True) == (1, 3)
+    tight = HarmonicControl(1e-6, max_unknowns=16)
+    c = adaptive_epmc(mass_jenkins, [0.02], tight)
+    assert list(c.point_harmonics) == [7]
+    text = cap_warning(c.harmonic_error_estimate, c.harmonics, tight)
+    assert text is not None and "within 16 unknowns" in text
 
 
 def test_stuck_points_stop_at_three_harmonics(mass_jenkins):

@@ -133,7 +133,8 @@ def run(args: argparse.Namespace) -> int:
                   for f in levels]
         curves = [c.response for c in chosen]
         estimates = [c.harmonic_error_estimate for c in chosen]
-        capped = cap_warning(estimates, control, "curve(s)")
+        capped = cap_warning(estimates, max(c.harmonics for c in curves), control,
+                             "curve(s)")
         if capped:
             warnings.append(capped)
             report_warnings([capped])

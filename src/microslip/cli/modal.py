@@ -105,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     mode = mode_from_args(args)
     if control is not None:
         curve = adaptive_epmc(structure, amps, control, mode)
-        capped = cap_warning(curve.harmonic_error_estimate, control)
+        capped = cap_warning(curve.harmonic_error_estimate, curve.harmonics, control)
         if capped:
             warnings.append(capped)
             report_warnings([capped])

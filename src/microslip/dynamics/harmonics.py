@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..blas import single_threaded_blas
 from ..errors import ParameterError
 from ..named import result
-from .hb import HarmonicBalance
+from .hb import HarmonicBalance, harmonic_columns
 from .modal import (
     ModalCurve,
     _amplitudes,
@@ -68,6 +68,11 @@ DEFAULT_TOLERANCE = 0.005
 #: Default largest number of harmonics (a level of the ladder 1, 3, 7, 15, 31, 63).
 DEFAULT_CAP = 63
 
+#: Largest balance (unknown coefficients) of a level unless given: its dense solve about
+#: 0.05 TFLOP and 134 MB, some 8x a 7-harmonic balance of the 24x6x2 cantilever's ROM (186
+#: DOF on the odd harmonics), which then climbs to 15 harmonics, not 31 (64x).
+DEFAULT_MAX_UNKNOWNS = 4096
+
 #: Damping ratio (-) below which a change is measured against this floor instead of the
 #: damping ratio itself: a stuck structure without linear damping has zeta ~ 1e-17 of
 #: rounding, whose relative change means nothing.
@@ -90,10 +95,15 @@ class HarmonicControl:
         Largest harmonics, a level of the ladder 1, 3, 7, 15, 31, 63, 127, 255 (default 63);
         a point that has not settled there keeps the cap's answer and its estimate, and
         :func:`cap_warning` says so.
+    max_unknowns : int
+        Largest balance (unknown coefficients, n_dof times the columns per DOF) a level may
+        have, >= 16 (default 4096: a dense solve of about 0.05 TFLOP, 134 MB); the levels
+        above it are left out for this structure, as above the cap (:meth:`levels`).
     """
 
     tolerance: float = DEFAULT_TOLERANCE
     cap: int = DEFAULT_CAP
+    max_unknowns: int = DEFAULT_MAX_UNKNOWNS
 
     def __post_init__(self) -> None:
         if (isinstance(self.tolerance, bool) or not isinstance(self.tolerance, float | int)
@@ -104,11 +114,22 @@ class HarmonicControl:
         if self.cap not in levels[1:]:
             raise ParameterError(f"the harmonics' cap must be one of "
                                  f"{', '.join(map(str, levels[1:]))}, got {self.cap!r}")
+        if not (isinstance(self.max_unknowns, int) and self.max_unknowns >= 16):
+            raise ParameterError(f"max_unknowns must be a whole number >= 16, got "
+                                 f"{self.max_unknowns!r}")
 
     @property
     def ladder(self) -> tuple[int, ...]:
         """The levels of harmonics, 1, 3, 7, ... up to the cap."""
         return _levels(self.cap)
+
+    def levels(self, dofs: int, odd: bool) -> tuple[int, ...]:
+        """The ladder for a structure of ``dofs`` DOF (``odd``: on the odd harmonics): the
+        levels up to the cap whose balance has at most ``max_unknowns`` unknowns, and never
+        fewer than the two lowest (1 and 3 harmonics)."""
+        fits = [h for h in self.ladder
+                if dofs * harmonic_columns(h, odd).size <= self.max_unknowns]
+        return tuple(fits) if len(fits) >= 2 else self.ladder[:2]
 
     @staticmethod
     def samples(harmonics: int) -> int:
@@ -142,19 +163,21 @@ def transfer(small: HarmonicBalance, large: HarmonicBalance, x: Array) -> Array:
     return large.restrict(out.ravel())
 
 
-def cap_warning(estimates: ArrayLike | None, control: HarmonicControl,
+def cap_warning(estimates: ArrayLike | None, harmonics: int, control: HarmonicControl,
                 what: str = "amplitude(s)") -> str | None:
-    """The warning when some points (their ``estimates``, -) did not settle within the cap,
-    or None."""
+    """The warning when some points (their ``estimates``, -) did not settle within the
+    ladder's top level, ``harmonics`` (the cap, or the largest balance the structure's size
+    allows: :meth:`HarmonicControl.levels`), or None."""
     est = np.atleast_1d(np.asarray(estimates, dtype=np.float64))
     bad = np.flatnonzero(~(est < control.tolerance))
     if not bad.size:
         return None
-    return (f"the harmonics reached their cap of {control.cap} at {bad.size} {what} "
-            f"without settling: the damping ratio still changes by up to "
-            f"{100 * float(np.max(est[bad])):.3g} % (tolerance "
-            f"{100 * control.tolerance:.3g} %) from {_levels(control.cap)[-2]} to "
-            f"{control.cap} harmonics")
+    why = ("the cap" if harmonics == control.cap else
+           f"the most this structure's balance takes within {control.max_unknowns} unknowns")
+    return (f"the harmonics reached {harmonics} ({why}) at {bad.size} {what} without "
+            f"settling: the damping ratio or frequency still changes by up to "
+            f"{100 * float(np.max(est[bad])):.3g} % (tolerance {100 * control.tolerance:.3g} "
+            f"%) on the last levels; the answer there is {harmonics} harmonics'")
 
 
 class _Ladder:
@@ -162,11 +185,12 @@ class _Ladder:
 
     def __init__(self, structure: Structure, control: HarmonicControl, odd: bool) -> None:
         self.structure, self.control, self.odd = structure, control, odd
+        self.harmonics = control.levels(structure.dofs, odd)
         self._built: dict[int, HarmonicBalance] = {}
 
     def __getitem__(self, level: int) -> HarmonicBalance:
         if level not in self._built:
-            h = self.control.ladder[level]
+            h = self.harmonics[level]
             self._built[level] = HarmonicBalance(self.structure, h, self.control.samples(h),
                                                  odd=self.odd)
         return self._built[level]
@@ -180,7 +204,7 @@ def _climb(ladder: _Ladder, level: int, guesses: dict[int, Array],
     ``measure`` (frequency Hz, damping ratio) is below the tolerance or the cap is reached.
     ``guesses`` maps levels to starting unknowns (in that level's layout); ``solve(hb,
     guess) -> y``. Returns the accepted level, the solutions by level, the estimate."""
-    top = len(ladder.control.ladder) - 1
+    top = len(ladder.harmonics) - 1
     sols: dict[int, Array] = {}
     lo = min(level, top - 1)
     if lo > 0:  # the level below too: a second change, at an eighth of the cost or less
@@ -256,7 +280,7 @@ def _adaptive_epmc(structure: Structure, a: Array, control: HarmonicControl, mod
 
         top, sols, est[i] = _climb(ladder, level, scaled, solve, measure)
         freq[i], zeta[i] = measure(ladder[top], sols[top])
-        used[i] = control.ladder[top]
+        used[i] = ladder.harmonics[top]
         level, guesses, previous = top - 1, sols, float(ai)
     h = int(used.max())
     return ModalCurve(method="epmc", amplitude=a, frequency=freq, damping_ratio=zeta,
@@ -305,7 +329,7 @@ def _adaptive_quasi_static(structure: Structure, q: Array, control: HarmonicCont
 
         top, sols, est[i] = _climb(ladder, level, scaled, solve, measure)
         amp[i], freq[i], zeta[i] = qsma_values(ladder[top], qf, sols[top], phi)
-        used[i] = control.ladder[top]
+        used[i] = ladder.harmonics[top]
         level, guesses, previous = top - 1, sols, qf
     h = int(used.max())
     return ModalCurve(method="qsma", amplitude=amp, frequency=freq, damping_ratio=zeta,
@@ -341,7 +365,7 @@ def adaptive_response(structure: Structure, force: float, shape: Array,
     peak amplitude and peak frequency change by less than the tolerance (the peak amplitude
     is inversely proportional to the damping there). Per curve, not per point: a
     continuation in frequency would otherwise switch balances mid-curve."""
-    ladder = control.ladder
+    ladder = control.levels(structure.dofs, odd)
     if start not in ladder:
         raise ParameterError(f"start must be a level of {ladder}, got {start!r}")
     i = ladder.index(start)
