@@ -154,7 +154,7 @@ def test_transfer_keeps_the_series(mass_jenkins):
         x = rng.normal(size=small.size)
         y = transfer(small, large, x)
         theta = np.linspace(0, 2 * np.pi, 17)
-        def series(hb, x):
+        def series(hb, x, theta=theta):
             full = hb.expand(x)
             k = np.arange(1, hb.harmonics + 1)
             return (full[0] + np.cos(np.outer(theta, k)) @ full[1::2]

@@ -154,12 +154,11 @@ def run(args: argparse.Namespace) -> int:
         _plot(structure, curves, args.plot, mode,
               [joint_orbits(c, _connectivity(args)) for c in curves])
     if args.json:
-        balance: dict[str, Any] = {"harmonics": harmonics, "samples": samples}
-        if control is not None:
-            balance = {"harmonics": [c.harmonics for c in curves],
-                       "samples": [c.samples for c in curves],
-                       "harmonic_error_estimate": estimates,
-                       "harmonic_tolerance": control.tolerance}
+        balance: dict[str, Any] = (
+            {"harmonics": harmonics, "samples": samples} if control is None else
+            {"harmonics": [c.harmonics for c in curves],
+             "samples": [c.samples for c in curves], "harmonic_error_estimate": estimates,
+             "harmonic_tolerance": control.tolerance})
         print_json({"structure": describe_structure(structure, args), **balance,
                     "frequency_range_Hz": list(frange),
                     "curves": [_curve_json(c, _connectivity(args)) for c in curves],

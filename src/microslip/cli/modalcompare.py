@@ -27,7 +27,7 @@ from .modalmesh import (
     mesh_study,
     study_output,
 )
-from .structure import balance_from_args
+from .structure import balance_from_args, harmonic_control
 
 __all__ = ["REPORT_AMPLITUDES", "SHARED", "TRUTH", "case_argv", "case_comparison",
            "compare_output", "run_all", "run_modal_all"]
@@ -64,7 +64,8 @@ def compare_output(study: MeshStudy, curves: dict[str, MeshCurve]) -> dict[str, 
 def run_all(study: MeshStudy) -> tuple[dict[str, MeshCurve], dict[str, Any]]:
     """Every registered solver's curve on ``study``, and :func:`compare_output` of them."""
     args = study.args
-    balance_from_args(args)  # a bad --harmonics must not wait for the full FE's runs
+    if harmonic_control(args) is None:  # a bad --harmonics must not wait for the full FE
+        balance_from_args(args)
     curves: dict[str, MeshCurve] = {}
     for k, (name, solver) in enumerate(MESH_SOLVERS.items()):
         if not args.json:

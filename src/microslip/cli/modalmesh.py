@@ -265,7 +265,8 @@ def _rom(study: MeshStudy) -> MeshCurve:
     else:
         curve = (epmc_odd if odd else epmc)(structure, np.asarray(study.amplitudes),
                                             harmonics, samples, study.number - 1)
-    capped = cap_warning(curve.harmonic_error_estimate, curve.harmonics, control) if control is not None else None
+    capped = (None if control is None else
+              cap_warning(curve.harmonic_error_estimate, curve.harmonics, control))
     count = len(study.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {balance_text(curve)})"

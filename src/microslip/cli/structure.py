@@ -293,17 +293,15 @@ def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
     """(harmonics, samples) of fixed harmonics, checked; --harmonics defaults to
     :data:`DEFAULT_HARMONICS` (also where ``auto`` has no adaptive method: the whole-joint
     model), --samples to the AFT's default."""
-    if args.harmonics is None or args.harmonics == "auto":
-        args.harmonics = DEFAULT_HARMONICS
-    if args.samples is None:
-        args.samples = DEFAULT_HB_SAMPLES
-    if not 1 <= args.harmonics <= 256:
-        raise ParameterError(f"--harmonics must be in [1, 256], got {args.harmonics}")
-    low = 2 * args.harmonics + 2
-    if not low <= args.samples <= 65536:
-        raise ParameterError(f"--samples must be in [{low}, 65536] for {args.harmonics} "
-                             f"harmonics, got {args.samples}")
-    return int(args.harmonics), int(args.samples)
+    h = DEFAULT_HARMONICS if args.harmonics in (None, "auto") else args.harmonics
+    n = DEFAULT_HB_SAMPLES if args.samples is None else args.samples
+    if not 1 <= h <= 256:
+        raise ParameterError(f"--harmonics must be in [1, 256], got {h}")
+    low = 2 * h + 2
+    if not low <= n <= 65536:
+        raise ParameterError(f"--samples must be in [{low}, 65536] for {h} "
+                             f"harmonics, got {n}")
+    return int(h), int(n)
 
 
 def balance_json(curve: ModalCurve, control: HarmonicControl | None) -> dict[str, Any]:
