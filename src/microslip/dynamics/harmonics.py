@@ -35,6 +35,7 @@ Units: amplitude mm, frequency Hz, damping ratio (-), modal force sqrt(t)·mm/s^
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -211,16 +212,17 @@ def _climb(ladder: _Ladder, level: int, guesses: dict[int, Array],
     sols: dict[int, Array] = {}
     lo = min(level, top - 1)
     if lo > 0:  # the level below too: a second change, at an eighth of the cost or less
-        first = guesses[lo - 1] if lo - 1 in guesses else _drop(ladder, lo, lo - 1,
-                                                                  guesses[lo])
-        sols[lo - 1] = solve(ladder[lo - 1], first)
-    sols[lo] = solve(ladder[lo], guesses[lo])
+        tries = [guesses[lo - 1]] if lo - 1 in guesses else []
+        with contextlib.suppress(ParameterError):  # then the one change from ``lo``
+            sols[lo - 1] = _first(ladder, lo - 1, solve, [
+                *tries, _drop(ladder, lo, lo - 1, guesses[lo])])
+    sols[lo] = _first(ladder, lo, solve, [guesses[lo], *(
+        [_lift(ladder, lo - 1, lo, sols[lo - 1])] if lo - 1 in sols else [])])
     while True:
         hi = lo + 1
-        guess = guesses.get(hi)
-        if guess is None:
-            guess = _lift(ladder, lo, hi, sols[lo])
-        sols[hi] = solve(ladder[hi], guess)
+        lifted = _lift(ladder, lo, hi, sols[lo])
+        sols[hi] = _first(ladder, hi, solve, [guesses[hi], lifted] if hi in guesses
+                          else [lifted])
         f1, z1 = measure(ladder[hi], sols[hi])
         est = 0.0
         for below in (lo - 1, lo):
@@ -230,6 +232,21 @@ def _climb(ladder: _Ladder, level: int, guesses: dict[int, Array],
         if est < ladder.control.tolerance or hi == top:
             return hi, sols, est
         lo = hi
+
+
+def _first(ladder: _Ladder, level: int, solve: Callable[[HarmonicBalance, Array], Array],
+           starts: list[Array]) -> Array:
+    """``solve`` at ``level`` from the first of ``starts`` it converges from (the previous
+    point's solution at this level, then the one below's lifted); the last failure, naming
+    the harmonics, if none."""
+    for k, start in enumerate(starts):
+        try:
+            return solve(ladder[level], start)
+        except ParameterError as err:
+            if k == len(starts) - 1:
+                raise ParameterError(f"{err} with {ladder.harmonics[level]} harmonics "
+                                     "(--harmonics auto)") from None
+    raise AssertionError("no start")  # starts is never empty
 
 
 def _drop(ladder: _Ladder, hi: int, lo: int, y: Array) -> Array:
