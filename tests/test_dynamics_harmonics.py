@@ -237,3 +237,25 @@ def test_adaptive_response_per_curve(mass_jenkins):
 def test_fixed_harmonics_report_no_estimate(mass_jenkins):
     c = epmc(mass_jenkins, [0.02], 7)
     assert c.point_harmonics is None and c.harmonic_error_estimate is None
+
+
+def test_a_level_that_does_not_converge_keeps_the_one_below(mass_jenkins, monkeypatch):
+    """If the next level's balance does not converge, the point keeps the level below's
+    answer with a NaN estimate, and the warning says so."""
+    import microslip.dynamics.harmonics as hm
+
+    solve = hm.epmc_point
+
+    def failing(hb, a, guess, omega0):
+        if hb.harmonics >= 15:
+            raise ParameterError("did not converge")
+        return solve(hb, a, guess, omega0)
+
+    monkeypatch.setattr(hm, "epmc_point", failing)
+    control = HarmonicControl(tolerance=1e-7)
+    c = adaptive_epmc(mass_jenkins, [0.02, 0.03], control, odd=True)
+    assert list(c.point_harmonics) == [7, 7] and np.all(np.isnan(c.harmonic_error_estimate))
+    fixed = epmc_odd(mass_jenkins, [0.02, 0.03], 7)
+    np.testing.assert_allclose(c.damping_ratio, fixed.damping_ratio, rtol=1e-9)
+    text = cap_warning(c.harmonic_error_estimate, c.harmonics, control)
+    assert text is not None and "2 amplitude(s) the next level of harmonics did not" in text

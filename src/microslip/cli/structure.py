@@ -313,7 +313,8 @@ def balance_json(curve: ModalCurve, control: HarmonicControl | None) -> dict[str
     assert curve.harmonic_error_estimate is not None
     return {"harmonics": [int(h) for h in curve.point_harmonics],
             "samples": [HarmonicControl.samples(int(h)) for h in curve.point_harmonics],
-            "harmonic_error_estimate": [float(e) for e in curve.harmonic_error_estimate],
+            "harmonic_error_estimate": [float(e) if math.isfinite(e) else None
+                                        for e in curve.harmonic_error_estimate],
             "harmonic_tolerance": control.tolerance}
 
 
@@ -324,8 +325,9 @@ def balance_text(curve: ModalCurve) -> str:
         return f"{curve.harmonics} harmonic(s), {curve.samples} samples"
     lo, hi = int(curve.point_harmonics.min()), int(curve.point_harmonics.max())
     span = f"{lo}" if lo == hi else f"{lo} to {hi}"
-    return (f"harmonics auto: {span} harmonic(s), largest error estimate "
-            f"{100 * float(curve.harmonic_error_estimate.max()):.3g} %")
+    est = curve.harmonic_error_estimate[np.isfinite(curve.harmonic_error_estimate)]
+    top = f"{100 * float(est.max()):.3g} %" if est.size else "none"
+    return f"harmonics auto: {span} harmonic(s), largest error estimate {top}"
 
 
 def headline(structure: Structure, mode: int) -> str:

@@ -171,17 +171,24 @@ def cap_warning(estimates: ArrayLike | None, harmonics: int, control: HarmonicCo
                 what: str = "amplitude(s)") -> str | None:
     """The warning when some points (their ``estimates``, -) did not settle within the
     ladder's top level, ``harmonics`` (the cap, or the largest balance the structure's size
-    allows: :meth:`HarmonicControl.levels`), or None."""
+    allows: :meth:`HarmonicControl.levels`), or whose next level did not converge (estimate
+    NaN), or None."""
     est = np.atleast_1d(np.asarray(estimates, dtype=np.float64))
-    bad = np.flatnonzero(~(est < control.tolerance))
-    if not bad.size:
-        return None
-    why = ("the cap" if harmonics == control.cap else
-           f"the most this structure's balance takes within {control.max_unknowns} unknowns")
-    return (f"the harmonics reached {harmonics} ({why}) at {bad.size} {what} without "
-            f"settling: the damping ratio or frequency still changes by up to "
-            f"{100 * float(np.max(est[bad])):.3g} % (tolerance {100 * control.tolerance:.3g} "
-            f"%) on the last levels; the answer there is {harmonics} harmonics'")
+    bad = np.flatnonzero(est >= control.tolerance)
+    failed = int(np.count_nonzero(np.isnan(est)))
+    parts = []
+    if bad.size:
+        why = ("the cap" if harmonics == control.cap else "the most this structure's "
+               f"balance takes within {control.max_unknowns} unknowns")
+        parts.append(f"the harmonics reached {harmonics} ({why}) at {bad.size} {what} "
+                     f"without settling: the damping ratio or frequency still changes by up "
+                     f"to {100 * float(np.max(est[bad])):.3g} % (tolerance "
+                     f"{100 * control.tolerance:.3g} %) on the last levels; the answer there "
+                     f"is {harmonics} harmonics'")
+    if failed:
+        parts.append(f"at {failed} {what} the next level of harmonics did not converge: the "
+                     "answer there is the level below's, without an error estimate (null)")
+    return "; ".join(parts) if parts else None
 
 
 class _Ladder:
@@ -221,8 +228,11 @@ def _climb(ladder: _Ladder, level: int, guesses: dict[int, Array],
     while True:
         hi = lo + 1
         lifted = _lift(ladder, lo, hi, sols[lo])
-        sols[hi] = _first(ladder, hi, solve, [guesses[hi], lifted] if hi in guesses
-                          else [lifted])
+        try:
+            sols[hi] = _first(ladder, hi, solve, [guesses[hi], lifted] if hi in guesses
+                              else [lifted])
+        except ParameterError:  # keep the level below's answer, without an estimate
+            return lo, sols, float("nan")
         f1, z1 = measure(ladder[hi], sols[hi])
         est = 0.0
         for below in (lo - 1, lo):
