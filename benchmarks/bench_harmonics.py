@@ -62,7 +62,9 @@ def main() -> None:
     for i, a in enumerate(au["amplitude_mm"]):
         z7, za = fx["damping_ratio"][i], au["damping_ratio"][i]
         f7, fa = fx["frequency_Hz"][i], au["frequency_Hz"][i]
-        print(f"{a:11.4g} {au['harmonics'][i]:3d} {100 * au['estimate'][i]:11.3g} "
+        e = au["estimate"][i]
+        est = "null" if e is None else f"{100 * e:.3g}"
+        print(f"{a:11.4g} {au['harmonics'][i]:3d} {est:>11} "
               f"{za:11.4g} {z7:11.4g} {100 * (z7 / za - 1):+8.2f} {100 * (f7 / fa - 1):+8.3f}")
 
 

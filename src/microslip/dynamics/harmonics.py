@@ -7,14 +7,16 @@ balance odd), up to a cap and to the largest balance the structure's size allows
 (:meth:`HarmonicControl.levels`). At each point (amplitude or modal force) the balance is
 solved at neighbouring levels, each warm-started from the one below (its new harmonics
 zero). The estimate is the relative change (:func:`change`) of the damping ratio and the
-frequency from each of the two levels below (where there are two) to the larger, the larger
-of the two changes; the point keeps the larger level's solution once the estimate is below
-the tolerance, else climbs a level. Two changes, because the convergence in H is not
-monotone: the error changes sign, and one pair of levels can straddle the answer by chance
-(on a Jenkins element at 0.1 mm, 3 and 7 harmonics agree to 1.3e-5 while 7 errs by
-2.5e-4); the level two below costs an eighth or less of the larger one (a dense solve,
-(n H)^3). The next point starts at the same levels (never lower: the harmonics a point
-needed are kept for the next, larger one, where slip only spreads).
+frequency from the level below to the larger, or a third of the change from two levels
+below (where there are two; :data:`TWO_LEVEL_RATIO`), whichever is larger; the point keeps
+the larger level's solution once the estimate is below the tolerance, else climbs a level.
+Two changes, because the convergence in H is not monotone: the error changes sign, and one
+pair of levels can straddle the answer by chance (on a Jenkins element at 0.1 mm, 3 and 7
+harmonics agree to 1.3e-5 while 7 errs by 2.5e-4; 1 to 7 change by 4.4e-3); the level two
+below costs an eighth or less of the larger one (a dense solve, (n H)^3). With a monotone
+error ~ C H^-p, p >= 1, both are bounds of the larger level's error. The next point starts
+at the same levels (never lower: the harmonics a point needed are kept for the next,
+larger one, where slip only spreads).
 
 Why the change bounds the error of the larger level's answer: with an error falling as
 ``C H^-p``, the change from H to 2H + 1 is about ``C H^-p (1 - 2^-p)`` and the larger
@@ -81,6 +83,11 @@ DEFAULT_MAX_UNKNOWNS = 4096
 #: damping ratio itself: a stuck structure without linear damping has zeta ~ 1e-17 of
 #: rounding, whose relative change means nothing.
 DAMPING_FLOOR = 1e-8
+
+#: The change over two levels (about 4x the harmonics) is at least this many times the
+#: larger level's error when the error falls monotonically at least like 1/H (4 - 1); the
+#: estimate takes that change divided by it beside the one-level change.
+TWO_LEVEL_RATIO = 3.0
 
 #: AFT samples per period of the highest harmonic kept (at least).
 SAMPLES_PER_HARMONIC = 16
@@ -235,10 +242,10 @@ def _climb(ladder: _Ladder, level: int, guesses: dict[int, Array],
             return lo, sols, float("nan")
         f1, z1 = measure(ladder[hi], sols[hi])
         est = 0.0
-        for below in (lo - 1, lo):
+        for below, share in ((lo - 1, 1.0 / TWO_LEVEL_RATIO), (lo, 1.0)):
             if below in sols:
                 f0, z0 = measure(ladder[below], sols[below])
-                est = max(est, change((f0, f1), (z0, z1)))
+                est = max(est, share * change((f0, f1), (z0, z1)))
         if est < ladder.control.tolerance or hi == top:
             return hi, sols, est
         lo = hi
