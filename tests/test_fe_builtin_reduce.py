@@ -281,7 +281,7 @@ def _gaps(s, amplitude: float, harmonics: int, samples: int = 128
     return f / (w / (2 * np.pi)) - 1.0, zeta / (xi / (2 * w)) - 1.0, a / amplitude - 1.0
 
 
-@pytest.mark.slow  # minutes: 63 harmonics on 46 DOF (29 min at load 15 on 2 cores)
+@pytest.mark.slow  # 80 s on a quiet machine (63 harmonics on 46 DOF; 29 min at load 15)
 def test_epmc_against_time_integration(small):
     """The EPMC orbit q(t) (H harmonics, frequency w, negative damping xi) solves
     ``M q'' + K q + f(q) = xi M q'(t)`` once the right-hand side is taken as a given periodic
