@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import run_json
+from conftest import run, run_json
 
 from microslip.cli.main import main
 
@@ -51,14 +51,43 @@ def test_modal_single_harmonic_is_the_closed_form_backbone(capsys):
 
 def test_modal_stuck_limit_includes_the_linear_damping(capsys):
     """Below the slip amplitude the joint is a spring: f = stuck frequency and
-    zeta = zeta_lin f_free / f_stuck (c fixed by --frequency), with 7 harmonics."""
-    out = run_json(capsys, "modal", *MODE, "--damping-ratio", "0.02", *JOINT,
-                           "--amplitude-range", "1e-4", "1e-2", "--amplitudes", "3")
+    zeta = zeta_lin f_free / f_stuck (c fixed by --frequency), with 7 harmonics (the
+    default), and with the harmonics chosen (auto): 1 and 3 agree to rounding, 3 are kept."""
     stuck = F0 * np.sqrt((K + KJ) / K)
-    assert out["structure"]["stuck_frequency_Hz"] == pytest.approx(stuck, rel=1e-14)
-    np.testing.assert_allclose(out["frequency_Hz"], stuck, rtol=1e-12)
-    np.testing.assert_allclose(out["damping_ratio"], 0.02 * F0 / stuck, rtol=1e-10)
-    assert out["harmonics"] == 7
+    for extra in (["--harmonics", "7"], ["--harmonics", "auto"]):
+        out = run_json(capsys, "modal", *MODE, "--damping-ratio", "0.02", *JOINT,
+                       "--amplitude-range", "1e-4", "1e-2", "--amplitudes", "3", *extra)
+        assert out["structure"]["stuck_frequency_Hz"] == pytest.approx(stuck, rel=1e-14)
+        np.testing.assert_allclose(out["frequency_Hz"], stuck, rtol=1e-12)
+        np.testing.assert_allclose(out["damping_ratio"], 0.02 * F0 / stuck, rtol=1e-10)
+    assert out["harmonics"] == [3, 3, 3] and out["samples"] == [64, 64, 64]
+    assert max(out["harmonic_error_estimate"]) < 1e-9
+    assert out["harmonic_tolerance"] == 0.005
+
+
+def test_modal_auto_reports_harmonics_per_amplitude(capsys):
+    """``--harmonics auto``: per amplitude the harmonics taken, their samples
+    and the error estimate, under the tolerance; the answer is the fixed balance's at those
+    harmonics and samples. Fixed harmonics keep their keys as numbers."""
+    argv = ["modal", *MODE, *JOINT, "--amplitude-range", "0.02", "0.2", "--amplitudes", "3"]
+    out = run_json(capsys, *argv, "--harmonics", "auto", "--harmonic-tolerance", "0.001")
+    assert all(e < 1e-3 for e in out["harmonic_error_estimate"])
+    assert out["harmonic_tolerance"] == 0.001
+    for i, (h, n) in enumerate(zip(out["harmonics"], out["samples"], strict=True)):
+        assert h in (3, 7, 15, 31, 63) and n == max(32, 1 << (16 * (h + 1) - 1).bit_length())
+        fixed = run_json(capsys, *argv, "--harmonics", str(h), "--samples", str(n))
+        assert fixed["damping_ratio"][i] == pytest.approx(out["damping_ratio"][i], rel=1e-9)
+        assert fixed["harmonics"] == h and "harmonic_error_estimate" not in fixed
+    assert main([*argv, "--harmonics", "auto"]) == 0
+    assert "harmonics auto:" in capsys.readouterr().out
+
+
+def test_frf_auto_reports_harmonics_per_curve(capsys):
+    out = run_json(capsys, "frf", *MODE, "--damping-ratio", "0.01", *JOINT, "--force", "1",
+                   "--force", "3", "--harmonics", "auto")
+    assert len(out["harmonics"]) == 2 and len(out["harmonic_error_estimate"]) == 2
+    assert all(e < 5e-3 for e in out["harmonic_error_estimate"])
+    assert out["harmonic_tolerance"] == 0.005
 
 
 def test_frf_single_harmonic_peak_is_the_closed_form(capsys):
@@ -135,7 +164,21 @@ FRF = ["frf", *MODE, *JOINT]
     ([*FRF, "--force", "0"], "--force must be finite and > 0 N"),
     ([*FRF, "--force", "1", "--force", "-2"], "--force must be finite and > 0 N"),
     ([*FRF, "--force", "1", "--harmonics", "0"], "--harmonics must be in [1, 256]"),
-    ([*FRF, "--force", "1", "--samples", "15"], "--samples must be in [16, 65536]"),
+    ([*FRF, "--force", "1", "--harmonics", "7", "--samples", "15"],
+     "--samples must be in [16, 65536]"),
+    ([*FRF, "--force", "1", "--harmonics", "auto", "--samples", "256"],
+     "--samples is not used with --harmonics auto"),
+    ([*MODAL, "--harmonics", "auto", "--samples", "256"], "--samples is not used with"),
+    ([*MODAL, "--harmonics", "7", "--harmonic-tolerance", "0.01"],
+     "--harmonic-tolerance is used by --harmonics auto only"),
+    ([*MODAL, "--harmonics", "auto", "--harmonic-tolerance", "0.5"],
+     "--harmonic-tolerance must be in (0, 0.5)"),
+    ([*MODAL, "--harmonics", "auto", "--harmonic-tolerance", "0"],
+     "--harmonic-tolerance must be in (0, 0.5)"),
+    ([*MODAL, "--harmonic-tolerance", "0.01"],
+     "--harmonic-tolerance is used by --harmonics auto only"),
+    ([*MODAL, "--method", "energy", "--harmonic-tolerance", "0.01"],
+     "--harmonic-tolerance is not used by --method energy"),
     ([*FRF, "--force", "1", "--frequency-range", "120", "80"], "0 < MIN < MAX (Hz)"),
     ([*FRF, "--force", "1", "--step", "2"], "--step must be in (0, 1]"),
     (["modal", *MODE, *JOINT, "--amplitude-range", "0.1", "0.01"], "0 < MIN <= MAX (mm)"),
@@ -156,6 +199,26 @@ def test_bad_input_is_one_line_and_exit_1(capsys, argv, message):
     assert err.count("\n") == 1
 
 
+def test_harmonics_neither_auto_nor_a_number_is_a_usage_error(capsys):
+    assert main([*MODAL, "--harmonics", "many"]) == 2
+    assert "not auto or a whole number: 'many'" in capsys.readouterr().err
+
+
 def test_missing_force_is_a_usage_error(capsys):
     assert main(FRF) == 2
     assert "--force" in capsys.readouterr().err
+
+
+def test_mesh_commands_refuse_auto_harmonics_in_one_line(capsys):
+    """modal --mesh and frf --mesh take a fixed number of harmonics: ``auto`` is refused with
+    the way to get it (modal --structure on the written ROM), not silently replaced."""
+    from pathlib import Path
+
+    mesh = str(Path(__file__).resolve().parents[1] / "examples" / "cantilever.inp")
+    clamp = ["--mesh", mesh, "--contact-set", "contact", "--clamp-set", "clamp",
+             "--normal-force", "2000", "--friction", "0.5", "--modulus", "70000",
+             "--poisson-ratio", "0.33", "--density", "2700", "--response-set", "response"]
+    code, _, err = run(capsys, "modal", *clamp, "--solver", "rom", "--harmonics", "auto")
+    assert code == 1 and err.count("\n") == 1 and "modal --structure rom.npz" in err
+    code, _, err = run(capsys, "frf", *clamp, "--force", "1", "--harmonics", "auto")
+    assert code == 1 and err.count("\n") == 1 and "not available with frf --mesh" in err

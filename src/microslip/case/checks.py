@@ -64,6 +64,17 @@ def mesh_file(text: str) -> str:
     raise argparse.ArgumentTypeError(f"no mesh file {text!r} (.inp, .msh, .vtu, ...)")
 
 
+def harmonics_count(text: str) -> str | int:
+    """argparse type of ``--harmonics``: ``auto`` or a whole number (its range is checked
+    where the balance is built)."""
+    if text == "auto":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not auto or a whole number: {text!r}") from None
+
+
 def set_name(text: str) -> str:
     """argparse type: a non-empty set name of a mesh file."""
     if not text.strip():

@@ -159,8 +159,6 @@ RUN_OPTIONS: tuple[Option, ...] = (
     Option("method", "epmc: the extended periodic motion concept with harmonic balance; "
            "energy: the energy method from the joint's describing function", "", "a method",
            type=None),
-    Option("harmonics", "harmonics, 1 = single-harmonic (describing-function) balance", "",
-           ">= 1", type=int, metavar="H"),
     Option("samples", "time samples per period", "", ">= 1", type=int, metavar="N"),
     Option("amplitude_range", "amplitudes from MIN to MAX", "", "0 < MIN <= MAX", nargs=2,
            metavar=("MIN", "MAX")),

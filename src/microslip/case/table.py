@@ -42,6 +42,7 @@ from .checks import (
     Option,
     choice,
     exponent,
+    harmonics_count,
     interval,
     mesh_file,
     mesh_level,
@@ -241,6 +242,15 @@ _OPTIONS: tuple[Option, ...] = (
            "across are matched: by position on the bar (spatial, the default) or by slip "
            "order (ordered)", "", " | ".join(PAIRINGS), type=None, choices=PAIRINGS,
            joint_key="pairing", check=choice(PAIRINGS)),
+    # the harmonic balance (modal, frf: docs/dynamics.md, "Harmonics chosen by an error
+    # estimate")
+    Option("harmonics", "harmonics of the balance: auto raises them (and the AFT samples) "
+           "until the damping ratio and frequency change by less than --harmonic-tolerance; "
+           "a number fixes them, 1 = single-harmonic (describing-function) balance", "",
+           "auto | [1, 256]", type=harmonics_count, metavar="auto|H", scope="all"),
+    Option("harmonic_tolerance", "with --harmonics auto: largest relative change of the "
+           "damping ratio and frequency between two levels of harmonics (1, 3, 7, 15, 31, "
+           "63) that a point accepts", "", "(0, 0.5)", metavar="X", scope="all"),
     Option("fe_mesh", f"with transverse fe: the FE mesh, as --mesh ({', '.join(LEVELS)} or "
            f"NXxNYxNZ; default {DEFAULT_MESH})", "", f"{' | '.join(LEVELS)} | NXxNYxNZ",
            type=mesh_level, metavar="LEVEL", joint_key="fe_mesh", check=mesh_text,

@@ -13,6 +13,7 @@ import numpy as np
 from ..case.table import add_option
 from ..dynamics.assemble import joint_orbits, mode_load
 from ..dynamics.files import read_structure
+from ..dynamics.harmonics import adaptive_response, cap_warning
 from ..dynamics.modal import epmc
 from ..dynamics.response import DEFAULT_STEP, FrequencyResponse, frequency_response
 from ..dynamics.structure import Structure
@@ -34,6 +35,7 @@ from .structure import (
     balance_from_args,
     connectivity_from_args,
     describe_structure,
+    harmonic_control,
     headline,
     mode_from_args,
     structure_from_args,
@@ -109,13 +111,27 @@ def run(args: argparse.Namespace) -> int:
     structure = structure_from_args(args)
     warnings = across_warnings(args)
     report_warnings(warnings)
-    harmonics, samples = balance_from_args(args)
+    control = harmonic_control(args)
+    if control is None:
+        harmonics, samples = balance_from_args(args)
     _check_levels(args)
     mode = mode_from_args(args)
     frange = _range(args, structure, mode)
     shape = excitation_from_args(args, structure)
-    curves = [frequency_response(structure, f, shape, frange, harmonics, samples, args.step)
-              for f in progress(args.force, desc="frf", total=len(args.force))]
+    levels = progress(args.force, desc="frf", total=len(args.force))
+    if control is not None:
+        chosen = [adaptive_response(structure, f, shape, frange, control, args.step)
+                  for f in levels]
+        curves = [c.response for c in chosen]
+        estimates = [c.harmonic_error_estimate for c in chosen]
+        capped = cap_warning(estimates, max(c.harmonics for c in curves), control,
+                             "curve(s)")
+        if capped:
+            warnings.append(capped)
+            report_warnings([capped])
+    else:
+        curves = [frequency_response(structure, f, shape, frange, harmonics, samples,
+                                     args.step) for f in levels]
     for c in curves:
         if not c.success:
             print(f"warning: curve at {c.force:g} N stopped early: {c.message}",
@@ -129,13 +145,23 @@ def run(args: argparse.Namespace) -> int:
         _plot(structure, curves, args.plot, mode,
               [joint_orbits(c, _connectivity(args)) for c in curves])
     if args.json:
-        print_json({"structure": describe_structure(structure, args), "harmonics": harmonics,
-                    "samples": samples, "frequency_range_Hz": list(frange),
+        balance: dict[str, Any] = (
+            {"harmonics": harmonics, "samples": samples} if control is None else
+            {"harmonics": [c.harmonics for c in curves],
+             "samples": [c.samples for c in curves], "harmonic_error_estimate": estimates,
+             "harmonic_tolerance": control.tolerance})
+        print_json({"structure": describe_structure(structure, args), **balance,
+                    "frequency_range_Hz": list(frange),
                     "curves": [_curve_json(c, _connectivity(args)) for c in curves],
                     "warnings": warnings})
         return 0
-    print(f"{headline(structure, mode)}; {harmonics} harmonic(s), {samples} samples, "
-          f"{frange[0]:.6g} to {frange[1]:.6g} Hz")
+    if control is not None:
+        used = sorted({c.harmonics for c in curves})
+        text = (f"harmonics auto: {' or '.join(map(str, used))} harmonic(s), largest "
+                f"error estimate {100 * max(estimates):.3g} %")
+    else:
+        text = f"{harmonics} harmonic(s), {samples} samples"
+    print(f"{headline(structure, mode)}; {text}, {frange[0]:.6g} to {frange[1]:.6g} Hz")
     print(f"{'force (N)':>12} {'peak a (mm)':>14} {'peak f (Hz)':>14} {'points':>7}")
     for c in curves:
         print(f"{c.force:12.6g} {c.peak_amplitude:14.7g} {c.peak_frequency:14.8g} "

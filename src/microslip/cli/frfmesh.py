@@ -111,7 +111,7 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     from ..io import check_writable, write_csv
     from ..meshdynamics.frfstudy import frf_output, prepare_frf, run_forced
     from ..progress import progress
-    from .structure import balance_from_args
+    from .structure import balance_from_args, harmonic_control
 
     check_plot(args.plot)
     if args.csv:
@@ -119,8 +119,13 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     _check(args)
     case = structure_case(args)
     direction = _load_direction(args.load_direction)
+    if args.harmonics == "auto":
+        raise ParameterError("--harmonics auto is not available with frf --mesh (each level "
+                             "a whole continuation on the ROM); give a number, default "
+                             f"{DEFAULT_MESH_HARMONICS}")
     if args.harmonics is None:
         args.harmonics = DEFAULT_MESH_HARMONICS
+    harmonic_control(args, auto=False)  # refuses --harmonic-tolerance with fixed harmonics
     harmonics, samples = balance_from_args(args)
     frange = None if args.frequency_range is None else check_range(*args.frequency_range)
     settings = FrfSettings(harmonics=harmonics, samples=samples, frequency_range=frange,

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..case.table import add_option
+from ..dynamics.harmonics import adaptive_epmc, cap_warning
 from ..dynamics.modal import METHODS, MODAL_COORDINATE, energy_method
 from ..errors import ParameterError
 from .contact import report_warnings
@@ -29,7 +30,10 @@ from .structure import (
     add_balance_options,
     add_structure_options,
     balance_from_args,
+    balance_json,
+    balance_text,
     describe_structure,
+    harmonic_control,
     headline,
     mode_from_args,
     structure_from_args,
@@ -88,11 +92,22 @@ def run(args: argparse.Namespace) -> int:
     if args.method == "energy" and args.harmonics is not None:
         raise ParameterError("--harmonics is not used by --method energy (a single-harmonic "
                              "balance); leave it out or use --method epmc")
-    harmonics, samples = balance_from_args(args)
+    if args.method == "energy" and args.harmonic_tolerance is not None:
+        raise ParameterError("--harmonic-tolerance is not used by --method energy (a "
+                             "single-harmonic balance); leave it out or use --method epmc")
+    control = harmonic_control(args) if args.method == "epmc" else None
+    if control is None:
+        harmonics, samples = balance_from_args(args)
     amps = amplitudes_from_args(args)
     mode = mode_from_args(args)
     failures: list[str] = []  # 3-D contact (a ROM's file): an amplitude missed is NaN
-    if args.method == "epmc" and three_d:
+    if control is not None:
+        curve = adaptive_epmc(structure, amps, control, mode)
+        capped = cap_warning(curve.harmonic_error_estimate, curve.harmonics, control)
+        if capped:
+            warnings.append(capped)
+            report_warnings([capped])
+    elif args.method == "epmc" and three_d:
         from ..dynamics.modal import epmc
 
         curve = epmc(structure, amps, harmonics, samples, mode, failures=failures)
@@ -111,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
         plot_modal(curve, energy, args.plot)
     if args.json:
         print_json({"structure": describe_structure(structure, args), "method": curve.method,
-                    "harmonics": curve.harmonics, "samples": curve.samples,
+                    **balance_json(curve, control),
                     "amplitude_mm": curve.amplitude, "amplitude_coordinate": MODAL_COORDINATE,
                     "frequency_Hz": _nulls(curve.frequency),
                     "damping_ratio": _nulls(curve.damping_ratio),
@@ -120,8 +135,7 @@ def run(args: argparse.Namespace) -> int:
                         "damping_ratio": energy.damping_ratio},
                     "warnings": warnings})
         return 0
-    print(f"{headline(structure, mode)}; {args.method}, {curve.harmonics} harmonic(s), "
-          f"{curve.samples} samples")
+    print(f"{headline(structure, mode)}; {args.method}, {balance_text(curve)}")
     print(f"{'q (mm)':>12} {'f (Hz)':>12} {'zeta (-)':>12}")  # the modal coordinate
     for row in zip(curve.amplitude, curve.frequency, curve.damping_ratio, strict=True):
         print("{:12.5g} {:12.7g} {:12.5g}".format(*row))

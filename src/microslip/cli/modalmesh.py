@@ -74,8 +74,14 @@ def _check(args: argparse.Namespace) -> None:
 def modal_settings(args: argparse.Namespace) -> ModalSettings:
     """The modal study's settings from the command line, checked (``--harmonics`` defaults
     to :data:`~microslip.dynamics.hb.DEFAULT_HARMONICS`)."""
-    from .structure import balance_from_args
+    from .structure import balance_from_args, harmonic_control
 
+    if args.harmonics == "auto":
+        raise ParameterError("--harmonics auto is not available with modal --mesh yet: write "
+                             "the ROM with `microslip reduce ... --out rom.npz` and run `modal "
+                             "--structure rom.npz --harmonics auto`, or give a number (default "
+                             "7)")
+    harmonic_control(args)  # refuses --harmonic-tolerance with fixed harmonics
     harmonics, samples = balance_from_args(args)
     with flagged():
         return ModalSettings(amplitudes=args.amplitudes,

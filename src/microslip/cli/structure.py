@@ -27,7 +27,9 @@ from ..dynamics.assemble import (
     with_output,
 )
 from ..dynamics.files import MatrixFile, check_joint_dofs, read_structure
+from ..dynamics.harmonics import DEFAULT_TOLERANCE, HarmonicControl
 from ..dynamics.hb import DEFAULT_HARMONICS, DEFAULT_HB_SAMPLES, check_balance
+from ..dynamics.modal import ModalCurve
 from ..dynamics.operators2d import PAIRINGS
 from ..dynamics.operators3d import Contact3D
 from ..dynamics.structure import Structure, free_frequency, one_mode
@@ -41,10 +43,24 @@ from .across import (
 from .common import flagged
 from .joint import add_joint_options, describe_joint, joint_from_args
 
-__all__ = ["ACROSS_WARNING", "DEFAULT_HARMONICS", "across_warnings", "add_balance_options",
-           "add_structure_options", "balance_from_args", "connectivity_from_args",
-           "describe_contacts", "describe_structure", "headline", "mode_from_args", "placed_joints",
-           "structure_from_args"]
+__all__ = [
+    "ACROSS_WARNING",
+    "DEFAULT_HARMONICS",
+    "across_warnings",
+    "add_balance_options",
+    "add_structure_options",
+    "balance_from_args",
+    "balance_json",
+    "balance_text",
+    "connectivity_from_args",
+    "describe_contacts",
+    "describe_structure",
+    "harmonic_control",
+    "headline",
+    "mode_from_args",
+    "placed_joints",
+    "structure_from_args",
+]
 
 #: The warning for a two-directional tip or centre joint that is its own 1-D model across
 #: (docs/dynamics.md, "The reduced bar against the FE").
@@ -251,20 +267,72 @@ def describe_contacts(structure: Structure) -> dict[str, Any]:
             "preload_N": [op.preload for op in ops], "friction": [op.friction for op in ops]}
 
 
-def add_balance_options(parser: argparse.ArgumentParser) -> None:
-    """``--harmonics`` and ``--samples``."""
+def add_balance_options(parser: argparse.ArgumentParser, auto: bool = False) -> None:
+    """``--harmonics``, ``--harmonic-tolerance`` and ``--samples``; ``auto``: whether the
+    command's default is ``--harmonics auto`` (else :data:`DEFAULT_HARMONICS`)."""
     g = parser.add_argument_group("harmonic balance")
-    add_option(g, "harmonics", note=f"default {DEFAULT_HARMONICS}")
-    add_option(g, "samples", default=DEFAULT_HB_SAMPLES,
-               note="of the alternating frequency-time scheme")
+    add_option(g, "harmonics", note=f"default {'auto' if auto else DEFAULT_HARMONICS}")
+    add_option(g, "harmonic_tolerance", note=f"default {DEFAULT_TOLERANCE:g}")
+    add_option(g, "samples", default=None,
+               note=f"of the alternating frequency-time scheme with fixed harmonics (default "
+                    f"{DEFAULT_HB_SAMPLES}; auto takes 16 (H + 1) rounded up to a power of two)")
+
+
+def harmonic_control(args: argparse.Namespace, auto: bool = False) -> HarmonicControl | None:
+    """The control of ``--harmonics auto`` (or of no --harmonics where ``auto`` is the
+    command's default), checked, or None for fixed harmonics (then
+    :func:`balance_from_args`). --samples with auto and --harmonic-tolerance with fixed
+    harmonics are refused (they would do nothing)."""
+    chosen = args.harmonics == "auto" or (args.harmonics is None and auto)
+    tol = getattr(args, "harmonic_tolerance", None)
+    if not chosen:
+        if tol is not None:
+            raise ParameterError("--harmonic-tolerance is used by --harmonics auto only; "
+                                 f"leave it out with --harmonics {args.harmonics}")
+        return None
+    if args.samples is not None:
+        raise ParameterError("--samples is not used with --harmonics auto (the samples follow "
+                             "the harmonics); leave it out or give --harmonics H")
+    tol = DEFAULT_TOLERANCE if tol is None else tol
+    if not (math.isfinite(tol) and 0.0 < tol < 0.5):
+        raise ParameterError(f"--harmonic-tolerance must be in (0, 0.5), got {tol!r}")
+    return HarmonicControl(tolerance=float(tol))
 
 
 def balance_from_args(args: argparse.Namespace) -> tuple[int, int]:
-    """(harmonics, samples), checked; --harmonics defaults to :data:`DEFAULT_HARMONICS`."""
-    if args.harmonics is None:
-        args.harmonics = DEFAULT_HARMONICS
+    """(harmonics, samples) of fixed harmonics, checked; --harmonics defaults to
+    :data:`DEFAULT_HARMONICS` (also where ``auto`` has no adaptive method: the whole-joint
+    model), --samples to the AFT's default."""
+    h = DEFAULT_HARMONICS if args.harmonics in (None, "auto") else args.harmonics
+    n = DEFAULT_HB_SAMPLES if args.samples is None else args.samples
     with flagged():
-        return check_balance(args.harmonics, args.samples)
+        return check_balance(h, n)
+
+
+def balance_json(curve: ModalCurve, control: HarmonicControl | None) -> dict[str, Any]:
+    """The JSON of a modal curve's balance: ``harmonics`` and ``samples`` (numbers when
+    fixed; per point with ``harmonic_error_estimate`` and ``harmonic_tolerance`` when
+    chosen)."""
+    if control is None or curve.point_harmonics is None:
+        return {"harmonics": curve.harmonics, "samples": curve.samples}
+    assert curve.harmonic_error_estimate is not None
+    return {"harmonics": [int(h) for h in curve.point_harmonics],
+            "samples": [HarmonicControl.samples(int(h)) for h in curve.point_harmonics],
+            "harmonic_error_estimate": [float(e) if math.isfinite(e) else None
+                                        for e in curve.harmonic_error_estimate],
+            "harmonic_tolerance": control.tolerance}
+
+
+def balance_text(curve: ModalCurve) -> str:
+    """'H harmonic(s), N samples' of fixed harmonics, or 'auto: H1-H2 harmonic(s) (largest
+    estimate E %)'."""
+    if curve.point_harmonics is None or curve.harmonic_error_estimate is None:
+        return f"{curve.harmonics} harmonic(s), {curve.samples} samples"
+    lo, hi = int(curve.point_harmonics.min()), int(curve.point_harmonics.max())
+    span = f"{lo}" if lo == hi else f"{lo} to {hi}"
+    est = curve.harmonic_error_estimate[np.isfinite(curve.harmonic_error_estimate)]
+    top = f"{100 * float(est.max()):.3g} %" if est.size else "none"
+    return f"harmonics auto: {span} harmonic(s), largest error estimate {top}"
 
 
 def headline(structure: Structure, mode: int) -> str:

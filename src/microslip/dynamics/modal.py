@@ -85,9 +85,18 @@ class ModalCurve:
     damping_ratio : ndarray, shape (n,)
         Modal damping ratio, linear damping included (-).
     harmonics : int
-        Harmonics of the balance (1 for the energy method).
+        Harmonics of the balance (1 for the energy method; with harmonics chosen per point,
+        :mod:`.harmonics`, the most any point took).
     samples : int
-        Time samples per period (of the describing function or the AFT scheme).
+        Time samples per period (of the describing function or the AFT scheme; with
+        harmonics chosen per point, those of the point with the most harmonics).
+    point_harmonics : ndarray of int, shape (n,), or None
+        With harmonics chosen per point (:mod:`.harmonics`): each point's harmonics; None
+        when fixed.
+    harmonic_error_estimate : ndarray, shape (n,), or None
+        With harmonics chosen per point: each point's estimated relative error from the
+        truncation (:func:`~.harmonics.change`, the change from the next smaller harmonics
+        of the ladder); None when fixed.
     """
 
     method: str
@@ -96,6 +105,8 @@ class ModalCurve:
     damping_ratio: np.ndarray
     harmonics: int
     samples: int
+    point_harmonics: np.ndarray | None = None
+    harmonic_error_estimate: np.ndarray | None = None
 
 
 def stuck_mode(structure: Structure, mode: int = 0) -> tuple[Array, float, float, float]:
@@ -196,40 +207,16 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
     :class:`~.hb.HarmonicBalance`)."""
     hb = HarmonicBalance(structure, harmonics, samples, odd=odd)
     m_k = hb.size
-    j = hb.first
-    phi, m, _, c = stuck_mode(structure, mode)
-    omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
-    first = np.zeros((structure.dofs, hb.width))
-    first[:, j] = phi
-    guess = np.zeros(m_k + 2)
-    guess[:m_k] = first.ravel()
-    guess[m_k], guess[m_k + 1] = omega0, c / m
-    out = np.zeros((2, structure.dofs, hb.width))
-    out[0, :, j] = structure.output
-    out[1, :, j + 1] = structure.output
-    rows = np.zeros((2, m_k + 2))
-    rows[:, :m_k] = out.reshape(2, -1)
-    load = np.zeros(m_k)
+    guess, omega0 = epmc_start(structure, hb, mode)
     freq = np.empty(a.size)
     zeta = np.empty(a.size)
 
     def solve(start: Array, previous: float, ai: float, max_iter: int) -> tuple[Array, bool]:
         """Newton at amplitude ``ai`` from the point ``start`` at amplitude ``previous``
         (its harmonics scaled by ai / previous)."""
-        def fun(y: Array) -> tuple[Array, Array]:
-            # the balance writes its rows in place, column-major: LAPACK factors it as it is
-            jac = np.zeros((m_k + 2, m_k + 2), order="F")
-            res = hb.residual(y[:m_k], float(y[m_k]), load, float(y[m_k + 1]),
-                              out=jac[:m_k, :m_k + 1])
-            jac[:m_k, m_k + 1] = res.dxi
-            jac[m_k:] = rows
-            return np.concatenate([res.r, rows @ y - (ai, 0.0)]), jac
-
         g = start.copy()
         g[:m_k] *= ai / previous
-        scale = np.concatenate([np.full(m_k, ai), [omega0, omega0]])
-        y, ok, _ = newton(fun, g, scale, TOLERANCE, max_iter=max_iter)
-        return y, ok
+        return epmc_newton(hb, ai, g, omega0, max_iter)
 
     def reach(start: Array, previous: float | None, ai: float, depth: int = 0
               ) -> tuple[Array, bool]:
@@ -266,6 +253,58 @@ def _epmc(structure: Structure, a: Array, harmonics: int, samples: int, mode: in
                       harmonics=harmonics, samples=samples)
 
 
+def epmc_start(structure: Structure, hb: HarmonicBalance, mode: int) -> tuple[Array, float]:
+    """The EPMC's unknowns ``[x, w, xi]`` on the stuck linear mode ``mode`` at unit output
+    amplitude (mm, rad/s, 1/s), in ``hb``'s layout, and the stuck frequency (rad/s)."""
+    m_k, j = hb.size, hb.first
+    phi, m, _, c = stuck_mode(structure, mode)
+    omega0 = float(np.sqrt(phi @ structure.stuck_stiffness() @ phi / m))
+    first = np.zeros((structure.dofs, hb.width))
+    first[:, j] = phi
+    guess = np.zeros(m_k + 2)
+    guess[:m_k] = first.ravel()
+    guess[m_k], guess[m_k + 1] = omega0, c / m
+    return guess, omega0
+
+
+def epmc_newton(hb: HarmonicBalance, amplitude: float, guess: Array, omega0: float,
+                max_iter: int = MAX_NEWTON) -> tuple[Array, bool]:
+    """Newton's method on the EPMC's unknowns ``y = [x, w, xi]`` (mm, rad/s, 1/s) at the
+    output's first-harmonic amplitude ``amplitude`` (mm) from ``guess``; ``omega0`` (rad/s)
+    scales the frequency and negative damping. Returns y and whether it converged."""
+    structure = hb.structure
+    m_k, j = hb.size, hb.first
+    out = np.zeros((2, structure.dofs, hb.width))
+    out[0, :, j] = structure.output
+    out[1, :, j + 1] = structure.output
+    rows = np.zeros((2, m_k + 2))
+    rows[:, :m_k] = out.reshape(2, -1)
+    load = np.zeros(m_k)
+
+    def fun(y: Array) -> tuple[Array, Array]:
+        # the balance writes its rows in place, column-major: LAPACK factors it as it is
+        jac = np.zeros((m_k + 2, m_k + 2), order="F")
+        res = hb.residual(y[:m_k], float(y[m_k]), load, float(y[m_k + 1]),
+                          out=jac[:m_k, :m_k + 1])
+        jac[:m_k, m_k + 1] = res.dxi
+        jac[m_k:] = rows
+        return np.concatenate([res.r, rows @ y - (amplitude, 0.0)]), jac
+
+    scale = np.concatenate([np.full(m_k, amplitude), [omega0, omega0]])
+    y, ok, _ = newton(fun, guess, scale, TOLERANCE, max_iter=max_iter)
+    return np.asarray(y), bool(ok)
+
+
+def epmc_point(hb: HarmonicBalance, amplitude: float, guess: Array, omega0: float) -> Array:
+    """:func:`epmc_newton` that raises :class:`ParameterError` where Newton does not
+    converge (the adaptive harmonics' step, :mod:`.harmonics`)."""
+    y, ok = epmc_newton(hb, amplitude, guess, omega0)
+    if not ok:
+        raise ParameterError(f"the extended periodic motion concept did not converge at "
+                             f"amplitude {amplitude:.6g} mm")
+    return y
+
+
 def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
                  samples: int = DEFAULT_HB_SAMPLES, mode: int = 0) -> ModalCurve:
     """Frequency and damping ratio by quasi-static modal analysis (Lacayo and Allen 2019) on
@@ -293,48 +332,75 @@ def quasi_static(structure: Structure, force: ArrayLike, harmonics: int,
 
 def _quasi_static(structure: Structure, q: Array, harmonics: int, samples: int,
                   mode: int) -> ModalCurve:
-    # odd joint forces (no 3-D contact element): a half-wave symmetric response, the balance
-    # on the odd harmonics (:mod:`.modal_odd`)
-    odd = not any(isinstance(link.operator, Contact3D) for link in structure.joints)
-    hb = HarmonicBalance(structure, harmonics, samples, odd=odd)
-    h, j = hb.width, hb.first
-    phi = stuck_mode(structure, mode)[0]
-    mass = SI_PER_MM * np.asarray(structure.mass)  # t
-    phi = phi / np.sqrt(phi @ mass @ phi)
-    pattern = mass @ phi  # N per unit q
-    lin = hb.stuck_guess(0.0, hb.excitation(pattern, 1.0))  # cos load; sin: shift below
-    unit = np.zeros((structure.dofs, h))
-    unit[:, j + 1] = lin.reshape(structure.dofs, h)[:, j]
-    y = unit.ravel()
+    hb = HarmonicBalance(structure, harmonics, samples, odd=qsma_odd(structure))
+    shape, y = qsma_start(structure, hb, mode)
     amp = np.empty(q.size)
     freq = np.empty(q.size)
     zeta = np.empty(q.size)
     previous = 1.0
     for i, qi in enumerate(q):
-        load = np.zeros((structure.dofs, h))
-        load[:, j + 1] = qi * pattern
-        flat = load.ravel()
-
-        def fun(y: Array, flat: Array = flat) -> tuple[Array, Array]:
-            res = hb.residual(y, 0.0, flat)
-            return res.r, res.dx
-
-        y = y * (qi / previous)
-        y, ok, _ = newton(fun, y, np.full(y.size, float(np.max(np.abs(y)))), TOLERANCE,
-                          max_iter=50)
-        if not ok:
-            raise ParameterError(f"the quasi-static modal analysis did not converge at "
-                                 f"modal force {qi:.6g}")
-        x = y.reshape(structure.dofs, h)
-        eta1 = complex(phi @ mass @ x[:, j], -(phi @ mass @ x[:, j + 1]))
-        k1 = (complex(0.0, -qi) * eta1.conjugate()).real / abs(eta1) ** 2
-        work = -np.pi * qi * float(pattern @ x[:, j])
-        amp[i] = abs(complex(structure.output @ x[:, j], -(structure.output @ x[:, j + 1])))
-        freq[i] = np.sqrt(max(k1, 0.0)) / (2.0 * np.pi)
-        zeta[i] = work / (2.0 * np.pi * abs(eta1) ** 2 * k1)
+        y = qsma_point(hb, float(qi), y * (qi / previous), shape)
+        amp[i], freq[i], zeta[i] = qsma_values(hb, float(qi), y, shape)
         previous = qi
     return ModalCurve(method="qsma", amplitude=amp, frequency=freq, damping_ratio=zeta,
                       harmonics=harmonics, samples=samples)
+
+
+def qsma_odd(structure: Structure) -> bool:
+    """Whether the quasi-static balance runs on the odd harmonics: odd joint forces (no 3-D
+    contact element), a half-wave symmetric response (:mod:`.modal_odd`)."""
+    return not any(isinstance(link.operator, Contact3D) for link in structure.joints)
+
+
+def qsma_start(structure: Structure, hb: HarmonicBalance, mode: int) -> tuple[Array, Array]:
+    """The stuck mode ``mode`` mass-normalised in t (phi^T M phi = 1, output . phi > 0), and
+    the stuck response (mm, ``hb``'s layout) to the unit modal load ``sin(theta) M phi``."""
+    h, j = hb.width, hb.first
+    phi = stuck_mode(structure, mode)[0]
+    mass = SI_PER_MM * np.asarray(structure.mass)  # t
+    phi = phi / np.sqrt(phi @ mass @ phi)
+    lin = hb.stuck_guess(0.0, hb.excitation(mass @ phi, 1.0))  # cos load; sin: shift below
+    unit = np.zeros((structure.dofs, h))
+    unit[:, j + 1] = lin.reshape(structure.dofs, h)[:, j]
+    return phi, unit.ravel()
+
+
+def qsma_point(hb: HarmonicBalance, force: float, guess: Array, phi: Array) -> Array:
+    """The quasi-static response's coefficients (mm) under the modal load
+    ``force sin(theta) M phi`` by Newton's method from ``guess``; raises
+    :class:`ParameterError` if it does not converge."""
+    structure = hb.structure
+    load = np.zeros((structure.dofs, hb.width))
+    load[:, hb.first + 1] = force * (SI_PER_MM * np.asarray(structure.mass) @ phi)
+    flat = load.ravel()
+
+    def fun(y: Array) -> tuple[Array, Array]:
+        res = hb.residual(y, 0.0, flat)
+        return res.r, res.dx
+
+    y, ok, _ = newton(fun, guess, np.full(guess.size, float(np.max(np.abs(guess)))),
+                      TOLERANCE, max_iter=50)
+    if not ok:
+        raise ParameterError(f"the quasi-static modal analysis did not converge at "
+                             f"modal force {force:.6g}")
+    return np.asarray(y)
+
+
+def qsma_values(hb: HarmonicBalance, force: float, y: Array, phi: Array
+                ) -> tuple[float, float, float]:
+    """(output amplitude mm, frequency Hz, damping ratio) of the quasi-static response
+    ``y`` to the modal force ``force`` (:func:`quasi_static`'s notes)."""
+    structure = hb.structure
+    j = hb.first
+    mass = SI_PER_MM * np.asarray(structure.mass)
+    pattern = mass @ phi
+    x = y.reshape(structure.dofs, hb.width)
+    eta1 = complex(phi @ mass @ x[:, j], -(phi @ mass @ x[:, j + 1]))
+    k1 = (complex(0.0, -force) * eta1.conjugate()).real / abs(eta1) ** 2
+    work = -np.pi * force * float(pattern @ x[:, j])
+    amp = abs(complex(structure.output @ x[:, j], -(structure.output @ x[:, j + 1])))
+    return (float(amp), float(np.sqrt(max(k1, 0.0)) / (2.0 * np.pi)),
+            float(work / (2.0 * np.pi * abs(eta1) ** 2 * k1)))
 
 
 def _energy(structure: Structure, amplitude: ArrayLike, harmonics: int, samples: int,
