@@ -121,8 +121,8 @@ def test_modal_solver_all_runs_on_the_bracket_with_verdicts() -> None:
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
         assert main(argv) == 0
     d = json.loads(out.getvalue())
-    assert set(d["solvers"]) == {"fe", "rom", "joint"}
-    assert set(d["verdicts"]) == {"rom", "joint"}
+    assert set(d["solvers"]) == {"fe", "rom", "interface", "joint"}
+    assert set(d["verdicts"]) == {"rom", "interface", "joint"}
     assert all(v["verdict"] for v in d["verdicts"].values())
     fe = d["solvers"]["fe"]
     stuck = d["linear_frequencies_Hz"][0]
