@@ -25,11 +25,24 @@ imports. Cases, Table 1 (445 N, mu 0.8), built-in solver, both paths at their de
 
 W is the box's (the reference), the difference is |W_mesh - W_box| / W_box.
 
-Measured on 2 shared cores (2025, this branch; best of 1, the machine loaded by other jobs,
-so the ratio is what to read; each row's two sides ran back to back):
+Measured (``--fine``, best of 3, 2 cores shared with other jobs: read the ratios, not the
+seconds; mesh = the mesh path at its defaults, full = with ``condensed=False``)::
 
-see docs/interpretation.md, section "The box and the mesh: one solver or two", for the table
-and the decision drawn from it.
+    case         mesh     dof   W box N·mm  dW mesh  dW full  t box s mesh/box full/box
+    loop tip     coarse   625    1.6182804  5.8e-14  5.8e-14     0.06     1.11     1.08
+    loop centre  coarse   625   0.40286693  9.6e-16  9.6e-16     0.04     1.17     1.13
+    loop tip     medium  1225    1.6162245  1.7e-13  1.7e-13     0.07     1.10     1.12
+    loop centre  medium  1225   0.40145896  1.4e-15  1.4e-15     0.06     1.10     1.10
+    loop tip     fine    6984    1.6159272  2.0e-12  8.2e-16     0.46    16.90     0.93
+    loop centre  fine    6984   0.40121696  1.1e-13  3.2e-15     0.77     7.75     0.58
+    sweep tip    coarse   625    2.2960363  1.0e-10  1.0e-10     0.25     1.08     1.09
+    planar       coarse   625    1.4626282  8.3e-10  8.3e-10     0.67     1.04     1.01
+
+Peak RSS (MB, growth after the warm-up): box, mesh, full 75-78 (2-5) on coarse and medium;
+on fine box 111 (38), mesh 305-308 (232-235), full 116-120 (43-47). The mesh path at its
+defaults condenses the fine box onto its 1746 contact dofs (``CONDENSE_MIN_DOF``, and
+4 x contact dofs <= free dofs holds exactly at 6984): 8-17x slower, 3x the memory. Un-condensed
+it is within 0.6-1.2x of the box everywhere. The decision: docs/interpretation.md, section 23.
 """
 
 from __future__ import annotations
@@ -185,13 +198,10 @@ def main() -> None:
         res = {path: _spawn(_job, kind, path, level, case, args.repeat)
                for path in ("box", "mesh", "full")}
         box = res["box"]
-
-        def dw(path: str, ref: dict[str, float] = box) -> float:
-            return abs(res[path]["W"] - ref["W"]) / ref["W"]
-
+        dw = {k: abs(v["W"] - box["W"]) / box["W"] for k, v in res.items()}
         mb = "".join(f" {res[k]['peak']:>4.0f}/{res[k]['grow']:<3.0f}" for k in res)
         print(f"{f'{kind} {case}'.strip():<13}{level:<7}{int(box['dof']):>5}  "
-              f"{box['W']:>11.8g} {dw('mesh'):>8.1e} {dw('full'):>8.1e}  "
+              f"{box['W']:>11.8g} {dw['mesh']:>8.1e} {dw['full']:>8.1e}  "
               f"{box['wall']:>7.2f} {res['mesh']['wall'] / box['wall']:>8.2f} "
               f"{res['full']['wall'] / box['wall']:>8.2f} {mb}", flush=True)
 
