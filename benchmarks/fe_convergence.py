@@ -4,13 +4,17 @@ level, Richardson's estimate, the given mesh's discretisation error and the wall
 table; then the time of ``microslip fe --mesh examples/cantilever.inp ... --convergence``
 (24x6x2 -> 48x12x4, the issue's target: under 5 s).
 
-Each example runs its documented case (examples/README.md). The CalculiX columns (the same
-meshes, node-to-surface and face-to-face contact) are another study's: they are printed as
-"-" here until it fills them in (:data:`CALCULIX`, keyed like :data:`EXAMPLES`).
+Each example runs its documented case (examples/README.md). With ``--ccx`` the last column is
+CalculiX's W on the given mesh (x1) with node-to-surface contact, the same slopes and cycles
+(:func:`microslip.fe.calculix.compare.compare_on_mesh`, what ``validate --mesh`` runs); the
+examples with fixed normal contact have no CalculiX column (CalculiX models penalty only).
+The refined levels' CalculiX runs take minutes each: ``benchmarks/ownmesh_vs_calculix.py``
+has the per-example comparison in full.
 
 Run:  python benchmarks/fe_convergence.py               # 2 levels each, ~1-3 min
       python benchmarks/fe_convergence.py --levels 3    # 3 levels (the x4 meshes: minutes)
       python benchmarks/fe_convergence.py --only cantilever
+      python benchmarks/fe_convergence.py --ccx           # CalculiX's W on the given meshes
 """
 
 from __future__ import annotations
@@ -20,9 +24,11 @@ import resource
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.convergence import converge_own_mesh
 from microslip.fe.meshload import MeshLoad
 from microslip.fe.ownmesh import OwnMeshCase
@@ -41,9 +47,6 @@ EXAMPLES: dict[str, tuple[str, tuple[str, ...], dict[str, Any]]] = {
                    {"normal_force": 445.0, "friction": 0.8, "modulus": 68947.0,
                     "poisson_ratio": 0.3}),
 }
-#: CalculiX's W (N mm) on the same meshes, by example and refinement; filled by the CalculiX
-#: comparison (validate --mesh), empty here.
-CALCULIX: dict[str, dict[int, float]] = {}
 
 CANTILEVER_CLI = [
     "fe", "--mesh", str(ROOT / "examples" / "cantilever.inp"), "--contact-set", "contact",
@@ -54,14 +57,29 @@ CANTILEVER_CLI = [
 
 def _case(name: str) -> OwnMeshCase:
     file, loads, values = EXAMPLES[name]
-    return OwnMeshCase(str(ROOT / "examples" / file), "contact", "clamp",
-                       loads=tuple(MeshLoad.parse(s) for s in loads), **values)
+    clamp = MeshClamp("contact", "clamp", **values)
+    return OwnMeshCase(str(ROOT / "examples" / file), clamp,
+                       loads=tuple(MeshLoad.parse(s) for s in loads))
+
+
+def _calculix(case: OwnMeshCase) -> float | None:
+    """CalculiX's W (N mm) on the case's own mesh with node-to-surface contact, or None with
+    fixed normal contact (CalculiX has penalty only)."""
+    from microslip.fe.calculix.compare import compare_on_mesh
+
+    if case.clamp.normal_contact != "penalty":
+        return None
+    if "post" in case.mesh_file:  # the rocking post: 160 increments a cycle (interpretation)
+        case = replace(case, substeps=200)
+    r = compare_on_mesh(case, progress=False, sensitivity=False)
+    return float(r["calculix"]["dissipated_energy_Nmm"])
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--levels", type=int, choices=[2, 3], default=2)
     ap.add_argument("--only", choices=list(EXAMPLES), action="append")
+    ap.add_argument("--ccx", action="store_true", help="CalculiX's W on the given meshes")
     args = ap.parse_args()
     head = (f"{'example':<14s} {'load':<34s} {'refine':>6s} {'DOF':>7s} {'W (N mm)':>11s} "
             f"{'d (mm)':>11s} {'time (s)':>8s} {'ccx W (N mm)':>12s}")
@@ -74,8 +92,9 @@ def main() -> int:
         study = converge_own_mesh(case, args.levels)
         total = time.perf_counter() - start
         load = " + ".join(EXAMPLES[name][1])
+        given = _calculix(case) if args.ccx else None
         for lv in study.levels:
-            ccx = CALCULIX.get(name, {}).get(lv.refine)
+            ccx = given if lv.refine == 1 else None
             print(f"{name:<14s} {load:<34s} {'x' + str(lv.refine):>6s} {lv.dof:7d} "
                   f"{lv.dissipated_energy_Nmm:11.5g} {lv.peak_displacement_mm:11.5g} "
                   f"{lv.wall_s:8.2f} {'-' if ccx is None else f'{ccx:.5g}':>12s}")
