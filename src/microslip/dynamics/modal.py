@@ -61,6 +61,9 @@ TOLERANCE = 1e-11
 #: run that has not converged in 20 wanders: a shorter step from a nearer start is cheaper
 #: than more iterations; each is a dense LU of the whole balance).
 MAX_NEWTON, MAX_SUBSTEP_NEWTON = 20, 15
+#: Newton iterations at most at a point of the adaptive harmonics' ladder
+#: (:mod:`.harmonics`: one try per level from the level below; no steps in between).
+MAX_POINT_NEWTON = 50
 #: Halvings (in log amplitude) at most of the step to an amplitude Newton does not reach
 #: directly, and the first amplitude's first intermediate step from the stuck mode (ai / it).
 SUBSTEPS, SUBSTEP_RATIO = 4, 16.0
@@ -298,7 +301,7 @@ def epmc_newton(hb: HarmonicBalance, amplitude: float, guess: Array, omega0: flo
 def epmc_point(hb: HarmonicBalance, amplitude: float, guess: Array, omega0: float) -> Array:
     """:func:`epmc_newton` that raises :class:`ParameterError` where Newton does not
     converge (the adaptive harmonics' step, :mod:`.harmonics`)."""
-    y, ok = epmc_newton(hb, amplitude, guess, omega0)
+    y, ok = epmc_newton(hb, amplitude, guess, omega0, MAX_POINT_NEWTON)
     if not ok:
         raise ParameterError(f"the extended periodic motion concept did not converge at "
                              f"amplitude {amplitude:.6g} mm")
