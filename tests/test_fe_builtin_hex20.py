@@ -189,7 +189,7 @@ def test_penalty_opens_the_corners(weights: str) -> None:
     consistent reactions want -1/12 and 1/3, the springs give positive areas), so the face
     warps and the corner nodes lift off, whatever the positive weighting: the known defect of
     node-to-surface contact on quadratic faces (CalculiX's manual advises against it). Hence
-    hex20 runs take the fixed normal contact (docs/interpretation.md section 16)."""
+    hex20 runs take the fixed normal contact (docs/interpretation.md §18)."""
     m = _block("penalty", weights)
     corner = np.isin(m.contact_nodes, np.unique(m.mesh.elements[:, :8]))
     assert m.normal_force.sum() == pytest.approx(800.0, rel=1e-12)

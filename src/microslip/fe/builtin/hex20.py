@@ -20,7 +20,7 @@ cannot take (a negative stick spring, a friction limit in tension). The built-in
 CalculiX's node-to-face contact, which replaces them by 1/100 and 24/100 (CalculiX manual,
 "Node-to-face penalty contact"); ``hrz`` (Hinton-Rock-Zienkiewicz: the diagonal of the face's
 consistent mass matrix scaled to the face's area) is the alternative from the literature,
-kept to show how much W depends on the choice (docs/interpretation.md section 16).
+kept to show how much W depends on the choice (docs/interpretation.md §18).
 
 Units: coordinates mm, modulus MPa, stiffness N/mm, density t/mm^3, mass t.
 """
