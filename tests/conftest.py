@@ -20,6 +20,10 @@ import pytest
 
 from microslip.cli.main import main
 
+#: Not test modules: tests/data holds the committed meshes' generator scripts, which need gmsh
+#: (a tool to make the files, not a dependency: the tests read the committed files).
+collect_ignore_glob = ["data/*"]
+
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     if shutil.which("ccx") is not None:
