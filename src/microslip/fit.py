@@ -48,6 +48,10 @@ FloatArray = NDArray[np.float64]
 
 #: Correlation above which two fitted parameters count as not separately identified.
 MAX_CORRELATION = 0.999
+#: Singular values of the Jacobian (log parameters) below this fraction of the largest span
+#: its null space, and a parameter with a component above :data:`NULL_SHARE` in it is not
+#: identified.
+NULL_SPACE, NULL_SHARE = 1e-9, 0.1
 
 
 @dataclass(frozen=True)
@@ -255,8 +259,16 @@ def _result(loading: str, names: list[str], sol: optimize.OptimizeResult,
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(sd, sd)
     t = float(stats.t.ppf(0.5 + 0.5 * confidence, dof))
-    singular = np.linalg.svd(jac, compute_uv=False)
-    rank_deficient = bool(singular.size) and singular.min() <= 1e-9 * singular.max()
+    # a parameter the loops do not move at all (a near-zero Jacobian column, or a combination
+    # of columns) is in the null space of the Jacobian: only the parameters with a share in
+    # that space are not identified, not every one (a stick slope the slender bar's loop does
+    # not feel leaves its friction well determined)
+    in_null = np.zeros(free.size, dtype=bool)
+    if free.size:
+        _, singular, vt = np.linalg.svd(jac, full_matrices=False)
+        tiny = singular <= NULL_SPACE * singular.max()
+        if np.any(tiny):
+            in_null = np.any(np.abs(vt[tiny]) > NULL_SHARE, axis=0)
     out = []
     for i, name in enumerate(names):
         z, spec = float(sol.x[i]), FIT_PARAMETERS[name]
@@ -270,9 +282,9 @@ def _result(loading: str, names: list[str], sol: optimize.OptimizeResult,
         partners = [names[free[j]] for j in range(free.size)
                     if j != k and abs(corr[k, j]) > MAX_CORRELATION]
         identified = bool(np.isfinite(half) and 2.0 * half < math.log(10.0) and not partners
-                          and not rank_deficient)
+                          and not in_null[k])
         note = ""
-        if partners or rank_deficient:
+        if partners or in_null[k]:
             note = (f"the data cannot separate {name} from {', '.join(partners) or 'the others'}"
                     "; fix one of them")
         elif not identified:
