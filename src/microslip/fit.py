@@ -49,9 +49,10 @@ FloatArray = NDArray[np.float64]
 #: Correlation above which two fitted parameters count as not separately identified.
 MAX_CORRELATION = 0.999
 #: Singular values of the Jacobian (log parameters) below this fraction of the largest span
-#: its null space, and a parameter with a component above :data:`NULL_SHARE` in it is not
-#: identified.
-NULL_SPACE, NULL_SHARE = 1e-9, 0.1
+#: its null space (a parameter that moves the loop by a millionth of the others' effect), and
+#: a parameter with a component above :data:`NULL_SHARE` in it is not identified: its
+#: interval is its whole range, and it is nobody's correlation partner.
+NULL_SPACE, NULL_SHARE = 1e-6, 0.1
 
 
 @dataclass(frozen=True)
@@ -263,12 +264,12 @@ def _result(loading: str, names: list[str], sol: optimize.OptimizeResult,
     # of columns) is in the null space of the Jacobian: only the parameters with a share in
     # that space are not identified, not every one (a stick slope the slender bar's loop does
     # not feel leaves its friction well determined)
-    in_null = np.zeros(free.size, dtype=bool)
+    null = np.zeros((0, free.size), dtype=bool)
     if free.size:
         _, singular, vt = np.linalg.svd(jac, full_matrices=False)
-        tiny = singular <= NULL_SPACE * singular.max()
-        if np.any(tiny):
-            in_null = np.any(np.abs(vt[tiny]) > NULL_SHARE, axis=0)
+        null = np.asarray(np.abs(vt[singular <= NULL_SPACE * singular.max()]) > NULL_SHARE,
+                          dtype=bool)
+    in_null = np.any(null, axis=0) if null.size else np.zeros(free.size, dtype=bool)
     out = []
     for i, name in enumerate(names):
         z, spec = float(sol.x[i]), FIT_PARAMETERS[name]
@@ -279,12 +280,21 @@ def _result(loading: str, names: list[str], sol: optimize.OptimizeResult,
             continue
         k = int(np.flatnonzero(free == i)[0])
         half = t * float(sd[k])
+        if in_null[k]:  # the loops do not move it (alone or with others): its whole range
+            with_ = [names[free[j]] for j in range(free.size)
+                     if j != k and np.any(null[:, j] & null[:, k])]
+            note = (f"the data cannot separate {name} from {', '.join(with_)}; fix one of them"
+                    if with_ else f"the loops do not determine {name} (they hardly change "
+                    "with it): fix it and fit again")
+            out.append(FitParameter(name, math.exp(z), math.exp(lower[i]), math.exp(upper[i]),
+                                    spec.unit, False, note))
+            continue
         partners = [names[free[j]] for j in range(free.size)
-                    if j != k and abs(corr[k, j]) > MAX_CORRELATION]
+                    if j != k and not in_null[j] and abs(corr[k, j]) > MAX_CORRELATION]
         identified = bool(np.isfinite(half) and 2.0 * half < math.log(10.0) and not partners
                           and not in_null[k])
         note = ""
-        if partners or in_null[k]:
+        if partners:
             note = (f"the data cannot separate {name} from {', '.join(partners) or 'the others'}"
                     "; fix one of them")
         elif not identified:
