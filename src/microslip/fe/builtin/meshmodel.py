@@ -34,14 +34,12 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
 
 from ...blas import single_threaded_blas
 from ...errors import ParameterError
 from ...params import check_positive
 from ..constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..hexmesh import HexMesh, face_load
-from ..meshcheck import check_set
 from ..meshload import MeshLoad
 from .condense import Reduced, condense
 from .element import assemble_hex8, hex8_b_matrices
@@ -56,6 +54,7 @@ from .hex20 import (
     hex20_b_matrices,
 )
 from .linalg import Backend, make_backend
+from .meshgeometry import FLAT_TOL, connected, contact_rotation, numbering, plane, set_faces
 from .model import NewtonOptions
 from .normal import PenaltyNormal, check_normal_contact
 from .solve import clamping_step, contact_partition
@@ -82,91 +81,9 @@ CONDENSE_MIN_DOF = 1000
 #: :data:`~microslip.fe.builtin.linalg.LINEAR_SOLVERS`.
 MESH_LINEAR_SOLVERS = ("auto", "banded", "splu", "cholmod")
 _IDENTITY = np.eye(3)
-#: Largest angle (rad) between the face normals of a set that counts as flat.
-FLAT_TOL = 1e-6
 #: Passes at most of the clamping step's active set under ``fixed`` normal contact (held
 #: nodes in tension released, released ones below the base pressed back).
 MAX_ACTIVE_SET = 30
-
-
-def set_faces(mesh: HexMesh, name: str, role: str, boundary: bool = False) -> IntArray:
-    """The element faces (element, face) of a set, checked (:func:`~microslip.fe.meshcheck.
-    check_set`), each geometric face once.
-
-    A set on a section inside the body (the box's ``centre``) holds the faces of the elements
-    on both sides of it; the first of the two is kept, so the section's area counts once.
-    """
-    faces = check_set(mesh, name, role, boundary)
-    keys = np.sort(mesh.face_corners(faces), axis=1)
-    _, first = np.unique(keys, axis=0, return_index=True)
-    return faces[np.sort(first)]
-
-
-def _plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float]:
-    """Outward unit normal of a flat set of faces and the plane's offset n . x (mm)."""
-    x = mesh.nodes[mesh.face_corners(faces)]  # (k, 4, 3)
-    inward = np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
-    length = np.linalg.norm(inward, axis=1)
-    if np.any(length <= 0.0):
-        raise ParameterError(f"{mesh.source}: set {name!r} has a degenerate face")
-    out = -inward / length[:, None]
-    n = out.sum(axis=0)
-    if not np.linalg.norm(n) > 0.5 * len(out):
-        raise ParameterError(f"{mesh.source}: set {name!r} is not flat (its faces face "
-                             "opposite ways); the built-in solver needs one flat face")
-    n /= np.linalg.norm(n)
-    angle = float(np.max(np.linalg.norm(out - n, axis=1)))
-    size = float(np.max(np.ptp(mesh.nodes, axis=0)))
-    offset = float(np.mean(x.reshape(-1, 3) @ n))
-    gap = float(np.max(np.abs(x.reshape(-1, 3) @ n - offset)))
-    if angle > FLAT_TOL or gap > FLAT_TOL * size:
-        raise ParameterError(
-            f"{mesh.source}: set {name!r} is not flat (its face normals differ by up to "
-            f"{math.degrees(2 * math.asin(min(angle / 2, 1.0))):.3g} deg, its nodes lie up to "
-            f"{gap:.3g} mm off one plane); the built-in solver needs one flat face")
-    return n, offset
-
-
-def _rotation(outward: FloatArray) -> FloatArray:
-    """R with R @ outward = (0, 0, -1): rows e1, e2 (in the plane) and e3 = -outward. The
-    identity when the normal already is -z."""
-    e3 = -outward
-    if np.allclose(e3, (0.0, 0.0, 1.0), rtol=0.0, atol=1e-12):
-        return np.eye(3)
-    ref = np.eye(3)[int(np.argmin(np.abs(e3)))]
-    e1 = ref - (ref @ e3) * e3
-    e1 /= np.linalg.norm(e1)
-    return np.stack([e1, np.cross(e3, e1), e3])
-
-
-def _numbering(elements: IntArray, contact: IntArray) -> IntArray:
-    """The order of the used nodes: as given, or reverse Cuthill-McKee when that narrows the
-    band by a third or more; then reversed if that moves the first contact node back by a
-    tenth of the nodes or more (the contact last: the banded factor's leading block, which the
-    contact's changes leave alone, grows, and so does the part of K_ii^-1 K_ic that is zero
-    in the condensation). ``order[k]`` is the mesh node of internal node k."""
-    order = _band_order(elements)
-    at = np.flatnonzero(np.isin(order, contact))
-    if at.size and (order.size - 1 - int(at[-1])) - int(at[0]) >= order.size // 10:
-        return order[::-1].copy()
-    return order
-
-
-def _band_order(elements: IntArray) -> IntArray:
-    used = np.unique(elements)
-    local = np.searchsorted(used, elements)
-    width = int(np.max(local.max(axis=1) - local.min(axis=1)))
-    rows = np.repeat(local, local.shape[1], axis=1).ravel()
-    cols = np.tile(local, (1, local.shape[1])).ravel()
-    graph = sp.coo_matrix((np.ones(rows.size), (rows, cols)),
-                          shape=(used.size, used.size)).tocsr()
-    perm = np.asarray(reverse_cuthill_mckee(graph, symmetric_mode=True), dtype=np.int64)
-    inv = np.empty_like(perm)
-    inv[perm] = np.arange(perm.size)
-    renum = inv[local]
-    if int(np.max(renum.max(axis=1) - renum.min(axis=1))) <= 2 * width // 3:
-        return used[perm]
-    return used
 
 
 @dataclass(frozen=True, eq=False)
@@ -471,19 +388,19 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     except ParameterError as exc:
         raise ParameterError(f"{mesh.source}: {exc}") from None
     contact_faces = set_faces(mesh, contact_set, "contact set", boundary=True)
-    outward, offset = _plane(mesh, contact_faces, contact_set)
+    outward, offset = plane(mesh, contact_faces, contact_set)
     clamp_faces = set_faces(mesh, clamp_set, "clamp set", boundary=True)
-    clamp_out, _ = _plane(mesh, clamp_faces, clamp_set)
+    clamp_out, _ = plane(mesh, clamp_faces, clamp_set)
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
-    order = _numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
+    order = numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
     if float(np.max(mesh.nodes[order] @ outward - offset)) > FLAT_TOL * size:
         raise ParameterError(f"{mesh.source}: the body reaches through the plane of its "
                              f"contact set {contact_set!r}: the rigid base would cut it")
     inv = np.full(len(mesh.nodes), -1, dtype=np.int64)
     inv[order] = np.arange(order.size)
     elements = inv[mesh.elements]
-    _connected(mesh, elements, order.size, contact_faces, contact_set)
-    rotation = _rotation(outward)
+    connected(mesh, elements, order.size, contact_faces, contact_set)
+    rotation = contact_rotation(outward)
     nodes = mesh.nodes[order]
     if not np.array_equal(rotation, np.eye(3)):
         nodes = nodes @ rotation.T
@@ -592,20 +509,3 @@ def _contact_areas(mesh: HexMesh, faces: IntArray, weights: str
     fn = face_nodes20(mesh.elements, faces)
     quad = contact_areas(mesh.nodes[fn], fn, weights)
     return quad.nodes, quad.area, quad
-
-
-def _connected(mesh: HexMesh, elements: IntArray, n: int, contact_faces: IntArray,
-               name: str) -> None:
-    """Refuse a mesh with parts that the contact does not hold (rigid-body motion)."""
-    rows = np.repeat(elements[:, :1], elements.shape[1], axis=1).ravel()
-    graph = sp.coo_matrix((np.ones(rows.size), (rows, elements.ravel())), shape=(n, n))
-    count, label = connected_components(graph, directed=False)
-    if count == 1:
-        return
-    held = np.unique(label[elements[contact_faces[:, 0], 0]])
-    loose = ~np.isin(label[elements[:, 0]], held)
-    if np.any(loose):
-        raise ParameterError(
-            f"{mesh.source}: {int(np.count_nonzero(loose))} elements are not connected to the "
-            f"contact set {name!r}; nothing holds them (join them to the body or remove them)")
-
