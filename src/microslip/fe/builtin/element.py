@@ -103,15 +103,25 @@ def hex8_b_matrices(coords: FloatArray) -> tuple[FloatArray, FloatArray, FloatAr
     jac : ndarray, shape (n_e, 8, 3, 3)
         J_ij = d x_j / d xi_i.
     """
-    dn = _shape_derivatives(GAUSS)  # (8gp, 3, 8)
+    dndx, detj, jac = physical_derivatives(_shape_derivatives(GAUSS), coords, "C3D8")
+    return _strain_operator(dndx), detj, jac
+
+
+def physical_derivatives(dn: FloatArray, coords: FloatArray, order: str
+                         ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Shape-function derivatives in x (n_e, g, 3, n), det J (n_e, g) and J (n_e, g, 3, 3)
+    of elements ``coords`` (n_e, n, 3) from the natural derivatives ``dn`` (g, 3, n) at g
+    points. Raises :class:`ParameterError` for a non-positive Jacobian (``order``: the node
+    order the element expects, named in the message)."""
     jac = np.einsum("gia,eaj->egij", dn, coords)
     detj = np.linalg.det(jac)
     if np.any(detj <= 0.0):
         bad = int(np.flatnonzero(np.any(detj <= 0.0, axis=1))[0])
         raise ParameterError(f"element {bad + 1} (1-based) has a non-positive Jacobian "
-                             "(inverted or degenerate; the nodes must follow the C3D8 order)")
+                             f"(inverted or degenerate; the nodes must follow the {order} "
+                             "order)")
     dndx = np.linalg.solve(jac, np.broadcast_to(dn, (coords.shape[0], *dn.shape)))
-    return _strain_operator(dndx), detj, jac
+    return dndx, detj, jac
 
 
 def _stiffness_c3d8(coords: FloatArray, d: FloatArray) -> FloatArray:

@@ -35,7 +35,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ...errors import ParameterError
-from .element import SHAPE_TOL, _strain_operator, elasticity_matrix
+from .element import SHAPE_TOL, _strain_operator, elasticity_matrix, physical_derivatives
 
 __all__ = [
     "CONTACT_WEIGHTS",
@@ -122,13 +122,7 @@ def hex20_b_matrices(coords: FloatArray, points: int = 2
     """
     pts, wts = _gauss(points)
     n, dn = shape20(pts)
-    jac = np.einsum("gia,eaj->egij", dn, coords)
-    detj = np.linalg.det(jac)
-    if np.any(detj <= 0.0):
-        bad = int(np.flatnonzero(np.any(detj <= 0.0, axis=1))[0])
-        raise ParameterError(f"element {bad + 1} (1-based) has a non-positive Jacobian "
-                             "(inverted or degenerate; the nodes must follow the C3D20 order)")
-    dndx = np.linalg.solve(jac, np.broadcast_to(dn, (coords.shape[0], *dn.shape)))
+    dndx, detj, _ = physical_derivatives(dn, coords, "C3D20")
     return _strain_operator(dndx), detj * wts[None, :], n
 
 
