@@ -25,6 +25,7 @@ from ..errors import ParameterError
 from .constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 
 if TYPE_CHECKING:
+    from .assembly import Assembly
     from .builtin.meshmodel import MeshModel
     from .hexmesh import HexMesh
 
@@ -90,6 +91,14 @@ class MeshClamp:
         if self.normal_contact not in NORMAL_CONTACT_NAMES:
             raise ParameterError(f"unknown normal contact {self.normal_contact!r}; choose one "
                                  f"of {', '.join(NORMAL_CONTACT_NAMES)}")
+
+    @property
+    def assembly(self) -> Assembly:
+        """This clamp as the :class:`~microslip.fe.assembly.Assembly` it is shorthand for:
+        one body on the rigid base, one preload, one material."""
+        from .assembly import rigid_base
+
+        return rigid_base(**self.model_options())
 
     def model_options(self) -> dict[str, Any]:
         """The keyword arguments of
