@@ -63,6 +63,9 @@ class HexMesh:
     set_dims : mapping of str to int
         The dimension (0 point, 1 curve, 2 surface, 3 volume) of the file's group a set came
         from, where the file says (gmsh physical groups, meshio cell sets); for messages.
+    element_sets : mapping of str to ndarray of int
+        Named sets of hexahedra (sorted, unique 0-based element rows): the file's ``*ELSET``
+        and gmsh volume groups; the bodies' materials name them.
     """
 
     nodes: FloatArray
@@ -73,6 +76,7 @@ class HexMesh:
     node_ids: IntArray | None = None
     element_ids: IntArray | None = None
     set_dims: Mapping[str, int] = field(default_factory=dict)
+    element_sets: Mapping[str, IntArray] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         nodes = _frozen(self.nodes, np.float64)
@@ -91,6 +95,12 @@ class HexMesh:
         object.__setattr__(self, "surfaces", MappingProxyType(
             {k: _frozen(np.asarray(v).reshape(-1, 2), np.int64)
              for k, v in self.surfaces.items()}))
+        esets = {str(k): _frozen(np.unique(v), np.int64) for k, v in self.element_sets.items()}
+        for k, v in esets.items():
+            if len(v) and (v[0] < 0 or v[-1] >= len(elements)):
+                raise ParameterError(f"{self.source}: element set {k!r} refers to an element "
+                                     "that does not exist")
+        object.__setattr__(self, "element_sets", MappingProxyType(esets))
         object.__setattr__(self, "set_dims", MappingProxyType(
             {str(k): int(v) for k, v in self.set_dims.items()}))
         for name, rows in (("node_ids", len(nodes)), ("element_ids", len(elements))):

@@ -95,7 +95,21 @@ def read_meshio(path: str | Path) -> HexMesh:
     mesh = assemble(src, np.asarray(m.points, dtype=float), elements.astype(np.int64),
                     node_sets, groups, node_ids=None, element_ids=None)
     return HexMesh(mesh.nodes, mesh.elements, mesh.node_sets, mesh.surfaces, source=src,
-                   set_dims=dims)
+                   set_dims=dims, element_sets=_volume_sets(elements, groups, size))
+
+
+def _volume_sets(elements: IntArray, groups: Mapping[str, list[tuple[str, IntArray]]],
+                 size: int) -> dict[str, IntArray]:
+    """The element rows of every group of hexahedra (gmsh volume groups)."""
+    key = {tuple(sorted(r)): i for i, r in enumerate(elements[:, :8].tolist())}
+    out = {}
+    for name, cells in groups.items():
+        rows = [key.get(tuple(sorted(r[:8]))) for t, c in cells if t in _MESHIO_HEX
+                for r in np.asarray(c)[:, :size].tolist()]
+        found = [r for r in rows if r is not None]
+        if found:
+            out[name] = np.array(found, dtype=np.int64)
+    return out
 
 
 def _meshio_groups(m: Any) -> dict[str, list[tuple[str, IntArray]]]:
@@ -127,7 +141,8 @@ def assemble(src: str, points: NDArray[np.float64], elements: IntArray,
              node_sets: Mapping[str, IntArray],
              groups: Mapping[str, list[tuple[str, IntArray]]],
              node_ids: IntArray | None, element_ids: IntArray | None,
-             surfaces: Mapping[str, IntArray] | None = None) -> HexMesh:
+             surfaces: Mapping[str, IntArray] | None = None,
+             element_sets: Mapping[str, IntArray] | None = None) -> HexMesh:
     """A :class:`HexMesh` from raw rows (0-based into ``points``), dropping unused nodes.
 
     ``groups``: named groups of lower-dimensional cells (type, connectivity rows) that become
@@ -153,7 +168,7 @@ def assemble(src: str, points: NDArray[np.float64], elements: IntArray,
     return HexMesh(points[used], row[elements], {k: v[v >= 0] for k, v in kept.items()},
                    faces, source=src,
                    node_ids=None if node_ids is None else node_ids[used],
-                   element_ids=element_ids)
+                   element_ids=element_ids, element_sets=dict(element_sets or {}))
 
 
 def _face_lookup(elements: IntArray) -> dict[tuple[int, ...], tuple[int, int]]:
@@ -198,6 +213,10 @@ def write_inp(mesh: HexMesh, path: str | Path) -> Path:
         out.append(f"*NSET, NSET={name}")
         ids = [str(i) for i in nid[rows].tolist()]
         out += [", ".join(ids[k:k + 16]) for k in range(0, len(ids), 16)]
+    for name, rows in mesh.element_sets.items():
+        out.append(f"*ELSET, ELSET={name}")
+        ids = [str(i) for i in eid[rows].tolist()]
+        out += [", ".join(ids[k:k + 16]) for k in range(0, len(ids), 16)]
     for name, faces in mesh.surfaces.items():
         out.append(f"*SURFACE, NAME={name}, TYPE=ELEMENT")
         out += [f"{eid[e]}, S{f + 1}" for e, f in faces.tolist()]
@@ -212,7 +231,7 @@ def read_inp(path: str | Path) -> HexMesh:
     (:func:`~microslip.fe.meshinp.parse_inp`)."""
     d = parse_inp(path)
     return assemble(str(path), d.points, d.elements, d.node_sets, d.groups, d.node_ids,
-                    d.element_ids, d.surfaces)
+                    d.element_ids, d.surfaces, d.element_sets)
 
 
 #: Readers by file suffix; any other suffix goes to meshio.

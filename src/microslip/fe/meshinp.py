@@ -51,6 +51,7 @@ class InpData:
     node_sets: dict[str, IntArray] = field(default_factory=dict)
     surfaces: dict[str, IntArray] = field(default_factory=dict)
     groups: dict[str, list[tuple[str, IntArray]]] = field(default_factory=dict)
+    element_sets: dict[str, IntArray] = field(default_factory=dict)
 
 
 @dataclass
@@ -230,7 +231,10 @@ def parse_inp(path: str | Path) -> InpData:
                 groups.setdefault(name, []).append(
                     (kind, rows(nodes_of, f"element {e}")[None, :]))
     points = np.array(list(nodes.values()), dtype=float).reshape(-1, 3)
-    return InpData(points, elements, node_ids, element_ids, node_sets, faces, groups)
+    esets = {name: np.array([erow[e] for e in ids if e in erow], dtype=np.int64)
+             for name, ids in elsets.items()}
+    esets = {k: v for k, v in esets.items() if len(v) and k.upper() != "EALL"}
+    return InpData(points, elements, node_ids, element_ids, node_sets, faces, groups, esets)
 
 
 def _elements(p: Path, b: _Block, hexes: dict[int, list[int]], hex_size: set[int],

@@ -67,6 +67,7 @@ def demote_mesh(mesh: HexMesh) -> HexMesh:
     sets = {k: inv[v][inv[v] >= 0] for k, v in mesh.node_sets.items()}
     return HexMesh(mesh.nodes[corners], inv[e[:, :8]], sets, dict(mesh.surfaces),
                    source=mesh.source, set_dims=dict(mesh.set_dims),
+                   element_sets=dict(mesh.element_sets),
                    node_ids=None if mesh.node_ids is None else mesh.node_ids[corners],
                    element_ids=mesh.element_ids)
 
@@ -122,4 +123,5 @@ def promote_mesh(mesh: HexMesh) -> HexMesh:
         ids = np.concatenate([mesh.node_ids, top + 1 + np.arange(len(edges))])
     return HexMesh(nodes, np.concatenate([e, mid], axis=1), sets, dict(mesh.surfaces),
                    source=f"{mesh.source} (hex20)", node_ids=ids,
-                   element_ids=mesh.element_ids, set_dims=dict(mesh.set_dims))
+                   element_ids=mesh.element_ids, set_dims=dict(mesh.set_dims),
+                   element_sets=dict(mesh.element_sets))

@@ -136,7 +136,9 @@ def refine(mesh: HexMesh, factor: int) -> Refinement:
     children = point[:, flat].reshape(-1, 8)
     return Refinement(
         HexMesh(coords, children, _node_sets(mesh, prolong), _surfaces(mesh, cells, n),
-                source=f"{mesh.source} (refined x{n})"),
+                source=f"{mesh.source} (refined x{n})", set_dims=dict(mesh.set_dims),
+                element_sets={k: (v[:, None] * n ** 3 + np.arange(n ** 3)).ravel()
+                              for k, v in mesh.element_sets.items()}),
         n, prolong)
 
 
