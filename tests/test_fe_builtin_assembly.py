@@ -32,7 +32,8 @@ def on_block(bar: HexMesh, layers: int = 1, thickness: float = 6.35,
     c = bar.node_sets["contact"]
     xs, ys = np.unique(bar.nodes[c, 0]), np.unique(bar.nodes[c, 1])
     dy = ys[1] - ys[0]
-    ys = np.concatenate([ys[0] - dy * np.arange(wide, 0, -1), ys, ys[-1] + dy * np.arange(1, wide + 1)])
+    ys = np.concatenate([ys[0] - dy * np.arange(wide, 0, -1), ys,
+                         ys[-1] + dy * np.arange(1, wide + 1)])
     b = box_mesh(float(xs[-1] - xs[0]), float(ys[-1] - ys[0]), thickness, xs.size - 1,
                  ys.size - 1, layers)
     nodes_b = b.nodes + np.array([xs[0], ys[0], -thickness])
@@ -140,7 +141,7 @@ def test_bad_assemblies_are_refused_in_one_line() -> None:
     _refused(mesh, _assembly("fixed", contacts=(Contact("bar_int"),)), "same place")
     # unpaired nodes: the block shifted by half an element
     shifted = HexMesh(np.where(np.arange(len(mesh.nodes))[:, None] >= len(bar.nodes),
-                               mesh.nodes + [1.0, 0.0, 0.0], mesh.nodes), mesh.elements,
+                               mesh.nodes + np.array([1.0, 0.0, 0.0]), mesh.nodes), mesh.elements,
                       mesh.node_sets, source="shifted", element_sets=mesh.element_sets)
     _refused(shifted, _assembly("fixed"), "have no node of 'base_int' at their place")
     # an unknown element set
