@@ -1,0 +1,175 @@
+"""The committed assembly meshes: two (or one) deformable bodies meeting on conforming faces.
+
+For every mesh: ``read_mesh`` gives the expected element sets, node sets and element-face
+surfaces; every element has a positive Jacobian; the element connectivity has as many
+connected bodies as element sets, each element set one body; each contact face's nodes pair
+one to one with nodes of its counter face (another body's) at the same place (cKDTree, 1e-9
+of the part's size) and no other nodes coincide (the bodies touch nowhere else); each
+body's volume (its elements' volumes summed) and bounding box, and each face's area, are the
+drawn ones. The generator: tests/data/meshes/make_assemblies.py (numpy; checked here to
+write the committed files).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from microslip.fe.hexmesh import HexMesh, face_load
+from microslip.fe.meshcheck import boundary_faces, check_elements, jacobian_dets
+from microslip.fe.meshfile import read_mesh
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "tests" / "data" / "meshes"
+EXAMPLES = ROOT / "examples"
+COINCIDENT = 1e-9
+Bounds = tuple[tuple[float, float, float], tuple[float, float, float]]
+
+
+@dataclass(frozen=True)
+class Spec:
+    """What a mesh file must hold: element sets (volume mm^3, bounding box), surfaces (area
+    mm^2), the other node-set names, contacts (face, counter, whether the counter face is the
+    same size), the node and element counts."""
+
+    path: Path
+    nodes: int
+    elements: int
+    bodies: dict[str, tuple[float, Bounds]]
+    surfaces: dict[str, float]
+    contacts: tuple[tuple[str, str, bool], ...] = ()
+    node_sets: tuple[str, ...] = ()
+    volume_rel: float = 1e-12
+    same: tuple[tuple[str, str], ...] = field(default=())
+
+
+BAR: Bounds = ((0.0, 0.0, 0.0), (152.4, 25.4, 6.35))
+BAR_VOLUME = 152.4 * 25.4 * 6.35
+CLAMPED = 50.8 * 25.4
+_BAR_SURFACES = {"contact": CLAMPED, "clamp": CLAMPED, "tip": 25.4 * 6.35, "bar_int": CLAMPED}
+#: The wide block reaches 2 elements (2 x 25.4 / 6 mm) beyond the bar in y: planes to 1e-10 mm.
+_WIDE_LO, _WIDE_HI = -8.4666666666, 33.8666666666
+_WIDE = 57.15 * (_WIDE_HI - _WIDE_LO)
+
+SPECS = {
+    "cantilever_on_block": Spec(
+        DATA / "cantilever_on_block.inp", 525 + 9 * 7 * 3, 288 + 96,
+        {"BAR": (BAR_VOLUME, BAR),
+         "BASE": (CLAMPED * 6.35, ((0.0, 0.0, -6.35), (50.8, 25.4, 0.0)))},
+        {**_BAR_SURFACES, "base_int": CLAMPED, "base_fix": CLAMPED},
+        (("bar_int", "base_int", True),), ("response",),
+        same=(("bar_int", "contact"),)),
+    "cantilever_on_block_wide": Spec(
+        DATA / "cantilever_on_block_wide.inp", 525 + 10 * 11 * 3, 288 + 180,
+        {"BAR": (BAR_VOLUME, BAR),
+         "BASE": (_WIDE * 6.35, ((-6.35, _WIDE_LO, -6.35), (50.8, _WIDE_HI, 0.0)))},
+        {**_BAR_SURFACES, "base_int": _WIDE, "base_fix": _WIDE},
+        (("bar_int", "base_int", False),), ("response",),
+        same=(("bar_int", "contact"),)),
+}
+
+@pytest.fixture(scope="module", params=sorted(SPECS))
+def case(request: pytest.FixtureRequest) -> tuple[Spec, HexMesh]:
+    spec = SPECS[request.param]
+    return spec, read_mesh(spec.path)
+
+
+def _size(mesh: HexMesh) -> float:
+    return float(np.max(np.ptp(mesh.nodes, axis=0)))
+
+
+def _face_nodes(mesh: HexMesh, name: str) -> np.ndarray:
+    return np.unique(mesh.face_corners(mesh.surfaces[name]))
+
+
+def _body_of_elements(mesh: HexMesh) -> np.ndarray:
+    """The connected body (0, 1, ...) of each element, by shared nodes."""
+    e = mesh.elements
+    rows = np.repeat(e[:, 0], e.shape[1])
+    graph = coo_matrix((np.ones(e.size), (rows, e.ravel())), shape=(len(mesh.nodes),) * 2)
+    _, label = connected_components(graph, directed=False)
+    _, body = np.unique(label[e[:, 0]], return_inverse=True)
+    return body
+
+
+def _partners(mesh: HexMesh, face: str, counter: str) -> tuple[np.ndarray, np.ndarray]:
+    """The face's nodes and the counter face's node at the same place as each."""
+    a, b = _face_nodes(mesh, face), _face_nodes(mesh, counter)
+    dist, idx = cKDTree(mesh.nodes[b]).query(mesh.nodes[a])
+    assert dist.max() <= COINCIDENT * _size(mesh), (face, counter, dist.max())
+    return a, b[idx]
+
+
+def test_sets_and_counts(case: tuple[Spec, HexMesh]) -> None:
+    spec, mesh = case
+    assert (len(mesh.nodes), len(mesh.elements)) == (spec.nodes, spec.elements)
+    assert set(spec.bodies) <= set(mesh.element_sets)
+    assert set(mesh.surfaces) == set(spec.surfaces)
+    assert set(mesh.node_sets) >= set(spec.surfaces) | set(spec.node_sets)
+    for name in spec.surfaces:  # a surface's nodes are its node set (8-node faces)
+        assert np.array_equal(_face_nodes(mesh, name), mesh.node_sets[name]), name
+        assert boundary_faces(mesh, mesh.surfaces[name]).all(), name
+    for a, b in spec.same:
+        assert np.array_equal(mesh.node_sets[a], mesh.node_sets[b])
+
+
+def test_elements_are_positive_and_each_element_set_is_one_body(
+        case: tuple[Spec, HexMesh]) -> None:
+    spec, mesh = case
+    check_elements(mesh)
+    body = _body_of_elements(mesh)
+    assert body.max() + 1 == len(spec.bodies)
+    covered = np.concatenate([mesh.element_sets[k] for k in spec.bodies])
+    assert np.array_equal(np.sort(covered), np.arange(len(mesh.elements)))
+    assert len({int(body[mesh.element_sets[k][0]]) for k in spec.bodies}) == len(spec.bodies)
+    for k in spec.bodies:
+        assert len(np.unique(body[mesh.element_sets[k]])) == 1, k
+
+
+def test_volumes_bounds_and_areas(case: tuple[Spec, HexMesh]) -> None:
+    spec, mesh = case
+    volume = jacobian_dets(mesh)[:, 8:].sum(axis=1)  # 2 x 2 x 2 Gauss points, weights 1
+    for name, (v, (lo, hi)) in spec.bodies.items():
+        rows = mesh.element_sets[name]
+        assert volume[rows].sum() == pytest.approx(v, rel=spec.volume_rel), name
+        x = mesh.nodes[np.unique(mesh.elements[rows])]
+        assert x.min(axis=0) == pytest.approx(lo, abs=1e-9) and x.max(axis=0) == pytest.approx(
+            hi, abs=1e-9), name
+    for name, area in spec.surfaces.items():
+        assert face_load(mesh, mesh.surfaces[name])[2] == pytest.approx(area, rel=1e-9), name
+
+
+def test_contact_faces_pair_one_to_one_and_nothing_else_coincides(
+        case: tuple[Spec, HexMesh]) -> None:
+    spec, mesh = case
+    body = _body_of_elements(mesh)
+    node_body = np.zeros(len(mesh.nodes), dtype=np.int64)
+    node_body[mesh.elements.ravel()] = np.repeat(body, mesh.elements.shape[1])
+    expected = set()
+    for face, counter, same_size in spec.contacts:
+        a, b = _partners(mesh, face, counter)
+        assert len(np.unique(b)) == len(a), "two face nodes share a counter node"
+        assert not np.intersect1d(a, _face_nodes(mesh, counter)).size
+        assert len(np.unique(node_body[a])) == 1 and len(np.unique(node_body[b])) == 1
+        assert node_body[a[0]] != node_body[b[0]]
+        n_counter = len(_face_nodes(mesh, counter))
+        assert (n_counter == len(a)) if same_size else (n_counter > len(a))
+        expected |= {tuple(sorted(p)) for p in zip(a.tolist(), b.tolist(), strict=True)}
+    found = cKDTree(mesh.nodes).query_pairs(COINCIDENT * _size(mesh), output_type="ndarray")
+    assert {tuple(sorted(p)) for p in found.tolist()} == expected
+
+
+def test_make_assemblies_writes_the_committed_files(tmp_path: Path) -> None:
+    spec = importlib.util.spec_from_file_location("make_assemblies", DATA / "make_assemblies.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for p in module.write_all(tmp_path):
+        assert p.read_text() == (DATA / p.name).read_text(), p.name
