@@ -6,8 +6,9 @@ connected bodies as element sets, each element set one body; each contact face's
 one to one with nodes of its counter face (another body's) at the same place (cKDTree, 1e-9
 of the part's size) and no other nodes coincide (the bodies touch nowhere else); each
 body's volume (its elements' volumes summed) and bounding box, and each face's area, are the
-drawn ones. The generator: tests/data/meshes/make_assemblies.py (numpy; checked here to
-write the committed files).
+drawn ones. The generators: tests/data/meshes/make_assemblies.py (numpy; checked here to
+write the committed files) and examples/bolted_lap/make_bolted_lap.py (gmsh; not run here:
+the tests read the committed files).
 """
 
 from __future__ import annotations
@@ -74,6 +75,18 @@ SPECS = {
         (("bar_int", "base_int", False),), ("response",),
         same=(("bar_int", "contact"),)),
 }
+
+_LAP = {"PLATE_A": (10000.0, ((0.0, 0.0, 0.0), (100.0, 25.0, 4.0))),
+        "PLATE_B": (10000.0, ((75.0, 0.0, 4.0), (175.0, 25.0, 8.0)))}
+_LAP_SURFACES = {"a_int": 625.0, "b_int": 625.0, "head": 144.0, "nut": 144.0, "fix": 100.0,
+                 "tip": 100.0, "response": 100.0}
+SPECS["bolted_lap"] = Spec(EXAMPLES / "bolted_lap" / "bolted_lap.msh", 2 * 42 * 12 * 3,
+                           2 * 41 * 11 * 2, _LAP, _LAP_SURFACES, (("a_int", "b_int", True),),
+                           same=(("tip", "response"),))
+SPECS["bolted_lap_small"] = Spec(DATA / "bolted_lap_small.msh", 2 * 23 * 8 * 3,
+                                 2 * 22 * 7 * 2, _LAP, _LAP_SURFACES,
+                                 (("a_int", "b_int", True),), same=(("tip", "response"),))
+
 
 @pytest.fixture(scope="module", params=sorted(SPECS))
 def case(request: pytest.FixtureRequest) -> tuple[Spec, HexMesh]:
