@@ -7,8 +7,8 @@ one to one with nodes of its counter face (another body's) at the same place (cK
 of the part's size) and no other nodes coincide (the bodies touch nowhere else); each
 body's volume (its elements' volumes summed) and bounding box, and each face's area, are the
 drawn ones. The generators: tests/data/meshes/make_assemblies.py and make_hertz.py (numpy;
-checked here to write the committed files) and examples/bolted_lap/make_bolted_lap.py (gmsh;
-not run here: the tests read the committed files).
+checked here to write the committed files), examples/bolted_lap/make_bolted_lap.py and
+examples/brb/make_brb.py (gmsh; not run here: the tests read the committed files).
 """
 
 from __future__ import annotations
@@ -88,6 +88,16 @@ SPECS["bolted_lap"] = Spec(EXAMPLES / "bolted_lap" / "bolted_lap.msh", 2 * 42 * 
 SPECS["bolted_lap_small"] = Spec(DATA / "bolted_lap_small.msh", 2 * 23 * 8 * 3,
                                  2 * 22 * 7 * 2, _LAP, _LAP_SURFACES,
                                  (("a_int", "b_int", True),), same=(("tip", "response"),))
+
+
+_HALF = 293.5 * 25.4**2 + 122.0 * 25.4 * 12.7  # full section to the shoulder, tongue beyond
+_PATCHES = {f"{k}{i}": 256.0 for i in (1, 2, 3) for k in ("head", "nut")}
+SPECS["brb"] = Spec(EXAMPLES / "brb" / "brb.msh", 10890, 8256,
+                    {"HALF_A": (_HALF, ((0.0, 0.0, 0.0), (415.5, 25.4, 25.4))),
+                     "HALF_B": (_HALF, ((295.5, 0.0, 0.0), (711.0, 25.4, 25.4)))},
+                    {"lap_a": 3048.0, "lap_b": 3048.0, **_PATCHES, "tip": 645.16,
+                     "response": 645.16},
+                    (("lap_a", "lap_b", True),), same=(("tip", "response"),))
 
 
 #: The paraboloid z = r^2 / 200 under the 20 x 20 plan: the block's volume 4000 - 400 / 3
