@@ -23,6 +23,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
+from microslip.fe.assembly import Assembly, Contact, Material, Preload, Support
 from microslip.fe.hexmesh import HexMesh, face_load
 from microslip.fe.meshcheck import boundary_faces, check_elements, jacobian_dets
 from microslip.fe.meshfile import read_mesh
@@ -231,3 +232,34 @@ def test_hertz_block_is_fine_at_the_axis_and_its_top_halves_meet_at_x_0() -> Non
                    for k in ("top_left", "top_right"))
     assert left.max() == 0.0 and right.min() == 0.0
     assert len(left) + len(right) == len(mesh.surfaces["top"])
+
+
+def _steel(*elsets: str) -> tuple[Material, ...]:
+    return tuple(Material(210000.0, 0.3, 7850.0, e) for e in elsets)
+
+
+#: The assembly each mesh is made for: every set and element set it names is in the mesh.
+ASSEMBLIES = {
+    "cantilever_on_block": Assembly((Contact("bar_int", "base_int"),),
+                                    (Preload("clamp", 2000.0),), _steel("BAR", "BASE"), 0.5,
+                                    (Support("base_fix"),)),
+    "bolted_lap": Assembly((Contact("a_int", "b_int"),),
+                           (Preload("head", 10000.0), Preload("nut", 10000.0)),
+                           _steel("PLATE_A", "PLATE_B"), 0.5, (Support("fix"),)),
+    "brb": Assembly((Contact("lap_a", "lap_b"),),
+                    tuple(Preload(f"{k}{i}", 10000.0) for i in (1, 2, 3) for k in ("head", "nut")),
+                    _steel("HALF_A", "HALF_B"), 0.5),
+    "hertz_block": Assembly((Contact("bottom"),), (Preload("top", 1000.0),), _steel("BLOCK"),
+                            0.5),
+}
+ASSEMBLIES["cantilever_on_block_wide"] = ASSEMBLIES["cantilever_on_block"]
+ASSEMBLIES["bolted_lap_small"] = ASSEMBLIES["bolted_lap"]
+
+
+def test_each_mesh_has_the_sets_of_its_assembly(case: tuple[Spec, HexMesh]) -> None:
+    spec, mesh = case
+    a = ASSEMBLIES[spec.path.stem]
+    assert set(a.set_names()) <= set(mesh.surfaces)
+    assert {m.elset for m in a.materials} == set(spec.bodies) <= set(mesh.element_sets)
+    assert {(c.face, c.counter) for c in a.contacts if c.counter} == {
+        (f, c) for f, c, _ in spec.contacts}
