@@ -139,10 +139,11 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
 
 
 def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
+    from .assembly import as_assembly
     from .calculix.meshrun import run_mesh_calculix
 
     result = run_mesh_calculix(
-        mesh, **case.clamp.model_options(), loads=case.loads,
+        mesh, as_assembly(case.clamp), loads=case.loads,
         increments_per_cycle=case.increments,
         cycles=1 if case.history == "paper" else case.cycles,
         startup="quarter" if case.history == "paper" else "ramp", **case.options)
