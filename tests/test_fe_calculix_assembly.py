@@ -300,3 +300,32 @@ def test_stiff_lower_block_is_the_rigid_base(tmp_path):
     assert two.dissipated_energy == pytest.approx(alone.dissipated_energy, rel=5e-3)
     assert two.peak_displacement[0] == pytest.approx(alone.peak_displacement[0], rel=2e-3)
 
+
+@pytest.mark.ccx
+@pytest.mark.skipif(shutil.which("ccx") is None, reason=NO_CCX)
+def test_validate_compares_fixed_normal_contact_as_a_hard_contact(tmp_path):
+    """``fixed`` (the default) has no CalculiX counterpart: both solvers run penalty at 100 x
+    the case's slope, agree like with like, and the case's own fixed W and d stand beside them
+    (issue 34); the output says so."""
+    from microslip.fe.calculix.compare import FIXED_SLOPE_FACTOR, TOLERANCE, compare_on_mesh
+    from microslip.fe.meshfile import write_inp
+    from microslip.fe.ownmesh import OwnMeshCase
+
+    path = write_inp(upper_alone(), tmp_path / "upper.inp")
+    case = OwnMeshCase(str(path), clamp_alone(normal_contact="fixed"), tuple(LOADS), substeps=25)
+    out = compare_on_mesh(case, progress=False, sensitivity=False)
+    normal = out["normal_contact"]
+    assert (normal["case"], normal["compared"]) == ("fixed", "penalty")
+    assert normal["normal_slope_N_per_mm3"] == out["normal_slope_N_per_mm3"] == (
+        FIXED_SLOPE_FACTOR * LAW["normal_slope"]) == 1e7
+    for side in ("builtin", "calculix"):
+        assert "1e+07 N/mm^3, the hard-contact stand-in for the case's fixed" in (
+            out[side]["contact"])
+    assert out["passed"] and all(abs(out["relative_difference"][k]) <= tol
+                                 for k, tol in TOLERANCE.items())
+    fixed, hard = normal["fixed_builtin"], out["builtin"]
+    assert fixed["dissipated_energy_Nmm"] > 0.0 and fixed["settled"]
+    assert normal["fixed_against_hard"]["dissipated_energy_Nmm"] == pytest.approx(
+        fixed["dissipated_energy_Nmm"] / hard["dissipated_energy_Nmm"] - 1.0)
+    # the model's difference (frozen against redistributed normal forces), about 1 % here
+    assert abs(normal["fixed_against_hard"]["dissipated_energy_Nmm"]) < 0.05
