@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..io import atomic_write, write_loop_csv
+from .assembly import Assembly, as_assembly
 from .clamp import MeshClamp
 from .hexmesh import HexMesh
 from .meshload import MeshLoad
@@ -56,7 +57,7 @@ class OwnMeshCase:
     """
 
     mesh_file: str
-    clamp: MeshClamp
+    clamp: Assembly | MeshClamp
     loads: tuple[MeshLoad, ...]
     substeps: int = 50
     history: str = "settle"
@@ -68,8 +69,7 @@ class OwnMeshCase:
     element: str | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.clamp, MeshClamp):
-            raise ParameterError(f"clamp must be a MeshClamp, got {type(self.clamp).__name__}")
+        object.__setattr__(self, "clamp", as_assembly(self.clamp))
         if not self.loads:
             raise ParameterError("give at least one --load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
         if self.history not in HISTORIES:
@@ -110,13 +110,13 @@ class OwnMeshRun:
 
 
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
-    from .meshcheck import check_roles
+    from .meshcheck import check_assembly
     from .meshfile import read_mesh
     from .promote import as_element
     from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
-    check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, case.loads)
+    check_assembly(mesh, as_assembly(case.clamp), case.loads)
     return as_element(refine_mesh(mesh, case.refine), case.element)
 
 
