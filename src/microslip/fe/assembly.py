@@ -44,7 +44,8 @@ from ..conventions import (
 )
 from ..errors import ParameterError
 
-__all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "Material", "Preload",
+__all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "ContactPair",
+           "Material", "Preload",
            "Shank", "Support", "as_assembly", "bolt", "rigid_base"]
 
 #: The normal-contact readings (the built-in solver's
@@ -124,6 +125,11 @@ class Shank:
         if not -1.0 < nu < 0.5:
             raise ParameterError(f"bolt {self.head}:{self.nut}'s poisson_ratio must be in "
                                  f"(-1, 0.5), got {self.poisson_ratio!r}")
+
+
+#: The assembly's contact under the name the top-level API gives it (``microslip.Contact`` is
+#: the 1-D models' contact).
+ContactPair = Contact
 
 
 def bolt(head: str, nut: str, force: float, diameter: float | None = None,
