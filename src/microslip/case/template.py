@@ -9,12 +9,16 @@ command reads from it only what the user uncomments.
 
 from __future__ import annotations
 
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from ..params import PRESETS
-from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, MESH_LOAD_KEYS, SECTIONS, Key
+from .schema import CLAMP_KEYS, JOINT_KEYS, KEYS, MESH_LOAD_KEYS, SECTIONS, TABLE_KEYS, Key
 
-__all__ = ["TEMPLATE_PRESET", "TEMPLATE_VALUES", "mesh_template", "template"]
+if TYPE_CHECKING:
+    from .meshroles import MeshOffer
+
+__all__ = ["TEMPLATE_PRESET", "TEMPLATE_VALUES", "MeshTemplate", "mesh_template", "template"]
 
 #: The preset the template starts from.
 TEMPLATE_PRESET = "table1"
@@ -75,7 +79,9 @@ def template() -> str:
         lines.append("")
         if section:
             lines.append(f"[{section}]  # {what}")
-        lines.extend(_line(k) for k in KEYS if k.section == section)
+        lines.extend(_line(k) for k in KEYS if k.section == section
+                     and k.dotted not in TABLE_KEYS)
+    lines += _table_help()
     lines += ["# the loads of the mesh: [[mesh.load]] tables (set, direction, amplitude, "
               "phase_deg);", "# microslip case new --mesh MESHFILE FILE.toml writes a case "
               "of your own mesh"]
@@ -114,6 +120,21 @@ def _joints() -> list[str]:
     return out
 
 
+def _table_help() -> list[str]:
+    """The assembly's tables, commented: what each is and its keys (they follow every plain
+    key of [mesh]: a table opened in the middle would take the keys after it)."""
+    out = ["# the assembly of the mesh (issue 32; docs/casefile.md): [[mesh.contact]],",
+           "# [[mesh.preload]], [[mesh.support]] and [[mesh.material]] tables, one per item:"]
+    for dotted, fields in TABLE_KEYS.items():
+        key = _KEY[dotted]
+        out.append(f"#   [[{dotted}]]: {key.meaning}")
+        for f in fields:
+            unit = f", {f.unit}" if f.unit else ""
+            need = "required" if f.required else "optional"
+            out.append(f"#     {f.name} ({need}{unit}): {f.meaning}")
+    return out
+
+
 # -- the template of a mesh of the user's own ------------------------------------------------
 
 #: Sections a mesh case holds besides [mesh]: the clamp's values the mesh does not give (its
@@ -124,6 +145,21 @@ MESH_UNUSED_KEYS = ("clamping.pressure",)
 #: Set names taken as a role's value when the mesh has them (else the role is left to fill).
 ROLE_GUESSES = {"contact_set": ("contact", "base", "bottom"), "clamp_set": ("clamp", "top"),
                 "response_set": ("response", "tip")}
+#: Set names the example load takes first (a load may act on the response set).
+LOAD_GUESSES = ("load", "tip", "end", "top")
+#: What each role is, for the list of roles a template leaves to fill.
+ROLE_MEANINGS = {"contact_set": "the face on the rigid base",
+                 "clamp_set": "the face the clamping force presses",
+                 "response_set": "the set whose motion is the amplitude (modal, frf)"}
+
+
+@dataclass(frozen=True)
+class MeshTemplate:
+    """A case file of a mesh: its ``text``, and the roles it could not fill (``unfilled``:
+    one sentence each, the key and why)."""
+
+    text: str
+    unfilled: tuple[str, ...]
 
 
 def _mesh_line(key: Key, value: Any, active: bool, note: str) -> str:
@@ -133,18 +169,38 @@ def _mesh_line(key: Key, value: Any, active: bool, note: str) -> str:
             f"{'' if active else '# '}{key.name} = {shown}".rstrip())
 
 
-def mesh_template(mesh_file: str, node_sets: tuple[str, ...], surfaces: tuple[str, ...]
-                  ) -> str:
-    """The text of a case file of a mesh of the user's own: the [mesh] section with the
-    file (as given, relative to the case file), its sets (listed from the file; a role's
-    value where the file has a set of the usual name, :data:`ROLE_GUESSES`), the contact,
-    density, mode and response set, an example of its ``[[mesh.load]]`` tables, and the
-    clamp values the mesh does not give (:data:`MESH_CLAMP_SECTIONS`, set to the
-    :data:`TEMPLATE_PRESET` values as an example to edit). No preset and no [geometry]: the
-    mesh gives the geometry."""
+def _roles(offer: MeshOffer) -> dict[str, str | None]:
+    """The role sets guessed by name (:data:`ROLE_GUESSES`) among the mesh's faces; a set of
+    an interface pair is not a role of the rigid base's shorthand."""
+    paired = {n for p in offer.pairs for n in p}
+    usable = [n for n in offer.faces if n not in paired]
+    return {role: next((n for n in guesses if n in usable), None)
+            for role, guesses in ROLE_GUESSES.items()}
+
+
+def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
+    """The case file of a mesh of the user's own (``case new --mesh``).
+
+    The [mesh] section with the file (as given, relative to the case file), its sets listed
+    by kind, a role's value where the mesh has a set of the usual name
+    (:data:`ROLE_GUESSES`; volume groups are never a face), the contact, density, mode and
+    response set; the clamp values the mesh does not give (:data:`MESH_CLAMP_SECTIONS`, set
+    to the :data:`TEMPLATE_PRESET` values as an example to edit). A mesh of several bodies
+    also gets a ``[[mesh.material]]`` table per element set of a body (the [material]
+    values, to edit) and a ``[[mesh.contact]]`` table per interface found (sets of two
+    bodies whose nodes coincide one to one). Every role left to fill is named, in the file
+    and in :attr:`MeshTemplate.unfilled`. No preset and no [geometry]: the mesh gives the
+    geometry."""
     base = PRESETS[TEMPLATE_PRESET][0].as_dict()
-    names = (*node_sets, *(s for s in surfaces if s not in node_sets))
-    listed = ", ".join(names) if names else "none"
+    faces = ", ".join(offer.faces) or "none"
+    several = len(offer.bodies) > 1
+    roles = _roles(offer)
+    unfilled: list[str] = []
+    for role, hit in roles.items():
+        if hit is None and not (several and role == "contact_set"):
+            names = " or ".join(ROLE_GUESSES[role])
+            unfilled.append(f"mesh.{role} ({ROLE_MEANINGS[role]}): no face set named {names}; "
+                            f"one of: {faces}")
     lines = [
         "# microslip case file (TOML) of your own part: the mesh and its clamp. Units: N, mm,",
         "# MPa, N/mm^3, kg/m^3, degrees. Use it with --case FILE.toml on fe, validate, modal,",
@@ -155,6 +211,8 @@ def mesh_template(mesh_file: str, node_sets: tuple[str, ...], surfaces: tuple[st
     ]
     for section in MESH_CLAMP_SECTIONS:
         lines += ["", f"[{section}]  # {SECTIONS[section]}"]
+        if section == "material" and several:
+            lines.append("# the material of every element no [[mesh.material]] table names")
         for key in KEYS:
             if key.section != section or key.dotted in MESH_UNUSED_KEYS:
                 continue
@@ -165,34 +223,86 @@ def mesh_template(mesh_file: str, node_sets: tuple[str, ...], surfaces: tuple[st
                 value, note = key.default, f"default: {key.default:g}"
             lines.append(_mesh_line(key, value, True, note))
     lines += ["", f"[mesh]  # {SECTIONS['mesh']}",
-              f"# sets of {mesh_file}: node sets: {', '.join(node_sets) or 'none'}; "
-              f"element-face surfaces: {', '.join(surfaces) or 'none'}"]
-    roles = {role: next((n for n in guesses if n in names), None)
-             for role, guesses in ROLE_GUESSES.items()}
+              f"# sets of {mesh_file}: node sets: {', '.join(offer.node_sets) or 'none'}; "
+              f"element-face surfaces: {', '.join(offer.surfaces) or 'none'}; element sets: "
+              f"{', '.join(offer.element_sets) or 'none'}"]
+    if offer.volumes:
+        lines.append(f"# volume groups (never a face or a load): {', '.join(offer.volumes)}")
+    if several:
+        lines.append(f"# {len(offer.bodies)} bodies: {'; '.join(offer.body_names)}")
     for key in KEYS:
-        if key.section != "mesh":
+        if key.section != "mesh" or key.dotted in TABLE_KEYS:
             continue
         role = key.name
         if key.dotted == "mesh.file":
             lines.append(_mesh_line(key, mesh_file, True, "required"))
         elif role in ROLE_GUESSES:
             hit = roles[role]
-            note = f"one of: {listed}" + ("" if role == "response_set" else "; required")
+            need = ("" if role == "response_set" else
+                    "; with several bodies, for a body on the rigid base" if several
+                    and role == "contact_set" else "; required")
             lines.append(_mesh_line(key, hit if hit is not None else "", hit is not None,
-                                    note))
+                                    f"one of: {faces}{need}"))
         elif key.default is None:
             lines.append(_mesh_line(key, None, False, "default: none"))
         else:
             shown = _toml(key.default) if isinstance(key.default, str) else \
                 format(key.default, "g")
             lines.append(_mesh_line(key, key.default, False, f"default: {shown}"))
-    loaded = next((n for n in names if n not in roles.values()), "SET")
+    if several:
+        lines += _assembly_tables(offer, base, unfilled, roles)
+    taken = {roles["contact_set"], roles["clamp_set"]} | {n for p in offer.pairs for n in p}
+    free = [n for n in offer.faces if n not in taken]
+    loaded = next((n for n in LOAD_GUESSES if n in free), None) or next(
+        (n for n in free if n != roles["response_set"]), None) or next(iter(free), None)
+    if loaded is None:
+        unfilled.append(f"[[mesh.load]] (the loads of fe and validate): no face set is left "
+                        f"for a load besides the roles; name one of: {faces}")
     lines += ["", "# [[mesh.load]] tables: the loads of the mesh (fe, validate), one table "
               "each:", *(f"#   {name}: {what}" for name, (_, what) in MESH_LOAD_KEYS.items()),
               "# Example (uncomment; two loads at 90 degrees make a planar load):",
-              "# [[mesh.load]]", f'# set = "{loaded}"', "# direction = [1.0, 0.0, 0.0]",
-              "# amplitude = 100.0", "# phase_deg = 0.0"]
-    return "\n".join(lines) + "\n"
+              "# [[mesh.load]]", f'# set = "{loaded or "SET"}"',
+              "# direction = [1.0, 0.0, 0.0]", "# amplitude = 100.0", "# phase_deg = 0.0"]
+    if unfilled:
+        head = ["# Roles left to fill (case check names what is still missing):"]
+        head += [f"#   {u}" for u in unfilled]
+        lines = lines[:5] + head + lines[5:]
+    return MeshTemplate("\n".join(lines) + "\n", tuple(unfilled))
+
+
+def _assembly_tables(offer: MeshOffer, base: dict[str, Any], unfilled: list[str],
+                     roles: dict[str, str | None]) -> list[str]:
+    """The [[mesh.material]] tables of the bodies' element sets, the [[mesh.contact]] tables
+    of the interfaces found, and the support a mesh of several bodies needs, commented."""
+    out = ["", "# The bodies' materials: one [[mesh.material]] table per element set (the "
+           "values of", "# [material] as an example: edit them)."]
+    for body, (sets, name) in enumerate(zip(offer.bodies, offer.body_names, strict=True), 1):
+        if not sets:
+            unfilled.append(f"[[mesh.material]] of {name}: it has no element set of its own; "
+                            "[material] gives it (or name its elements: *ELSET, a gmsh "
+                            "volume group)")
+        for elset in sets:
+            out += ["[[mesh.material]]", f"elset = {_toml(elset)}  # body {body}",
+                    f"modulus = {_toml(float(base['modulus']))}",
+                    f"poisson_ratio = {_toml(float(base['poisson_ratio']))}",
+                    "# density = 7850.0", ""]
+    if offer.pairs:
+        out += ["# The interfaces found (sets of two bodies whose nodes coincide one to one): "
+                "face on", "# counter, the counter on the body with fewer elements."]
+        for face, counter in offer.pairs:
+            out += ["[[mesh.contact]]", f"face = {_toml(face)}", f"counter = {_toml(counter)}",
+                    ""]
+    else:
+        unfilled.append("[[mesh.contact]] (the interfaces between the bodies): no two sets of "
+                        "different bodies with coincident nodes; name each side's face")
+    if roles.get("contact_set") is None:
+        unfilled.append("[[mesh.support]] (what holds the assembly: set, directions), or "
+                        "mesh.contact_set for a body on the rigid base")
+    out += ["# [[mesh.support]] tables: what holds the assembly (set, directions = \"xyz\"):",
+            "# [[mesh.support]]", '# set = "SET"', '# directions = "xyz"', "",
+            "# [[mesh.preload]] tables: more pressed faces (face, force N; a bolt: its head "
+            "and nut faces):", "# [[mesh.preload]]", '# face = "SET"', "# force = 2000.0"]
+    return out
 
 
 _KEY = {k.dotted: k for k in KEYS}
