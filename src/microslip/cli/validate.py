@@ -7,14 +7,22 @@ import math
 from typing import Any
 
 from ..case.options import add_case_option
+from ..case.runflags import EXIT_STATUS
 from ..case.table import MODE_BOX, add_option, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
 from ..fe.calculix.case import DEFAULT_STICK_SLOPE, LOAD_CASES
 from .common import add_params, check_output_dir, params_from_args, print_json
-from .ownmesh import add_own_mesh_options, is_mesh_file, mesh_case, refuse_mesh_options
+from .ownmesh import (
+    add_own_mesh_options,
+    is_mesh_file,
+    mesh_case,
+    refuse_mesh_options,
+    unsettled_status,
+)
 
 __all__ = ["add_parser", "run"]
+
 
 
 def add_parser(sub: Any) -> None:
@@ -24,7 +32,8 @@ def add_parser(sub: Any) -> None:
         "--length ... or --case) in CalculiX, compare them "
         "with the analytical models and the closed forms, and write fig08_contact_status.png, "
         "fig09_fe_vs_model.png and validation.csv into DIR. Needs CalculiX (ccx): "
-        "bash scripts/setup.sh or apt-get install calculix-ccx.")
+        "bash scripts/setup.sh or apt-get install calculix-ccx.",
+        epilog=EXIT_STATUS)
     add_option(p, "out", metavar="DIR", required=True, help="output directory")
     add_params(p, mode=MODE_BOX)
     add_option(p, "mesh", action="append", type=mesh_or_file, metavar="LEVEL|FILE",
@@ -104,7 +113,21 @@ def _run_mesh(args: argparse.Namespace) -> int:
         print_json(result)
     else:
         _print_mesh(result, args.out)
-    return 0 if result["passed"] else 1
+    return mesh_status(args, result)
+
+
+def mesh_status(args: argparse.Namespace, result: dict[str, Any]) -> int:
+    """0 passed; :data:`~.ownmesh.EXIT_UNSETTLED` when a side's W per cycle did not settle
+    (unless --accept-unsettled: then 0 or 1 by the tolerances alone); 1 otherwise."""
+    if result["passed"]:
+        return 0
+    if not all(result["settled"].values()):
+        status = unsettled_status(args, False)
+        if status:
+            return status
+    within = all(abs(result["relative_difference"][k]) <= tol
+                 for k, tol in result["tolerance"].items())
+    return 0 if within and getattr(args, "accept_unsettled", False) else 1
 
 
 def _print_mesh(result: dict[str, Any], out: str) -> None:
