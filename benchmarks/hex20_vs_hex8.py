@@ -24,6 +24,7 @@ import time
 
 import numpy as np
 
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles, solve_mesh
 from microslip.fe.convergence import richardson
@@ -40,7 +41,7 @@ LOADS = ("tip:1,0,0:300", "tip:0,1,0:50")
 
 def run(mesh, load: str, weights: str = "calculix") -> dict:
     t0 = time.process_time()
-    model = build_mesh_model(mesh, contact_weights=weights, **CASE)
+    model = build_mesh_model(mesh, rigid_base(**CASE), contact_weights=weights)
     result = solve_mesh(model, (MeshLoad.parse(load),), SineCycles(increments=40, tol=1e-3,
                                                                      max_cycles=10))
     s = result.summary()

@@ -21,6 +21,7 @@ import numpy as np
 
 from microslip.dynamics.modal import epmc
 from microslip.dynamics.modal_odd import epmc_odd
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics.interfacerom import build_interface_model, build_interface_rom
@@ -41,10 +42,14 @@ def main() -> None:
     args = ap.parse_args()
     counts = tuple(int(c) for c in args.mesh.split("x"))
     normal = "penalty" if args.penalty else "fixed"
-    model = build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                             normal_contact=normal, normal_slope=1e6)
+    model = build_mesh_model(cantilever_mesh(*counts), rigid_base(contact_set="contact",
+                                                                  clamp_set="clamp",
+                                                                  normal_force=2000.0,
+                                                                  modulus=70000.0,
+                                                                  poisson_ratio=0.33, friction=0.5,
+                                                                  stick_slope=1e4,
+                                                                  normal_contact=normal,
+                                                                  normal_slope=1e6))
     rom = build_rom(model, RHO, modes=FIXED_MODES, response_set="response")
     stuck = linear_modes(model, RHO, 2, "stuck", "response")
     method = epmc if args.penalty else epmc_odd

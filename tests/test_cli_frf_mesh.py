@@ -16,6 +16,7 @@ import pytest
 
 from microslip.cli import frfmesh
 from microslip.cli.main import main
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import read_mesh, write_inp
@@ -50,9 +51,10 @@ def _json(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
 
 
 def _model(mesh: str, contact: str = "fixed"):  # type: ignore[no-untyped-def]
-    return build_mesh_model(read_mesh(mesh), contact_set="contact", clamp_set="clamp",
-                            normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
-                            friction=0.5, stick_slope=1e4, normal_contact=contact)
+    return build_mesh_model(read_mesh(mesh), rigid_base(contact_set="contact", clamp_set="clamp",
+                                                        normal_force=2000.0, modulus=70000.0,
+                                                        poisson_ratio=0.33, friction=0.5,
+                                                        stick_slope=1e4, normal_contact=contact))
 
 
 def _full_fe(mesh: str, load_set: str, direction: np.ndarray, force: float,

@@ -14,6 +14,7 @@ import scipy.sparse.linalg as spla
 
 from microslip.cli.main import main
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.hex20 import (
     CONTACT_WEIGHTS,
     HEX20_ELEMENTS,
@@ -164,10 +165,10 @@ def test_contact_weights_positive_and_exact_area(name: str) -> None:
 def _block(normal_contact: str = "fixed", weights: str = "calculix"):
     mesh = _box20([0, 5, 10], [0, 4, 8], [0, 3], node_sets={
         "contact": lambda x, y, z: z == 0, "clamp": lambda x, y, z: z == 3})
-    return build_mesh_model(mesh, contact_set="contact", clamp_set="clamp", normal_force=800.0,
-                            modulus=E, poisson_ratio=0.0, friction=0.5,
-                            normal_contact=normal_contact, normal_slope=1e6,
-                            contact_weights=weights)
+    return build_mesh_model(mesh, rigid_base(contact_set="contact", clamp_set="clamp",
+                                             normal_force=800.0, modulus=E, poisson_ratio=0.0,
+                                             friction=0.5, normal_contact=normal_contact,
+                                             normal_slope=1e6), contact_weights=weights)
 
 
 @pytest.mark.parametrize("weights", list(CONTACT_WEIGHTS))
@@ -208,8 +209,8 @@ def test_promoted_cantilever_is_the_example_hex20_file() -> None:
         assert len(a.node_sets[name]) == len(b.node_sets[name]), name
     kw = dict(contact_set="contact", clamp_set="clamp", normal_force=2000.0, modulus=E,
               poisson_ratio=NU, friction=0.5, stick_slope=1e4)
-    fa = linear_modes(build_mesh_model(a, **kw), RHO, 3).frequencies_Hz
-    fb = linear_modes(build_mesh_model(b, **kw), RHO, 3).frequencies_Hz
+    fa = linear_modes(build_mesh_model(a, rigid_base(**kw)), RHO, 3).frequencies_Hz
+    fb = linear_modes(build_mesh_model(b, rigid_base(**kw)), RHO, 3).frequencies_Hz
     np.testing.assert_allclose(fa, fb, rtol=1e-9)
 
 
@@ -250,9 +251,9 @@ def test_stuck_frequencies_against_calculix_c3d20r() -> None:
     from microslip.fe.calculix.meshrun import run_frequency_calculix
 
     mesh = promote_mesh(cantilever_mesh(12, 3, 1))
-    model = build_mesh_model(mesh, contact_set="contact", clamp_set="clamp",
-                             normal_force=2000.0, modulus=E, poisson_ratio=NU, friction=0.5,
-                             stick_slope=1e9)
+    model = build_mesh_model(mesh, rigid_base(contact_set="contact", clamp_set="clamp",
+                                              normal_force=2000.0, modulus=E, poisson_ratio=NU,
+                                              friction=0.5, stick_slope=1e9))
     ours = linear_modes(model, RHO, 6).frequencies_Hz
     ccx = run_frequency_calculix(mesh, contact_set="contact", clamp_set="clamp",
                                  normal_force=2000.0, friction=0.5, stick_slope=1e9,

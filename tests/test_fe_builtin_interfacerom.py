@@ -14,6 +14,7 @@ import pytest
 from microslip.cli.main import main
 from microslip.dynamics.hb import HarmonicBalance
 from microslip.dynamics.modal_odd import epmc_odd
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.fe.meshfile import write_inp
@@ -29,9 +30,12 @@ RHO = 2700.0
 
 
 def _model(counts: tuple[int, int, int]):
-    return build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                            clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4, condensed=True)
+    return build_mesh_model(cantilever_mesh(*counts), rigid_base(contact_set="contact",
+                                                                 clamp_set="clamp",
+                                                                 normal_force=2000.0,
+                                                                 modulus=70000.0,
+                                                                 poisson_ratio=0.33, friction=0.5,
+                                                                 stick_slope=1e4), condensed=True)
 
 
 def _rom(counts: tuple[int, int, int], modes: int = 20):
@@ -252,10 +256,14 @@ def test_penalty_with_every_mode_kept_is_the_rom() -> None:
     projected Jacobian of the 3-D elements against central differences."""
     from microslip.dynamics.modal import epmc
 
-    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                             normal_contact="penalty", normal_slope=1e6)
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                   clamp_set="clamp",
+                                                                   normal_force=2000.0,
+                                                                   modulus=70000.0,
+                                                                   poisson_ratio=0.33, friction=0.5,
+                                                                   stick_slope=1e4,
+                                                                   normal_contact="penalty",
+                                                                   normal_slope=1e6))
     rom = build_rom(model, RHO, modes=20, response_set="response")
     full = build_interface_rom(rom, rom.boundary.size)
     a = np.geomspace(2e-3, 3e-2, 5)

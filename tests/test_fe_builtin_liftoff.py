@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from microslip.dynamics.files import read_structure
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.meshfile import read_mesh
 from microslip.meshdynamics.modes import linear_modes, modal_stiffness
@@ -28,10 +29,12 @@ DENSITY = 2700.0
 
 
 def bracket(normal_slope: float = 1e5) -> MeshModel:
-    return build_mesh_model(read_mesh(BRACKET), contact_set="contact", clamp_set="clamp",
-                            normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
-                            friction=0.5, stick_slope=1e4, normal_contact="penalty",
-                            normal_slope=normal_slope)
+    return build_mesh_model(read_mesh(BRACKET), rigid_base(contact_set="contact", clamp_set="clamp",
+                                                           normal_force=2000.0, modulus=70000.0,
+                                                           poisson_ratio=0.33, friction=0.5,
+                                                           stick_slope=1e4,
+                                                           normal_contact="penalty",
+                                                           normal_slope=normal_slope))
 
 
 @pytest.fixture(scope="module")

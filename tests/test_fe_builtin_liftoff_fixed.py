@@ -17,6 +17,7 @@ import pytest
 from scipy import sparse as sp
 
 from microslip.cli.main import main
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.builtin.meshrun import solve_mesh
 from microslip.fe.builtin.solve import contact_partition
@@ -32,7 +33,7 @@ CLI = ["--contact-set", "contact", "--clamp-set", "clamp", "--normal-force", "20
 
 
 def fixed(name: str) -> MeshModel:
-    return build_mesh_model(read_mesh(EXAMPLES / name), **CLAMP)
+    return build_mesh_model(read_mesh(EXAMPLES / name), rigid_base(**CLAMP))
 
 
 def _state_is_unilateral(m: MeshModel) -> None:

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.examples import CANTILEVER, cantilever_mesh
 from microslip.fe.hexmesh import HexMesh
@@ -27,9 +28,10 @@ E, NU, RHO = 70000.0, 0.33, 2700.0
 
 def _model(mesh: HexMesh, normal: str = "penalty", slope: float = 1e4,
            element: str = "C3D8I") -> MeshModel:
-    return build_mesh_model(mesh, contact_set="contact", clamp_set="clamp", normal_force=2000.0,
-                            modulus=E, poisson_ratio=NU, friction=0.5, stick_slope=slope,
-                            normal_contact=normal, normal_slope=1e6, element=element)
+    return build_mesh_model(mesh, rigid_base(contact_set="contact", clamp_set="clamp",
+                                             normal_force=2000.0, modulus=E, poisson_ratio=NU,
+                                             friction=0.5, stick_slope=slope, normal_contact=normal,
+                                             normal_slope=1e6), element=element)
 
 
 @pytest.fixture(scope="module")
@@ -200,9 +202,10 @@ def test_rigid_block_on_its_stick_springs() -> None:
     mesh = grid_mesh([0, 10, 20, 30], [0, 10], [0, 5], node_sets={
         "contact": lambda x, y, z: z < 1e-9, "clamp": lambda x, y, z: z > 5 - 1e-9},
         surfaces=("contact", "clamp"))
-    model = build_mesh_model(mesh, contact_set="contact", clamp_set="clamp",
-                             normal_force=100.0, modulus=1e8, poisson_ratio=0.0, friction=0.5,
-                             stick_slope=1e3, normal_contact="fixed")
+    model = build_mesh_model(mesh, rigid_base(contact_set="contact", clamp_set="clamp",
+                                              normal_force=100.0, modulus=1e8, poisson_ratio=0.0,
+                                              friction=0.5, stick_slope=1e3,
+                                              normal_contact="fixed"))
     modes = linear_modes(model, RHO, 3)
     mass = RHO * 1e-12 * 30 * 10 * 5
     k = float(model.contact_stiffness.sum())

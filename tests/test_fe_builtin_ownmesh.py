@@ -9,6 +9,7 @@ from scipy.optimize import brentq
 
 from microslip import preset
 from microslip.errors import MacroslipError, ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin import solve_uniaxial
 from microslip.fe.builtin.condense import condense
 from microslip.fe.builtin.mesh import box_mesh
@@ -24,10 +25,14 @@ TABLE1 = preset("table1")
 
 def _box_model(normal_contact: str = "fixed", **kw: object) -> MeshModel:
     p = TABLE1
-    return build_mesh_model(box_hexmesh(p, "24x4x1"), contact_set="contact",
-                            clamp_set="clamp", normal_force=p.normal_force, modulus=p.modulus,
-                            poisson_ratio=p.poisson_ratio, friction=p.friction,
-                            normal_contact=normal_contact, normal_slope=1e6, **kw)
+    return build_mesh_model(box_hexmesh(p, "24x4x1"), rigid_base(contact_set="contact",
+                                                                 clamp_set="clamp",
+                                                                 normal_force=p.normal_force,
+                                                                 modulus=p.modulus,
+                                                                 poisson_ratio=p.poisson_ratio,
+                                                                 friction=p.friction,
+                                                                 normal_contact=normal_contact,
+                                                                 normal_slope=1e6), **kw)
 
 
 @pytest.mark.parametrize("case, normal", [("tip", "fixed"), ("centre", "fixed"),
@@ -81,8 +86,9 @@ def test_stuck_block_is_linear_elastic() -> None:
     """Far below the slip limit (mu huge) the response is that of the linear system
     (K + C^T lambda A C) u = f: checked against a direct solve; W = 0 with its reason."""
     mesh = _block(3, 3, 2)
-    m = build_mesh_model(mesh, contact_set="bottom", clamp_set="top", normal_force=1000.0,
-                         modulus=70000.0, poisson_ratio=0.3, friction=1e6)
+    m = build_mesh_model(mesh, rigid_base(contact_set="bottom", clamp_set="top",
+                                          normal_force=1000.0, modulus=70000.0, poisson_ratio=0.3,
+                                          friction=1e6))
     load = MeshLoad("right", (0.0, 1.0, 0.0), 50.0)
     r = solve_mesh(m, [load], SineCycles(increments=8))
     assert r.dissipated_energy == 0.0 and "stick throughout" in (r.reason or "")
@@ -114,8 +120,9 @@ def test_rigid_block_in_torsion_matches_the_closed_form() -> None:
     body. W and the peak rotation from the closed form (to the stiffness ratio and the
     trapezoidal loop of 80 increments)."""
     mesh = _block(4, 4, 1)
-    m = build_mesh_model(mesh, contact_set="bottom", clamp_set="top", normal_force=1000.0,
-                         modulus=1e9, poisson_ratio=0.0, friction=0.5, stick_slope=1e3)
+    m = build_mesh_model(mesh, rigid_base(contact_set="bottom", clamp_set="top",
+                                          normal_force=1000.0, modulus=1e9, poisson_ratio=0.0,
+                                          friction=0.5, stick_slope=1e3))
     assert m.normal_force == pytest.approx(1000.0 * m.contact_area / 100.0, rel=1e-9)
     f0 = 150.0  # torque 10 F0 = 1500 N mm: first slip at 1.2e3, full slip at 1.9e3 N mm
     loads = [MeshLoad("right", (0.0, 1.0, 0.0), f0), MeshLoad("left", (0.0, -1.0, 0.0), f0)]
@@ -151,9 +158,10 @@ def test_a_rotated_mesh_gives_the_same_answer() -> None:
     turned = HexMesh(mesh.nodes @ rot.T, mesh.elements, mesh.node_sets, source="turned")
     kw = {"contact_set": "bottom", "clamp_set": "top", "normal_force": 1000.0,
           "modulus": 70000.0, "poisson_ratio": 0.3, "friction": 0.3}
-    a = solve_mesh(build_mesh_model(mesh, **kw), [MeshLoad("right", (1.0, 0.0, 0.0), 200.0)],
+    a = solve_mesh(build_mesh_model(mesh, rigid_base(**kw)),
+                   [MeshLoad("right", (1.0, 0.0, 0.0), 200.0)],
                    SineCycles(increments=16), record=True)
-    b = solve_mesh(build_mesh_model(turned, **kw),
+    b = solve_mesh(build_mesh_model(turned, rigid_base(**kw)),
                    [MeshLoad("right", tuple(rot @ (1.0, 0.0, 0.0)), 200.0)],  # type: ignore
                    SineCycles(increments=16), record=True)
     assert a.dissipated_energy > 0
@@ -189,7 +197,7 @@ def test_the_condensed_body_gives_the_full_answer(normal: str) -> None:
                                                                 90.0)]
     runs = []
     for condensed in (False, True):
-        m = build_mesh_model(mesh, condensed=condensed, **kw)  # type: ignore[arg-type]
+        m = build_mesh_model(mesh, rigid_base(**kw), condensed=condensed)  # type: ignore[arg-type]
         assert (m.reduced is not None) == condensed
         runs.append(solve_mesh(m, loads, SineCycles(increments=16), record=True))
     full, cond = runs
@@ -209,15 +217,16 @@ def test_a_renumbered_mesh_gives_the_same_answer() -> None:
     (reported under the file's node numbers) are those of the ordered mesh."""
     kw = {"contact_set": "contact", "clamp_set": "clamp", "normal_force": 2000.0,
           "modulus": 70000.0, "poisson_ratio": 0.33, "friction": 0.5,
-          "normal_contact": "penalty", "normal_slope": 1e6, "condensed": False}
+          "normal_contact": "penalty", "normal_slope": 1e6}
     mesh = _cantilever(12, 3, 1)
     perm = np.random.default_rng(1).permutation(len(mesh.nodes))  # new node k = old perm[k]
     inv = np.argsort(perm)
     shuffled = HexMesh(mesh.nodes[perm], inv[mesh.elements],
                        {k: inv[v] for k, v in mesh.node_sets.items()}, source="shuffled")
     loads = [MeshLoad("tip", (1.0, 0.0, 0.0), 500.0)]
-    a_model = build_mesh_model(mesh, **kw)  # type: ignore[arg-type]
-    b_model = build_mesh_model(shuffled, **kw)  # type: ignore[arg-type]
+    a_model = build_mesh_model(mesh, rigid_base(**kw), condensed=False)  # type: ignore[arg-type]
+    b_model = build_mesh_model(shuffled, rigid_base(**kw),  # type: ignore[arg-type]
+                               condensed=False)
     assert not np.array_equal(b_model.order, np.sort(b_model.order))  # renumbered
     a = solve_mesh(a_model, loads, SineCycles(increments=16))
     b = solve_mesh(b_model, loads, SineCycles(increments=16))
@@ -233,12 +242,13 @@ def test_sparse_and_banded_factorisations_agree() -> None:
     """SuperLU (the wide-band meshes) and the banded Cholesky give the same loading, and the
     condensation's Schur complement is the same through either."""
     kw = {"contact_set": "contact", "clamp_set": "clamp", "normal_force": 2000.0,
-          "modulus": 70000.0, "poisson_ratio": 0.33, "friction": 0.5, "condensed": False}
+          "modulus": 70000.0, "poisson_ratio": 0.33, "friction": 0.5}
     mesh = _cantilever(12, 3, 1)
     loads = [MeshLoad("tip", (1.0, 0.0, 0.0), 500.0)]
     w = []
     for solver in ("banded", "splu"):
-        m = build_mesh_model(mesh, linear_solver=solver, **kw)  # type: ignore[arg-type]
+        m = build_mesh_model(mesh, rigid_base(**kw),  # type: ignore[arg-type]
+                             linear_solver=solver, condensed=False)
         assert m.backend.name == solver
         w.append(solve_mesh(m, loads, SineCycles(increments=16)).dissipated_energy)
     assert w[0] > 0 and w[1] == pytest.approx(w[0], rel=1e-9)
@@ -279,7 +289,7 @@ def test_bad_meshes_and_sets_are_refused_in_one_line() -> None:
     for expected, (m, kw) in cases.items():
         with pytest.raises(ParameterError, match=expected.replace("(", r"\(").replace(
                 ")", r"\)")) as err:
-            build_mesh_model(m, **kw)  # type: ignore[arg-type]
+            build_mesh_model(m, rigid_base(**kw))  # type: ignore[arg-type]
         assert "\n" not in str(err.value)
 
 
@@ -290,22 +300,22 @@ def test_loose_parts_and_degenerate_meshes_are_refused() -> None:
                   np.vstack([mesh.elements, mesh.elements + len(mesh.nodes)]),
                   mesh.node_sets, source="two.inp")
     with pytest.raises(ParameterError, match="2 elements are not connected to the contact"):
-        build_mesh_model(two, **_kw())  # type: ignore[arg-type]
+        build_mesh_model(two, rigid_base(**_kw()))  # type: ignore[arg-type]
     flipped = mesh.elements.copy()
     flipped[1] = flipped[1][[4, 5, 6, 7, 0, 1, 2, 3]]  # top and bottom swapped: inside out
     bad = HexMesh(mesh.nodes, flipped, mesh.node_sets, source="bad.inp")
     with pytest.raises(ParameterError, match=r"bad\.inp: element 2 \(1-based\) has a "
                                              "non-positive Jacobian"):
-        build_mesh_model(bad, **_kw())  # type: ignore[arg-type]
+        build_mesh_model(bad, rigid_base(**_kw()))  # type: ignore[arg-type]
     # 20-node meshes are built (fe.builtin.hex20), and a degenerate one refused the same way
     hex20 = HexMesh(np.zeros((20, 3)), np.arange(20)[None, :], {}, source="q.inp")
     with pytest.raises(ParameterError, match=r"q\.inp: element 1 \(1-based\) has a "
                                              "non-positive Jacobian"):
-        build_mesh_model(hex20, **_kw())  # type: ignore[arg-type]
+        build_mesh_model(hex20, rigid_base(**_kw()))  # type: ignore[arg-type]
 
 
 def test_macroslip_and_bad_histories_are_refused() -> None:
-    m = build_mesh_model(_block(2, 2, 1), **_kw())  # type: ignore[arg-type]
+    m = build_mesh_model(_block(2, 2, 1), rigid_base(**_kw()))  # type: ignore[arg-type]
     with pytest.raises(MacroslipError, match="reaches 300 N >= mu F_N = 300 N"):
         solve_mesh(m, [MeshLoad("right", (1.0, 0.0, 0.0), 300.0)])
     with pytest.raises(ParameterError, match="increments must be a multiple of 4"):

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles
 from microslip.fe.examples import cantilever_mesh, grid_mesh
@@ -74,9 +75,9 @@ def block() -> MeshModel:
         "contact": lambda x, y, z: z < 1e-9,
         "clamp": lambda x, y, z: (z > 5 - 1e-9) & (x > 10 - 1e-9) & (x < 20 + 1e-9),
         "response": lambda x, y, z: z > 5 - 1e-9}, surfaces=("contact", "clamp"))
-    return build_mesh_model(mesh, contact_set="contact", clamp_set="clamp", normal_force=100.0,
-                            modulus=1e8, poisson_ratio=0.0, friction=0.5, stick_slope=1e3,
-                            normal_contact="fixed")
+    return build_mesh_model(mesh, rigid_base(contact_set="contact", clamp_set="clamp",
+                                             normal_force=100.0, modulus=1e8, poisson_ratio=0.0,
+                                             friction=0.5, stick_slope=1e3, normal_contact="fixed"))
 
 
 def _translation(model: MeshModel) -> tuple[Mode, float]:
@@ -140,10 +141,14 @@ def test_two_jenkins_closed_form(block: MeshModel, total_force: float) -> None:
 # ---------------------------------------------------------------- the cantilever
 @pytest.fixture(scope="module")
 def cantilever() -> tuple[MeshModel, Mode]:
-    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                             normal_contact="penalty", normal_slope=1e6)
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                   clamp_set="clamp",
+                                                                   normal_force=2000.0,
+                                                                   modulus=70000.0,
+                                                                   poisson_ratio=0.33, friction=0.5,
+                                                                   stick_slope=1e4,
+                                                                   normal_contact="penalty",
+                                                                   normal_slope=1e6))
     return model, linear_modes(model, RHO, 4, response_set="response").select(1)
 
 

@@ -19,6 +19,7 @@ from microslip.dynamics.operators2d import CircularIwan
 from microslip.dynamics.structure import SI_PER_MM
 from microslip.dynamics.timeint import transient
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics.reduce import (
@@ -35,10 +36,13 @@ E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6
 
 
 def model(nx: int = 24, ny: int = 6, nz: int = 2, normal: str = "fixed"):
-    return build_mesh_model(cantilever_mesh(nx, ny, nz), contact_set="contact",
-                            clamp_set="clamp", normal_force=FN, modulus=E, poisson_ratio=NU,
-                            friction=MU, stick_slope=LAM, normal_contact=normal,
-                            normal_slope=KN)
+    return build_mesh_model(cantilever_mesh(nx, ny, nz), rigid_base(contact_set="contact",
+                                                                    clamp_set="clamp",
+                                                                    normal_force=FN, modulus=E,
+                                                                    poisson_ratio=NU, friction=MU,
+                                                                    stick_slope=LAM,
+                                                                    normal_contact=normal,
+                                                                    normal_slope=KN))
 
 
 @pytest.fixture(scope="module")

@@ -17,6 +17,7 @@ from microslip.dynamics.modal import epmc
 from microslip.dynamics.operators import jenkins
 from microslip.dynamics.operators3d import Contact3D
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics.reduce import build_rom, rom_arrays, rom_structure, write_rom
@@ -26,10 +27,13 @@ E, NU, RHO, MU, FN, LAM, KN = 70000.0, 0.33, 2700.0, 0.5, 2000.0, 1e4, 1e6
 
 
 def _rom(normal: str):
-    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=FN, modulus=E, poisson_ratio=NU,
-                             friction=MU, stick_slope=LAM, normal_contact=normal,
-                             normal_slope=KN)
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                   clamp_set="clamp",
+                                                                   normal_force=FN, modulus=E,
+                                                                   poisson_ratio=NU, friction=MU,
+                                                                   stick_slope=LAM,
+                                                                   normal_contact=normal,
+                                                                   normal_slope=KN))
     return model, build_rom(model, RHO, modes=6, response_set="response")
 
 

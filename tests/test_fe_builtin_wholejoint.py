@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import CANTILEVER, cantilever_mesh
 from microslip.meshdynamics.modes import linear_modes
@@ -27,9 +28,12 @@ RHO = 2700.0
 
 @pytest.fixture(scope="module")
 def model():  # type: ignore[no-untyped-def]
-    return build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                            clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4)
+    return build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                  clamp_set="clamp",
+                                                                  normal_force=2000.0,
+                                                                  modulus=70000.0,
+                                                                  poisson_ratio=0.33, friction=0.5,
+                                                                  stick_slope=1e4))
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +46,8 @@ def rom(model):  # type: ignore[no-untyped-def]
     return build_rom(model, RHO, modes=20, response_set="response")
 
 
-def test_rigid_motion_of_the_interface_stores_no_energy(model, rom) -> None:  # type: ignore[no-untyped-def]
+def test_rigid_motion_of_the_interface_stores_no_energy(model,
+                                                        rom) -> None:  # type: ignore[no-untyped-def]
     """r1, r2 and the in-plane rotation c move the whole body rigidly (the constraint modes
     carry the interface's rigid motion inside): K_j p = 0 to rounding."""
     face = interface(model)
@@ -54,7 +59,8 @@ def test_rigid_motion_of_the_interface_stores_no_energy(model, rom) -> None:  # 
         assert float(np.max(np.abs(k @ p))) < 1e-9 * scale
 
 
-def test_rigid_translation_carries_the_body_mass(model, rom) -> None:  # type: ignore[no-untyped-def]
+def test_rigid_translation_carries_the_body_mass(model,
+                                                 rom) -> None:  # type: ignore[no-untyped-def]
     """T^T M T of a unit translation r1 (or r2) is the body's mass, rho x volume (t)."""
     _, m, _ = reduce_to_interface(rom, interface(model))
     c = CANTILEVER
@@ -74,7 +80,8 @@ def test_stuck_contact_is_the_summed_stiffness_on_every_coordinate(model) -> Non
                                * np.eye(3), rtol=0, atol=1e-9 * model.contact_stiffness.sum())
 
 
-def test_backbone_starts_at_the_stuck_interface_stiffness(model, modes) -> None:  # type: ignore[no-untyped-def]
+def test_backbone_starts_at_the_stuck_interface_stiffness(model,
+                                                          modes) -> None:  # type: ignore[no-untyped-def]
     """The first loading's first (stuck) increment has the slope sum lambda A_i, in the
     translation and in the rotation, and both curves soften (concave) towards gross
     sliding."""
@@ -90,7 +97,8 @@ def test_backbone_starts_at_the_stuck_interface_stiffness(model, modes) -> None:
     assert bb.translation().initial_stiffness == pytest.approx(k, rel=1e-9)
 
 
-def test_out_of_plane_bending_gives_no_interface_law(model, modes) -> None:  # type: ignore[no-untyped-def]
+def test_out_of_plane_bending_gives_no_interface_law(model,
+                                                     modes) -> None:  # type: ignore[no-untyped-def]
     """Out-of-plane bending: the contact's resultant opposes its mean motion (the bending
     strain stretches the interface), so the joint is the pull test's and the mode does
     not turn the interface."""
@@ -104,7 +112,8 @@ def test_out_of_plane_bending_gives_no_interface_law(model, modes) -> None:  # t
 
 
 @pytest.mark.slow
-def test_epmc_starts_at_the_whole_joint_stuck_frequency(model, modes, rom) -> None:  # type: ignore[no-untyped-def]
+def test_epmc_starts_at_the_whole_joint_stuck_frequency(model, modes,
+                                                        rom) -> None:  # type: ignore[no-untyped-def]
     """Below first slip the EPMC's frequency is the whole-joint model's stuck frequency and
     its damping ratio is nil."""
     mode = modes.select(2)
@@ -148,9 +157,12 @@ def test_penalty_interface_holds_its_normal_motion_on_the_summed_springs() -> No
     tilts: a unit w stretches no element and compresses every penalty spring, K_j[w, w] =
     sum k_n A_i, and the tilts are held by sum k_n A_i times the squared arm (over R^2),
     uncoupled from w about the area-weighted centroid."""
-    m = build_mesh_model(cantilever_mesh(6, 1, 1), contact_set="contact", clamp_set="clamp",
-                         normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
-                         friction=0.5, stick_slope=1e4, normal_contact="penalty")
+    m = build_mesh_model(cantilever_mesh(6, 1, 1), rigid_base(contact_set="contact",
+                                                              clamp_set="clamp",
+                                                              normal_force=2000.0, modulus=70000.0,
+                                                              poisson_ratio=0.33, friction=0.5,
+                                                              stick_slope=1e4,
+                                                              normal_contact="penalty"))
     rom = build_rom(m, RHO, modes=5)
     face = interface(m)
     assert face.coordinates == ("r1", "r2", "c", "w", "t1", "t2")
@@ -165,7 +177,8 @@ def test_penalty_interface_holds_its_normal_motion_on_the_summed_springs() -> No
         assert abs(k[j, j]) < 1e-9 * kn.sum()
 
 
-def test_clamp_model_backbone_on_the_contact_patch(model, modes) -> None:  # type: ignore[no-untyped-def]
+def test_clamp_model_backbone_on_the_contact_patch(model,
+                                                   modes) -> None:  # type: ignore[no-untyped-def]
     """--backbone tip: the paper's tip model on the contact patch seen along the mode's
     motion (in-plane bending: along y, the patch 25.4 mm long, 50.8 mm wide, the bar 6.35 mm
     thick) behind the contact layer sum lambda A_i: its initial slope is near the FE's
@@ -189,7 +202,8 @@ def test_clamp_model_backbone_on_the_contact_patch(model, modes) -> None:  # typ
     assert bb.translation().initial_stiffness == pytest.approx(slope, rel=1e-9)
 
 
-def test_work_backbone_does_the_interface_s_whole_work(model, modes) -> None:  # type: ignore[no-untyped-def]
+def test_work_backbone_does_the_interface_s_whole_work(model,
+                                                       modes) -> None:  # type: ignore[no-untyped-def]
     """--backbone work: the same forces as the kinematic backbone, the displacements
     stretched by the interface's work over its rigid motion's, so that the joint's work
     along the loading is the friction forces' whole work (to the concave majorant's

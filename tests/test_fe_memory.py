@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
 
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import SpentBackend, build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics import modes as modes_mod
@@ -19,9 +20,12 @@ RHO = 2700.0
 
 
 def _model(counts: tuple[int, int, int], **kw: object):  # type: ignore[no-untyped-def]
-    return build_mesh_model(cantilever_mesh(*counts), contact_set="contact",
-                            clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                            poisson_ratio=0.33, friction=0.5, stick_slope=1e4, **kw)
+    return build_mesh_model(cantilever_mesh(*counts), rigid_base(contact_set="contact",
+                                                                 clamp_set="clamp",
+                                                                 normal_force=2000.0,
+                                                                 modulus=70000.0,
+                                                                 poisson_ratio=0.33, friction=0.5,
+                                                                 stick_slope=1e4), **kw)
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +45,8 @@ def test_condensed_model_keeps_only_the_name_of_its_full_solver() -> None:
 
 
 @pytest.mark.parametrize("band_limit", [10**9, -1])  # banded Cholesky, SuperLU
-def test_shift_inverse_solves(model, band_limit, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_shift_inverse_solves(model, band_limit,
+                              monkeypatch) -> None:  # type: ignore[no-untyped-def]
     monkeypatch.setattr(modes_mod, "AUTO_BAND_LIMIT", band_limit)
     k = modal_stiffness(model)
     rhs = np.linspace(-1.0, 2.0, k.shape[0])
@@ -60,7 +65,8 @@ def test_modes_same_by_either_factor(model, monkeypatch) -> None:  # type: ignor
 
 
 @pytest.mark.parametrize("block", [256, 7])  # one block, several (7 does not divide n_b)
-def test_rom_blocks_equal_dense_constraint_modes(model, block, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_rom_blocks_equal_dense_constraint_modes(model, block,
+                                                 monkeypatch) -> None:  # type: ignore[no-untyped-def]
     monkeypatch.setattr(reduce_mod, "BLOCK", block)
     rom = build_rom(model, RHO, modes=4, response_set="response")
     # the direct way: Psi = -K_ii^-1 K_ib held whole

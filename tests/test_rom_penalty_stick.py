@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from microslip.dynamics.modal import quasi_static
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics.modes import linear_modes
@@ -25,10 +26,14 @@ def test_stick_forces_bring_the_penalty_rom_to_the_full_fe() -> None:
     0.1 % and its damping ratio within 3 % of the full FE's (measured 0.04 %, +1.6 %);
     without them 0.45 % and -4.4 % (the test asserts it is worse, so that it cannot pass
     with the stick forces ignored)."""
-    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                             normal_contact="penalty", normal_slope=1e6)
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                   clamp_set="clamp",
+                                                                   normal_force=2000.0,
+                                                                   modulus=70000.0,
+                                                                   poisson_ratio=0.33, friction=0.5,
+                                                                   stick_slope=1e4,
+                                                                   normal_contact="penalty",
+                                                                   normal_slope=1e6))
     mode = linear_modes(model, 2700.0, 6, "stuck", "response").select(2)
     rom = build_rom(model, 2700.0, modes=20, response_set="response")
     assert rom.stick_force is not None
@@ -54,10 +59,14 @@ def test_stick_forces_travel_in_the_structure_file(tmp_path) -> None:  # type: i
     from microslip.errors import ParameterError
     from microslip.meshdynamics.reduce import rom_arrays, write_rom
 
-    model = build_mesh_model(cantilever_mesh(6, 2, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
-                             poisson_ratio=0.33, friction=0.5, stick_slope=1e4,
-                             normal_contact="penalty", normal_slope=1e6)
+    model = build_mesh_model(cantilever_mesh(6, 2, 1), rigid_base(contact_set="contact",
+                                                                  clamp_set="clamp",
+                                                                  normal_force=2000.0,
+                                                                  modulus=70000.0,
+                                                                  poisson_ratio=0.33, friction=0.5,
+                                                                  stick_slope=1e4,
+                                                                  normal_contact="penalty",
+                                                                  normal_slope=1e6))
     rom = build_rom(model, 2700.0, modes=4)
     path = tmp_path / "rom.npz"
     write_rom(str(path), rom)

@@ -9,6 +9,7 @@ import pytest
 
 from microslip.dynamics.modal import quasi_static
 from microslip.dynamics.modal_odd import epmc_odd
+from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.examples import cantilever_mesh
 from microslip.meshdynamics.modes import linear_modes
@@ -24,9 +25,12 @@ def in_plane():
     """The FE's QSMA of the in-plane bending (mode 2) at 1.5 and 2.5 times its first-slip
     force (damping ratio about 1.6 % and 3.5 %), and the ROM (20 fixed-interface modes)
     with the response set's mean motion along the mode as its output."""
-    model = build_mesh_model(cantilever_mesh(12, 3, 1), contact_set="contact",
-                             clamp_set="clamp", normal_force=FN, modulus=E, poisson_ratio=NU,
-                             friction=MU, stick_slope=LAM, normal_contact="fixed")
+    model = build_mesh_model(cantilever_mesh(12, 3, 1), rigid_base(contact_set="contact",
+                                                                   clamp_set="clamp",
+                                                                   normal_force=FN, modulus=E,
+                                                                   poisson_ratio=NU, friction=MU,
+                                                                   stick_slope=LAM,
+                                                                   normal_contact="fixed"))
     mode = linear_modes(model, RHO, 2, response_set="response").select(2)
     forces = np.array([1.5, 2.5]) * first_slip_force(model, mode)
     fe = qsma(model, mode, forces)

@@ -111,13 +111,12 @@ class MeshClamp:
                 "normal_slope": self.normal_slope}
 
 
-def clamped_model(mesh: HexMesh, clamp: MeshClamp, **options: Any) -> MeshModel:
+def clamped_model(mesh: HexMesh, clamp: MeshClamp | Assembly, **options: Any) -> MeshModel:
     """The body of ``mesh`` on its rigid base, clamped by ``clamp``: the built-in solver's
     :class:`~microslip.fe.builtin.meshmodel.MeshModel` after the clamping step (``options``:
     ``element``, ``linear_solver``, ``newton``, ``condensed`` of
     :func:`~microslip.fe.builtin.meshmodel.build_mesh_model`)."""
+    from .assembly import as_assembly
     from .builtin.meshmodel import build_mesh_model
 
-    if not isinstance(clamp, MeshClamp):
-        raise ParameterError(f"clamp must be a MeshClamp, got {type(clamp).__name__}")
-    return build_mesh_model(mesh, **clamp.model_options(), **options)
+    return build_mesh_model(mesh, as_assembly(clamp), **options)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -239,4 +240,31 @@ def check_roles(mesh: HexMesh, contact: str, clamp: str,
         name = load.set if isinstance(load, MeshLoad) else str(load)
         check_set(mesh, name, "set of a load")
     check_joined(mesh)
+    check_elements(mesh)
+
+
+def check_assembly(mesh: HexMesh, assembly: Any, loads: Iterable[MeshLoad | str] = ()) -> None:
+    """:func:`check_roles` for an :class:`~microslip.fe.assembly.Assembly`: its shorthand
+    (one body on the rigid base) exactly as :func:`check_roles`; otherwise every contact,
+    counter, preload and support set must exist and hold element faces on the boundary, each
+    load's set must hold faces, and the elements must be sound (the builder pairs the
+    interfaces and checks their coincident nodes)."""
+    from .assembly import as_assembly
+
+    a = as_assembly(assembly)
+    if a.is_shorthand:
+        check_roles(mesh, a.contact_set, a.clamp_set, loads)
+        return
+    for c in a.contacts:
+        check_set(mesh, c.face, "contact set", boundary=True)
+        if c.counter is not None:
+            check_set(mesh, c.counter, "counter face", boundary=True)
+    for p in a.preloads:
+        check_set(mesh, p.face, "preload face", boundary=True)
+    for s in a.supports:
+        if s.set not in mesh.node_sets:
+            check_set(mesh, s.set, "support")
+    for load in loads:
+        name = load.set if isinstance(load, MeshLoad) else str(load)
+        check_set(mesh, name, "set of a load")
     check_elements(mesh)

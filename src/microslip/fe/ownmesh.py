@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..io import atomic_write, write_loop_csv
+from .assembly import Assembly, as_assembly
 from .clamp import MeshClamp
 from .hexmesh import HexMesh
 from .meshload import MeshLoad
@@ -56,7 +57,7 @@ class OwnMeshCase:
     """
 
     mesh_file: str
-    clamp: MeshClamp
+    clamp: Assembly | MeshClamp
     loads: tuple[MeshLoad, ...]
     substeps: int = 50
     history: str = "settle"
@@ -68,8 +69,7 @@ class OwnMeshCase:
     element: str | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.clamp, MeshClamp):
-            raise ParameterError(f"clamp must be a MeshClamp, got {type(self.clamp).__name__}")
+        object.__setattr__(self, "clamp", as_assembly(self.clamp))
         if not self.loads:
             raise ParameterError("give at least one --load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]")
         if self.history not in HISTORIES:
@@ -110,13 +110,13 @@ class OwnMeshRun:
 
 
 def _mesh_of(case: OwnMeshCase) -> HexMesh:
-    from .meshcheck import check_roles
+    from .meshcheck import check_assembly
     from .meshfile import read_mesh
     from .promote import as_element
     from .refine import refine_mesh
 
     mesh = read_mesh(case.mesh_file)
-    check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, case.loads)
+    check_assembly(mesh, as_assembly(case.clamp), case.loads)
     return as_element(refine_mesh(mesh, case.refine), case.element)
 
 
@@ -141,8 +141,17 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
 def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
     from .calculix.meshrun import run_mesh_calculix
 
+    a = as_assembly(case.clamp)
+    if not a.is_shorthand:
+        raise ParameterError("--solver calculix takes one body on the rigid base for now; "
+                             "assemblies run with --solver builtin")
+    options: dict[str, Any] = {"contact_set": a.contact_set, "clamp_set": a.clamp_set,
+               "normal_force": a.clamp_force, "modulus": a.modulus,
+               "poisson_ratio": a.poisson_ratio, "friction": a.friction,
+               "stick_slope": a.stick_slope, "normal_contact": a.normal_contact,
+               "normal_slope": a.normal_slope}
     result = run_mesh_calculix(
-        mesh, **case.clamp.model_options(), loads=case.loads,
+        mesh, **options, loads=case.loads,
         increments_per_cycle=case.increments,
         cycles=1 if case.history == "paper" else case.cycles,
         startup="quarter" if case.history == "paper" else "ramp", **case.options)

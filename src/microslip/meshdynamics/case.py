@@ -20,6 +20,7 @@ import numpy as np
 
 from ..conventions import BACKBONE_NAMES, DEFAULT_INTERFACE_MODES, DEFAULT_ROM_MODES, MAX_MODE
 from ..errors import ParameterError
+from ..fe.assembly import Assembly
 from ..fe.clamp import MeshClamp
 
 if TYPE_CHECKING:
@@ -54,8 +55,10 @@ class StructureCase:
     ----------
     mesh : str, Path or HexMesh
         A hexahedral mesh file (.inp, .msh, .vtu, ...) or a mesh already read.
-    clamp : MeshClamp
-        The clamp (:class:`microslip.fe.clamp.MeshClamp`).
+    clamp : Assembly or MeshClamp
+        The assembly (:class:`microslip.fe.assembly.Assembly`), or the clamp on the rigid
+        base as its shorthand (:class:`microslip.fe.clamp.MeshClamp`); kept as the
+        assembly.
     density : float
         rho, kg/m^3 (> 0).
     mode : int
@@ -76,7 +79,7 @@ class StructureCase:
     """
 
     mesh: Any
-    clamp: MeshClamp
+    clamp: Assembly | MeshClamp
     density: float
     mode: int = 1
     response_set: str | None = None
@@ -86,8 +89,9 @@ class StructureCase:
     element: str | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.clamp, MeshClamp):
-            raise ParameterError(f"clamp must be a MeshClamp, got {type(self.clamp).__name__}")
+        from ..fe.assembly import as_assembly
+
+        object.__setattr__(self, "clamp", as_assembly(self.clamp))
         try:
             rho = float(self.density)
         except (TypeError, ValueError):
@@ -173,13 +177,13 @@ class OnStructure:
 def read_structure_mesh(case: StructureCase, sets: Sequence[str] = ()) -> HexMesh:
     """The case's mesh, read if a path, with its role sets (and the response set and
     ``sets``) checked."""
-    from ..fe.meshcheck import check_roles, check_set
+    from ..fe.meshcheck import check_assembly, check_set
     from ..fe.meshfile import read_mesh
 
     mesh = read_mesh(case.mesh) if isinstance(case.mesh, str | Path) else case.mesh
     if case.response_set:  # named as what it is (not "the set of a load")
         check_set(mesh, case.response_set, "response set")
-    check_roles(mesh, case.clamp.contact_set, case.clamp.clamp_set, sets)
+    check_assembly(mesh, case.clamp, sets)
     from ..fe.promote import as_element
 
     return as_element(mesh, case.element)

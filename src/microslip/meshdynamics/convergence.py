@@ -8,7 +8,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from ..fe.convergence import FrequencyConvergence, converge_frequencies
 from ..fe.hexmesh import HexMesh
 
@@ -24,14 +23,8 @@ def converge_stuck_frequencies(model: Any, density_kg_m3: float, count: int,
     from .modes import linear_modes
 
     def frequencies(mesh: HexMesh) -> tuple[int, Any]:
-        m = model if mesh is model.mesh else build_mesh_model(
-            mesh, contact_set=model.contact_set, clamp_set=model.clamp_set,
-            normal_force=model.clamp_force, modulus=model.modulus,
-            poisson_ratio=model.poisson_ratio, friction=model.friction,
-            stick_slope=model.stick_slope,
-            normal_contact="fixed" if model.normal is None else "penalty",
-            normal_slope=(DEFAULT_NORMAL_SLOPE if model.normal is None
-                          else model.normal.slope), element=model.element)
+        m = model if mesh is model.mesh else build_mesh_model(mesh, model.assembly,
+                                                              element=model.element)
         return m.dof, linear_modes(m, density_kg_m3, count, "stuck").frequencies_Hz
 
     return converge_frequencies(model.mesh, frequencies, levels)

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
+from ..fe.assembly import Assembly
 from ..fe.builtin.meshmodel import MESH_LINEAR_SOLVERS, MeshModel, build_mesh_model
 from ..fe.builtin.meshrun import SineCycles, VectorLoad, _plane_resultant, _Run, solve_mesh
 from ..fe.errors import NonConvergenceError
@@ -440,29 +441,26 @@ class _Recipe:
     source: str
     kwargs: dict[str, Any]
     token: str
+    assembly: Assembly
+    element_sets: dict[str, NDArray[np.int64]]
 
     @classmethod
     def of(cls, model: MeshModel) -> _Recipe:
         m = model.mesh
         linear = model.backend.name if model.backend.name in MESH_LINEAR_SOLVERS else "auto"
         kwargs: dict[str, Any] = dict(
-            contact_set=model.contact_set, clamp_set=model.clamp_set,
-            normal_force=model.clamp_force, modulus=model.modulus,
-            poisson_ratio=model.poisson_ratio, friction=model.friction,
-            stick_slope=model.stick_slope, normal_contact=model.normal_contact,
             element=model.element, linear_solver=linear, newton=model.newton,
             condensed=model.reduced is not None)
-        if model.normal is not None:
-            kwargs["normal_slope"] = model.normal.slope
         return cls(np.asarray(m.nodes), np.asarray(m.elements),
                    {k: np.asarray(v) for k, v in m.node_sets.items()},
                    {k: np.asarray(v) for k, v in m.surfaces.items()}, m.source, kwargs,
-                   uuid.uuid4().hex)
+                   uuid.uuid4().hex, model.assembly,
+                   {k: np.asarray(v) for k, v in m.element_sets.items()})
 
     def build(self) -> MeshModel:
         mesh = HexMesh(self.nodes, self.elements, self.node_sets, self.surfaces,
-                       source=self.source)
-        return build_mesh_model(mesh, **self.kwargs)
+                       source=self.source, element_sets=self.element_sets)
+        return build_mesh_model(mesh, self.assembly, **self.kwargs)
 
 
 #: The model a worker process built last, by its recipe's token (one model per worker).

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ..assembly import rigid_base
 from ..errors import ParameterError
 from ..fe.builtin.meshmodel import MeshModel, build_mesh_model
 from ..fe.hexmesh import HexMesh
@@ -58,10 +59,10 @@ class TwoModeCase:
 
 def two_mode_model(mesh: HexMesh, case: TwoModeCase) -> MeshModel:
     """The clamped body of ``mesh`` (fixed normal contact, the case's law)."""
-    return build_mesh_model(mesh, contact_set=case.contact_set, clamp_set=case.clamp_set,
-                            normal_force=case.normal_force, modulus=case.modulus,
-                            poisson_ratio=case.poisson_ratio, friction=case.friction,
-                            stick_slope=case.stick_slope)
+    return build_mesh_model(mesh, rigid_base(contact_set=case.contact_set, clamp_set=case.clamp_set,
+                                             normal_force=case.normal_force, modulus=case.modulus,
+                                             poisson_ratio=case.poisson_ratio,
+                                             friction=case.friction, stick_slope=case.stick_slope))
 
 
 @dataclass(frozen=True, eq=False)

@@ -37,10 +37,10 @@ from numpy.typing import NDArray
 
 from ...blas import single_threaded_blas
 from ...errors import ParameterError
-from ...params import check_positive
-from ..constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
+from ..assembly import Assembly, as_assembly
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
+from .bodies import contact_layout, element_materials, relative_transform
 from .condense import Reduced, condense
 from .element import assemble_hex8, hex8_b_matrices
 from .hex20 import (
@@ -93,16 +93,12 @@ class MeshModel:
     Attributes
     ----------
     mesh : HexMesh
-    contact_set, clamp_set : str
+    assembly : Assembly
+        What it was built from (contacts, preloads, supports, materials, contact law); the
+        shorthand's names ``contact_set``, ``clamp_set``, ``modulus``, ``poisson_ratio``,
+        ``friction``, ``clamp_force`` (F_N, N: the largest preload) and ``stick_slope`` are
+        read from it.
     element : str
-    modulus, poisson_ratio : float
-        E (MPa) and nu.
-    friction : float
-        mu.
-    clamp_force : float
-        F_N, N.
-    stick_slope : float
-        lambda, N/mm^3.
     normal : PenaltyNormal or None
         ``penalty`` normal contact; None: ``fixed``.
     rotation : ndarray, shape (3, 3)
@@ -140,17 +136,17 @@ class MeshModel:
     reduced : Reduced or None
         The body condensed onto the contact dofs (:mod:`.condense`), which the tangential
         loading then steps; None: the loading steps every free dof.
+    transform : scipy.sparse.csr_matrix or None
+        T with u = T v (model frame, every model dof): the nodal displacements from the
+        model's unknowns, whose contact nodes of a pair hold their displacement relative to
+        their partner (:mod:`.bodies`); None: the identity (no pair).
+    contact_master : ndarray of int, shape (n_c,) or None
+        Model node of each contact node's partner on the counter face (-1: the rigid base).
     """
 
     mesh: HexMesh
-    contact_set: str
-    clamp_set: str
+    assembly: Assembly
     element: str
-    modulus: float
-    poisson_ratio: float
-    friction: float
-    clamp_force: float
-    stick_slope: float
     normal: PenaltyNormal | None
     rotation: FloatArray = field(repr=False)
     order: IntArray = field(repr=False)
@@ -172,6 +168,37 @@ class MeshModel:
     setup_s: float
     newton: NewtonOptions
     reduced: Reduced | None = field(default=None, repr=False)
+    transform: sp.csr_matrix | None = field(default=None, repr=False)
+    contact_master: IntArray | None = field(default=None, repr=False)
+
+    # the assembly's values under the names the studies read
+    @property
+    def contact_set(self) -> str:
+        return self.assembly.contact_set
+
+    @property
+    def clamp_set(self) -> str:
+        return self.assembly.clamp_set
+
+    @property
+    def modulus(self) -> float:
+        return self.assembly.modulus
+
+    @property
+    def poisson_ratio(self) -> float:
+        return self.assembly.poisson_ratio
+
+    @property
+    def friction(self) -> float:
+        return self.assembly.friction
+
+    @property
+    def clamp_force(self) -> float:
+        return self.assembly.clamp_force
+
+    @property
+    def stick_slope(self) -> float:
+        return self.assembly.stick_slope
 
     @property
     def dof(self) -> int:
@@ -222,13 +249,33 @@ class MeshModel:
         displacement (force-weighted mean of the set's displacements along the direction)."""
         nodes, share, _ = face_load(self.mesh, set_faces(self.mesh, load.set, "set of a load"))
         d = self.rotation @ np.asarray(load.direction, dtype=float)
-        out = np.zeros(self.free.size)
         base = 3 * self.model_nodes(nodes)
+        if self.transform is not None:  # nodal forces f act on v as T^T f
+            full = np.zeros(self.index.size)
+            for c in range(3):
+                full[base + c] = share * d[c]
+            return self.model_forces(full)
+        out = np.zeros(self.free.size)
         for c in range(3):
             pos = self.index[base + c]
             held = pos < 0
             out[pos[~held]] = share[~held] * d[c]
         return out
+
+    def model_forces(self, full: FloatArray) -> FloatArray:
+        """Nodal forces on every model dof (model frame, N) as forces on the free dofs
+        (T^T f restricted to the unknowns)."""
+        f = np.asarray(full, dtype=float)
+        if self.transform is not None:
+            f = np.asarray(self.transform.T @ f)
+        return np.asarray(f[self.free], dtype=float)
+
+    def nodal(self, full: FloatArray) -> FloatArray:
+        """Model-dof values (..., 3 n_used) as nodal displacements (u = T v)."""
+        if self.transform is None:
+            return full
+        return np.asarray((self.transform @ full.reshape(-1, full.shape[-1]).T).T
+                          ).reshape(full.shape)
 
     def global_vectors(self, u: FloatArray) -> FloatArray:
         """Free-dof displacements (..., dof) as mesh-node vectors (..., n_nodes, 3), global
@@ -236,7 +283,7 @@ class MeshModel:
         u = np.asarray(u, dtype=float)
         full = np.zeros((*u.shape[:-1], self.index.size))
         full[..., self.free] = u
-        local = full.reshape(*u.shape[:-1], self.order.size, 3)
+        local = self.nodal(full).reshape(*u.shape[:-1], self.order.size, 3)
         out = np.zeros((*u.shape[:-1], len(self.mesh.nodes), 3))
         # the identity (the contact already faces -z) is skipped: one copy of every state
         # fewer when a run's fields are converted (qsma records 400 states of 50k dofs)
@@ -247,6 +294,7 @@ class MeshModel:
     def describe(self) -> dict[str, Any]:
         """Plain summary for reports."""
         return {"source": self.mesh.source, "nodes": len(self.mesh.nodes),
+                "assembly": self.assembly.describe(),
                 "elements": len(self.mesh.elements), "element": self.element,
                 "dof": self.dof, "contact_nodes": int(self.contact_nodes.size),
                 "contact_area_mm2": float(self.contact_area.sum()),
@@ -304,37 +352,21 @@ def _backend(name: str, k_ff: sp.csr_matrix, cdofs: IntArray, kc: FloatArray,
     return backend
 
 
-def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
-                     modulus: float, poisson_ratio: float, friction: float,
-                     stick_slope: float = DEFAULT_STICK_SLOPE,
-                     normal_contact: str = DEFAULT_NORMAL_CONTACT,
-                     normal_slope: float = DEFAULT_NORMAL_SLOPE, element: str | None = None,
+def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | None = None,
                      linear_solver: str = "auto", newton: NewtonOptions | None = None,
                      condensed: bool | None = None,
                      contact_weights: str = DEFAULT_CONTACT_WEIGHTS) -> MeshModel:
-    """Assemble the body of a mesh on its rigid base and solve the clamping step.
+    """Assemble the bodies of a mesh and solve the clamping (preload) step.
 
     Parameters
     ----------
     mesh : HexMesh
-        8-node hexahedra, mm.
-    contact_set : str
-        The flat face on the rigid base (a node set or surface of ``mesh``).
-    clamp_set : str
-        The flat face that carries the clamping pressure.
-    normal_force : float
-        F_N, N: the clamping pressure is F_N over the clamp faces' area.
-    modulus : float
-        E, MPa.
-    poisson_ratio : float
-        nu, in (-1, 0.5).
-    friction : float
-        mu.
-    stick_slope : float
-        lambda, N/mm^3.
-    normal_contact : {"fixed", "penalty"}
-    normal_slope : float
-        k_n, N/mm^3 (``penalty``).
+        8- or 20-node hexahedra, mm.
+    assembly : Assembly or MeshClamp
+        The contacts (a face on the rigid base, or a face and its counter face on another
+        body, conforming), the preloads, the supports, the materials and the contact law
+        (:class:`~microslip.fe.assembly.Assembly`; a
+        :class:`~microslip.fe.clamp.MeshClamp` is its rigid-base shorthand).
     element : {"C3D8I", "C3D8"} for 8-node meshes, {"C3D20R", "C3D20"} for 20-node ones
         Default: C3D8I, C3D20R (:data:`MESH_ELEMENTS`).
     linear_solver : {"auto", "banded", "splu", "cholmod"}
@@ -358,67 +390,82 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     Examples
     --------
     >>> from microslip import preset
+    >>> from microslip.fe.assembly import rigid_base
     >>> p = preset("table1")
     >>> from microslip.fe.examples import box_hexmesh
-    >>> m = build_mesh_model(box_hexmesh(p, (8, 2, 1)), contact_set="contact",
-    ...                      clamp_set="clamp", normal_force=445.0, modulus=p.modulus,
-    ...                      poisson_ratio=p.poisson_ratio, friction=p.friction)
+    >>> m = build_mesh_model(box_hexmesh(p, (8, 2, 1)), rigid_base(
+    ...     contact_set="contact", clamp_set="clamp", normal_force=445.0, modulus=p.modulus,
+    ...     poisson_ratio=p.poisson_ratio, friction=p.friction))
     >>> m.dof, round(float(m.normal_force.sum()), 6)
     (135, 445.0)
     """
     t0 = time.perf_counter()
     if not isinstance(mesh, HexMesh):
         raise ParameterError(f"mesh must be a HexMesh, got {type(mesh).__name__}")
+    assembly = as_assembly(assembly)
     kind = MESH_ELEMENTS[mesh.nodes_per_element]
     element = kind.default if element is None else element
     if element not in kind.elements:
         raise ParameterError(f"unknown element {element!r} for {mesh.nodes_per_element}-node "
                              f"hexahedra; choose one of {', '.join(kind.elements)}")
-    f_n = check_positive("normal_force", normal_force, "N")
-    e_mod = check_positive("modulus", modulus, "MPa")
-    nu = _poisson(poisson_ratio)
-    mu = check_positive("friction", friction)
-    lam = check_positive("stick_slope", stick_slope, "N/mm^3")
-    penalty = check_normal_contact(normal_contact) == "penalty"
-    k_n = check_positive("normal_slope", normal_slope, "N/mm^3")
+    f_n = assembly.clamp_force
+    mu, lam, k_n = assembly.friction, assembly.stick_slope, assembly.normal_slope
+    penalty = check_normal_contact(assembly.normal_contact) == "penalty"
     newton = NewtonOptions() if newton is None else newton
 
     try:
         kind.jacobians(mesh.nodes[mesh.elements])
     except ParameterError as exc:
         raise ParameterError(f"{mesh.source}: {exc}") from None
-    contact_faces = set_faces(mesh, contact_set, "contact set", boundary=True)
-    outward, offset = plane(mesh, contact_faces, contact_set)
-    clamp_faces = set_faces(mesh, clamp_set, "clamp set", boundary=True)
-    clamp_out, _ = plane(mesh, clamp_faces, clamp_set)
+    layout = contact_layout(mesh, assembly)
+    contact_faces, outward, offset = layout.faces, layout.outward, layout.offset
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
-    order = numbering(mesh.elements, np.unique(mesh.face_corners(contact_faces)))
-    if float(np.max(mesh.nodes[order] @ outward - offset)) > FLAT_TOL * size:
+    groups = element_materials(mesh, assembly.materials)
+    order = numbering(layout.numbering_elements(mesh.elements),
+                      np.unique(mesh.face_corners(contact_faces)))
+    on_base = layout.base_body_nodes(order)
+    if on_base.size and float(np.max(mesh.nodes[on_base] @ outward - offset)) > FLAT_TOL * size:
         raise ParameterError(f"{mesh.source}: the body reaches through the plane of its "
-                             f"contact set {contact_set!r}: the rigid base would cut it")
+                             f"contact set {layout.base_name!r}: the rigid base would cut it")
     inv = np.full(len(mesh.nodes), -1, dtype=np.int64)
     inv[order] = np.arange(order.size)
     elements = inv[mesh.elements]
-    connected(mesh, elements, order.size, contact_faces, contact_set)
+    if assembly.is_shorthand:
+        connected(mesh, elements, order.size, contact_faces, assembly.contact_set)
+    else:
+        layout.check_held(mesh, assembly)
     rotation = contact_rotation(outward)
     nodes = mesh.nodes[order]
     if not np.array_equal(rotation, np.eye(3)):
         nodes = nodes @ rotation.T
-    k_all = kind.assemble(nodes, elements, e_mod, nu, element)
+    k_all = None
+    for rows, mat in groups:
+        part = kind.assemble(nodes, elements if len(groups) == 1 else elements[rows],
+                             mat.modulus, mat.poisson_ratio, element)
+        k_all = part if k_all is None else k_all + part
 
     c_mesh, area, quad = _contact_areas(mesh, contact_faces, contact_weights)
     c_model = inv[c_mesh]
     sort = np.argsort(c_model)
     contact_nodes, contact = c_mesh[sort], c_model[sort]
     area = area[sort]
+    master = layout.masters(contact_nodes)
     n_all = 3 * order.size
-    # Clamping pressure: F_N along the clamp face's inward normal, consistent shares.
-    k_mesh, k_share, _ = face_load(mesh, clamp_faces)
-    push = -(rotation @ clamp_out)
+    # Preloads: each force along its face's inward normal, consistent shares.
     full = np.zeros(n_all)
-    base = 3 * inv[k_mesh]
-    for c in range(3):
-        full[base + c] = f_n * k_share * push[c]
+    for face, force in layout.preloads:
+        k_mesh, k_share, _ = face_load(mesh, face)
+        push = -(rotation @ plane(mesh, face, "")[0])
+        base = 3 * inv[k_mesh]
+        for c in range(3):
+            full[base + c] += force * k_share * push[c]
+    transform = None
+    if np.any(master >= 0):  # relative interface coordinates: u = T v (:mod:`.bodies`)
+        paired = master >= 0
+        transform = relative_transform(contact[paired], inv[master[paired]], order.size)
+        k_all = (transform.T @ k_all @ transform).tocsr()
+        full = np.asarray(transform.T @ full)
+    supports = layout.support_dofs(inv, rotation)
     # fixed normal contact: nodes the clamp pulls off the base are released (active set);
     # quadratic faces recover N_i from the pressure instead (their corner reactions are
     # negative by the face's consistent weights, not by lift-off): one pass
@@ -426,7 +473,7 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
-                k_all, contact, area, lam, k_n, penalty, released)
+                k_all, contact, area, lam, k_n, penalty, released, supports)
             with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
                 backend = _backend(linear_solver, k_ff, cdofs, kc,
                                    None if springs is None else springs.stiffness)
@@ -457,10 +504,17 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
                                  f"nodes press, which lift off) did not settle in "
                                  f"{MAX_ACTIVE_SET} passes")
     except (np.linalg.LinAlgError, RuntimeError) as err:
+        if assembly.is_shorthand:
+            raise ParameterError(
+                f"{mesh.source}: the body is not held after clamping (its stiffness is "
+                f"singular: {err}); the contact set {assembly.contact_set!r} must be the face "
+                f"on the base and the clamp set {assembly.clamp_set!r} must press the body "
+                "onto it") from None
         raise ParameterError(
-            f"{mesh.source}: the body is not held after clamping (its stiffness is "
-            f"singular: {err}); the contact set {contact_set!r} must be the face on the "
-            f"base and the clamp set {clamp_set!r} must press the body onto it") from None
+            f"{mesh.source}: the assembly is not held after its preload step (its stiffness "
+            f"is singular: {err}); every body needs a support, a face on the rigid base or a "
+            "contact pressed by a preload, and the supports must stop its rigid motions"
+        ) from None
     n_keep = contact.size * (3 if penalty else 2)
     if condensed is None:
         condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
@@ -470,13 +524,13 @@ def build_mesh_model(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_
         reduced = (condense(k_ff, cdofs, springs, clamp, u, AUTO_BAND_LIMIT) if condensed
                    else None)
     return MeshModel(
-        mesh=mesh, contact_set=contact_set, clamp_set=clamp_set, element=element,
-        modulus=e_mod, poisson_ratio=nu, friction=mu, clamp_force=f_n, stick_slope=lam,
+        mesh=mesh, assembly=assembly, element=element,
         normal=springs, rotation=rotation, order=order, index=index, free=free,
         stiffness=k_ff, contact_nodes=contact_nodes, contact_dofs=cdofs, contact_area=area,
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, clamp_load=clamp,
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
-        setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced)
+        setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
+        transform=transform, contact_master=np.where(master >= 0, inv[master], -1))
 
 
 @dataclass(frozen=True)

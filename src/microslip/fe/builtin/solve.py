@@ -162,8 +162,9 @@ def build_model(params: ClampParams, mesh: Any = DEFAULT_MESH, *, stick_slope: f
 
 
 def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray, lam: float,
-                      k_n: float, penalty: bool, released: BoolArray | None = None
-                      ) -> tuple[IntArray, IntArray, sp.csr_matrix, sp.csr_matrix, IntArray,
+                      k_n: float, penalty: bool, released: BoolArray | None = None,
+                      fixed: IntArray | None = None) -> tuple[IntArray, IntArray, sp.csr_matrix,
+                                                              sp.csr_matrix, IntArray,
                                  FloatArray, PenaltyNormal | None]:
     """The dofs of a body on its rigid base (any mesh), its contact nodes ``contact`` (with
     their areas, mm^2) on the plane normal to z (the model frame).
@@ -174,13 +175,16 @@ def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
     nodes' u_z), ``cdofs`` (the contact nodes' free x, y positions), ``kc`` (the stick
     springs lambda A_i, N/mm) and the penalty normal springs (None under ``fixed``).
     ``released`` (``fixed`` only): contact nodes the clamping step lifted off, whose u_z is
-    free too (``k_rf`` then has the held nodes' rows only).
+    free too (``k_rf`` then has the held nodes' rows only). ``fixed``: further dofs held
+    at zero (an assembly's supports).
     """
     n_all = k_all.shape[0]
     held = 3 * (contact if released is None else contact[~released]) + 2
     mask = np.ones(n_all, dtype=bool)
     if not penalty:
         mask[held] = False
+    if fixed is not None:  # supports: held at 0, their reactions not needed
+        mask[fixed] = False
     free = np.flatnonzero(mask).astype(np.int64)
     index = np.full(n_all, -1, dtype=np.int64)
     index[free] = np.arange(free.size)
