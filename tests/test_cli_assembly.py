@@ -12,16 +12,15 @@ from pathlib import Path
 
 import pytest
 from assemblymesh import bar_on_base, write_bar_on_base
-from conftest import one_line_error, run
+from conftest import one_line_error, run, run_json
 
 from microslip.case.assembly import MissingInput, build_assembly
 from microslip.case.meshroles import check_on_mesh, interface_pairs, offer
 from microslip.case.options import parse_args
 from microslip.cli.main import build_parser
-from microslip.cli.ownmesh import library_clamp, mesh_clamp
+from microslip.cli.ownmesh import mesh_clamp
 from microslip.errors import ParameterError
 from microslip.fe.assembly import Assembly, Contact, Material, Preload, Support, rigid_base
-from microslip.fe.clamp import MeshClamp
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 CANTILEVER = str(EXAMPLES / "cantilever.inp")
@@ -75,8 +74,6 @@ def test_the_shorthand_is_the_rigid_base_clamp() -> None:
     assert a == rigid_base(contact_set="contact", clamp_set="clamp", normal_force=2000.0,
                            modulus=70000.0, poisson_ratio=0.33, friction=0.5)
     assert a.is_shorthand
-    assert library_clamp(a) == MeshClamp("contact", "clamp", normal_force=2000.0,
-                                         modulus=70000.0, poisson_ratio=0.33, friction=0.5)
 
 
 def test_the_options_build_the_assembly(two: str) -> None:
@@ -228,13 +225,54 @@ def test_the_fe_checks_the_mesh_before_it_builds_anything(capsys: pytest.Capture
                    "mm across", "a mesh in metres")
 
 
-def test_an_assembly_beyond_the_shorthand_waits_for_the_two_body_fe(
-        capsys: pytest.CaptureFixture[str], two: str) -> None:
-    """Until the FE of issue 32 is in, a checked assembly beyond the shorthand stops with one
-    line saying so (never run as something else)."""
-    one_line_error(run(capsys, "fe", "--mesh", two, *PARTS, "--load", "tip:1,0,0:10"),
-                   "this build's FE runs one body on the rigid base",
-                   "(1 contact, 1 preload, 1 support, 2 materials)")
+BLOCK = str(Path(__file__).resolve().parent / "data" / "meshes" / "cantilever_on_block.inp")
+RIGID = ["--mesh", CANTILEVER, "--contact-set", "contact", "--clamp-set", "clamp",
+         "--normal-force", "2000", "--modulus", "70000", "--poisson-ratio", "0.33", *LAW]
+
+
+@pytest.mark.parametrize("load", ["tip:1,0,0:300", "tip:0,1,0:60"])
+def test_the_bar_on_a_stiff_block_is_the_rigid_base(capsys: pytest.CaptureFixture[str],
+                                                    load: str) -> None:
+    """Issue 32's check through the command line: the cantilever on a block 1000 x stiffer,
+    held at its bottom, gives the rigid base's W within 0.5 % and d within 0.2 %."""
+    block = run_json(capsys, "fe", "--mesh", BLOCK, *PARTS, "--load", load)
+    rigid = run_json(capsys, "fe", *RIGID, "--load", load)
+    assert block["dissipated_energy_Nmm"] > 0 and block["settled"]
+    assert block["dissipated_energy_Nmm"] == pytest.approx(rigid["dissipated_energy_Nmm"],
+                                                           rel=5e-3)
+    assert block["peak_displacement_mm"] == pytest.approx(rigid["peak_displacement_mm"],
+                                                           rel=2e-3)
+    assert block["assembly"]["contacts"] == [{"face": "bar_int", "counter": "base_int"}]
+    assert block["assembly"]["supports"] == [{"set": "base_fix", "directions": "xyz"}]
+
+
+def test_the_assembly_case_file_runs_as_its_options(capsys: pytest.CaptureFixture[str],
+                                                    tmp_path: Path) -> None:
+    import shutil
+
+    shutil.copy(BLOCK, tmp_path / "bar_on_base.inp")
+    (tmp_path / "c.toml").write_text(CASE)
+    by_case = run_json(capsys, "fe", "--case", tmp_path / "c.toml")
+    by_flags = run_json(capsys, "fe", "--mesh", BLOCK, *PARTS, "--load", "tip:1,0,0:100")
+    assert by_case["dissipated_energy_Nmm"] == by_flags["dissipated_energy_Nmm"]
+    assert by_case["assembly"] == by_flags["assembly"]
+
+
+def test_a_structure_takes_one_density(capsys: pytest.CaptureFixture[str],
+                                       tmp_path: Path) -> None:
+    """reduce (as modal and frf --mesh) on two bodies: the materials' own density, or
+    --density; two different ones are refused in one line, none is a usage line."""
+    argv = ["reduce", "--mesh", BLOCK, *PARTS[:6], "--friction", "0.5", "--rom-modes", "5",
+            "--out", tmp_path / "r.npz"]
+    code, out, err = run(capsys, *argv, "--material", "BAR:70000:0.33:2700", "--material",
+                         "BASE:7e7:0.33:2700", "--json")
+    assert code == 0, err
+    assert '"density_kg_m3": 2700.0' in out and (tmp_path / "r.npz").exists()
+    one_line_error(run(capsys, *argv, "--material", "BAR:70000:0.33:2700", "--material",
+                       "BASE:7e7:0.33:7800"), "the materials give densities 2700, 7800")
+    code, _, err = run(capsys, *argv, "--material", "BAR:70000:0.33", "--material",
+                       "BASE:7e7:0.33")
+    assert code == 2 and "--density KG/M3" in err
 
 
 # -- units -------------------------------------------------------------------------------------
@@ -358,21 +396,48 @@ def test_case_check_names_the_missing_keys(capsys: pytest.CaptureFixture[str],
 def test_case_new_writes_the_bodies_and_their_interface(capsys: pytest.CaptureFixture[str],
                                                         two: str, tmp_path: Path) -> None:
     """A mesh of two bodies: a [[mesh.material]] table per body's element set, the
-    interface found as [[mesh.contact]], and the support named as a role to fill; the file
-    parses, and case check then names the body nothing holds."""
+    interface found as [[mesh.contact]], the support found by name as [[mesh.support]]; the
+    file passes case check, and without its support case check names the body nothing
+    holds."""
     path = tmp_path / "two.toml"
     code, out, err = run(capsys, "case", "new", "--mesh", two, path)
-    assert code == 0 and err == ""
-    assert "to fill: [[mesh.support]]" in out
+    assert code == 0 and err == "" and "to fill" not in out
     text = path.read_text()
     assert '[[mesh.contact]]\nface = "bar_int"\ncounter = "base_int"' in text
     assert 'elset = "BAR"  # body 1' in text and 'elset = "BASE"  # body 2' in text
+    assert '[[mesh.support]]\nset = "base_fix"\ndirections = "xyz"' in text
     assert "# 2 bodies: body 1 (BAR); body 2 (BASE)" in text
-    one_line_error(run(capsys, "case", "check", path), "body 1 (BAR) is held by nothing",
-                   "[[mesh.support]]")
-    path.write_text(text + '[[mesh.support]]\nset = "base_fix"\n')
     code, _, err = run(capsys, "case", "check", path)
     assert code == 0, err
+    path.write_text(text.replace('[[mesh.support]]\nset = "base_fix"\ndirections = "xyz"', ""))
+    one_line_error(run(capsys, "case", "check", path), "body 1 (BAR) is held by nothing",
+                   "[[mesh.support]]")
+
+
+def test_case_new_finds_a_bolts_faces_and_names_what_is_left(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    """Two bodies with a bolt's head and nut faces and no support: each face a
+    [[mesh.preload]] (the [clamping] force then commented out: it has no face), the support
+    named as a role to fill."""
+
+    from microslip.fe.hexmesh import HexMesh
+    from microslip.fe.meshfile import write_inp
+
+    m = bar_on_base()
+    sets = {("head" if k == "clamp" else "nut" if k == "base_fix" else k): v
+            for k, v in m.node_sets.items()}
+    faces = {("head" if k == "clamp" else "nut" if k == "base_fix" else k): v
+             for k, v in m.surfaces.items()}
+    write_inp(HexMesh(m.nodes, m.elements, sets, faces, source="bolted",
+                      element_sets=dict(m.element_sets)), tmp_path / "b.inp")
+    code, out, _ = run(capsys, "case", "new", "--mesh", tmp_path / "b.inp", tmp_path / "b.toml")
+    text = (tmp_path / "b.toml").read_text()
+    assert code == 0 and "to fill: [[mesh.support]]" in out and "clamp_set" not in out
+    assert '[[mesh.preload]]\nface = "head"\nforce = 445.0' in text
+    assert '[[mesh.preload]]\nface = "nut"\nforce = 445.0' in text
+    assert "\n# normal_force = 445.0" in text
+    assert offer(bar_on_base()).pairs == (("bar_int", "base_int"),)
+    one_line_error(run(capsys, "case", "check", tmp_path / "b.toml"), "held by nothing")
 
 
 def test_case_new_never_proposes_a_volume_group(capsys: pytest.CaptureFixture[str],

@@ -9,6 +9,7 @@ command reads from it only what the user uncomments.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -145,6 +146,12 @@ MESH_UNUSED_KEYS = ("clamping.pressure",)
 #: Set names taken as a role's value when the mesh has them (else the role is left to fill).
 ROLE_GUESSES = {"contact_set": ("contact", "base", "bottom"), "clamp_set": ("clamp", "top"),
                 "response_set": ("response", "tip")}
+#: Set names taken as a bolt's pressed faces (``[[mesh.preload]]``) and as a support
+#: (``[[mesh.support]]``) in a mesh of several bodies: ``head``, ``nut2``, ``washer``; ``fix``,
+#: ``base_fix``, ``support``.
+PRELOAD_NAMES = re.compile(r"^(head|nut|washer|bolt)[_-]?\d*$", re.IGNORECASE)
+SUPPORT_NAMES = re.compile(r"^(fix|fixed|support|held|ground)[_-]?\d*$|[_-](fix|fixed)$",
+                           re.IGNORECASE)
 #: Set names the example load takes first (a load may act on the response set).
 LOAD_GUESSES = ("load", "tip", "end", "top")
 #: What each role is, for the list of roles a template leaves to fill.
@@ -178,6 +185,14 @@ def _roles(offer: MeshOffer) -> dict[str, str | None]:
             for role, guesses in ROLE_GUESSES.items()}
 
 
+def _named(offer: MeshOffer, pattern: re.Pattern[str]) -> list[str]:
+    """Face sets of a mesh of several bodies whose names match ``pattern`` (not in a pair)."""
+    if len(offer.bodies) < 2:
+        return []
+    paired = {n for p in offer.pairs for n in p}
+    return [n for n in offer.faces if n not in paired and pattern.search(n)]
+
+
 def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
     """The case file of a mesh of the user's own (``case new --mesh``).
 
@@ -195,9 +210,11 @@ def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
     faces = ", ".join(offer.faces) or "none"
     several = len(offer.bodies) > 1
     roles = _roles(offer)
+    bolts = _named(offer, PRELOAD_NAMES) if roles["clamp_set"] is None else []
     unfilled: list[str] = []
     for role, hit in roles.items():
-        if hit is None and not (several and role == "contact_set"):
+        if hit is None and not (several and role == "contact_set") and not (
+                role == "clamp_set" and bolts):
             names = " or ".join(ROLE_GUESSES[role])
             unfilled.append(f"mesh.{role} ({ROLE_MEANINGS[role]}): no face set named {names}; "
                             f"one of: {faces}")
@@ -216,12 +233,17 @@ def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
         for key in KEYS:
             if key.section != section or key.dotted in MESH_UNUSED_KEYS:
                 continue
-            if key.dotted in CLAMP_KEYS:
+            active = True
+            if key.dotted == "clamping.normal_force" and bolts:
+                value, active = base["normal_force"], False
+                note = ("the force of mesh.clamp_set (the shorthand's preload); the "
+                        "[[mesh.preload]] tables below give each face its own")
+            elif key.dotted in CLAMP_KEYS:
                 value = base[CLAMP_KEYS[key.dotted]]
                 note = f"no default: set to {TEMPLATE_PRESET}'s {value:g} as an example, edit it"
             else:
                 value, note = key.default, f"default: {key.default:g}"
-            lines.append(_mesh_line(key, value, True, note))
+            lines.append(_mesh_line(key, value, active, note))
     lines += ["", f"[mesh]  # {SECTIONS['mesh']}",
               f"# sets of {mesh_file}: node sets: {', '.join(offer.node_sets) or 'none'}; "
               f"element-face surfaces: {', '.join(offer.surfaces) or 'none'}; element sets: "
@@ -250,8 +272,9 @@ def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
                 format(key.default, "g")
             lines.append(_mesh_line(key, key.default, False, f"default: {shown}"))
     if several:
-        lines += _assembly_tables(offer, base, unfilled, roles)
-    taken = {roles["contact_set"], roles["clamp_set"]} | {n for p in offer.pairs for n in p}
+        lines += _assembly_tables(offer, base, unfilled, roles, bolts)
+    taken = ({roles["contact_set"], roles["clamp_set"], *bolts, *_named(offer, SUPPORT_NAMES)}
+             | {n for p in offer.pairs for n in p})
     free = [n for n in offer.faces if n not in taken]
     loaded = next((n for n in LOAD_GUESSES if n in free), None) or next(
         (n for n in free if n != roles["response_set"]), None) or next(iter(free), None)
@@ -271,9 +294,10 @@ def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
 
 
 def _assembly_tables(offer: MeshOffer, base: dict[str, Any], unfilled: list[str],
-                     roles: dict[str, str | None]) -> list[str]:
+                     roles: dict[str, str | None], bolts: list[str]) -> list[str]:
     """The [[mesh.material]] tables of the bodies' element sets, the [[mesh.contact]] tables
-    of the interfaces found, and the support a mesh of several bodies needs, commented."""
+    of the interfaces found, the preloads of a bolt's faces and the supports found by name
+    (:data:`PRELOAD_NAMES`, :data:`SUPPORT_NAMES`), or their examples commented."""
     out = ["", "# The bodies' materials: one [[mesh.material]] table per element set (the "
            "values of", "# [material] as an example: edit them)."]
     for body, (sets, name) in enumerate(zip(offer.bodies, offer.body_names, strict=True), 1):
@@ -295,13 +319,28 @@ def _assembly_tables(offer: MeshOffer, base: dict[str, Any], unfilled: list[str]
     else:
         unfilled.append("[[mesh.contact]] (the interfaces between the bodies): no two sets of "
                         "different bodies with coincident nodes; name each side's face")
-    if roles.get("contact_set") is None:
-        unfilled.append("[[mesh.support]] (what holds the assembly: set, directions), or "
-                        "mesh.contact_set for a body on the rigid base")
-    out += ["# [[mesh.support]] tables: what holds the assembly (set, directions = \"xyz\"):",
-            "# [[mesh.support]]", '# set = "SET"', '# directions = "xyz"', "",
-            "# [[mesh.preload]] tables: more pressed faces (face, force N; a bolt: its head "
-            "and nut faces):", "# [[mesh.preload]]", '# face = "SET"', "# force = 2000.0"]
+    held = _named(offer, SUPPORT_NAMES)
+    if held:
+        out += ["# The supports found by name: each set held in x, y and z (edit directions)."]
+        for name in held:
+            out += ["[[mesh.support]]", f"set = {_toml(name)}", 'directions = "xyz"', ""]
+    else:
+        if roles.get("contact_set") is None:
+            unfilled.append("[[mesh.support]] (what holds the assembly: set, directions), or "
+                            "mesh.contact_set for a body on the rigid base")
+        out += ["# [[mesh.support]] tables: what holds the assembly (set, directions = "
+                "\"xyz\"):", "# [[mesh.support]]", '# set = "SET"', '# directions = "xyz"',
+                ""]
+    force = float(base["normal_force"])
+    if bolts:
+        out += [f"# A bolt's faces found by name, each pressed by the bolt's force ({force:g} "
+                f"N of {TEMPLATE_PRESET} as an example: edit it)."]
+        for name in bolts:
+            out += ["[[mesh.preload]]", f"face = {_toml(name)}", f"force = {_toml(force)}", ""]
+    else:
+        out += ["# [[mesh.preload]] tables: more pressed faces (face, force N; a bolt: its "
+                "head and nut faces):", "# [[mesh.preload]]", '# face = "SET"',
+                f"# force = {_toml(force)}"]
     return out
 
 

@@ -23,7 +23,7 @@ from ..conventions import BACKBONE_NAMES
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import flagged
-from .ownmesh import add_assembly_options, check_mesh_input, given, library_clamp, mesh_clamp
+from .ownmesh import add_assembly_options, check_mesh_input, given, mesh_clamp
 
 if TYPE_CHECKING:
     from ..meshdynamics.case import StructureCase
@@ -35,6 +35,7 @@ __all__ = [
     "check_density",
     "check_mesh_structure",
     "density_needed",
+    "one_density",
     "structure_case",
 ]
 
@@ -86,6 +87,20 @@ def density_needed(args: argparse.Namespace) -> tuple[str, ...]:
     return ("--density KG/M3",)
 
 
+def one_density(assembly: Any) -> float:
+    """The density of every element, kg/m^3: the structure's mass takes one density (a
+    density per material is not in the mass yet, and is refused rather than averaged)."""
+    found = sorted({m.density for m in assembly.materials if m.density is not None})
+    if len(found) > 1:
+        raise ParameterError(
+            f"the materials give densities {', '.join(f'{d:g}' for d in found)} kg/m^3: "
+            "modal, frf and reduce --mesh take one density for every element for now; give "
+            "each --material the same one, or leave theirs out and give --density")
+    if not found:  # density_needed asked for --density before: a usage line
+        raise ParameterError("--density KG/M3 is needed (the structure's mass)")
+    return float(found[0])
+
+
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:
     """Refuse, in one line, the one-mode and structure-file options (and ``not_with``), a
     missing clamp value, set or density, and --normal-slope without penalty contact."""
@@ -113,14 +128,12 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
         (getattr(args, "response_set", None), "response set"),
         (getattr(args, "load_set", None), "load set")) if name is not None)
     check_mesh_input(args.mesh, assembly, (), sets, warn=True)
-    clamp = library_clamp(assembly)
-    density: Any = (args.density if args.density is not None
-                    else assembly.materials[0].density)
+    density = one_density(assembly)
     optional = {k: v for k, v in (
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None)),
         ("interface_modes", getattr(args, "interface_modes", None)),
         ("element", getattr(args, "mesh_element", None))) if v is not None}
     with flagged():
-        return StructureCase(args.mesh, clamp, density=density,
+        return StructureCase(args.mesh, assembly, density=density,
                              response_set=args.response_set, **optional)

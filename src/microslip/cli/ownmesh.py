@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from ..fe.assembly import Assembly
 
 __all__ = ["EXIT_UNSETTLED", "add_assembly_options", "add_own_mesh_options",
-           "check_mesh_input", "given", "is_mesh_file", "library_clamp", "mesh_case",
+           "check_mesh_input", "given", "is_mesh_file", "mesh_case",
            "mesh_clamp", "refuse_mesh_options", "run_own_mesh", "unsettled_status", "verb"]
 
 
@@ -121,35 +121,6 @@ def mesh_clamp(args: argparse.Namespace, normal_contact: str | None = None,
     return assembly
 
 
-def library_clamp(assembly: Assembly) -> Any:
-    """What the FE library takes today for ``assembly``: the
-    :class:`~microslip.fe.clamp.MeshClamp` of a shorthand assembly (one body on the rigid
-    base, one preload, one material). The FE of two bodies, several preloads, supports and
-    materials per element set (issue 32, items 1-2) takes the assembly itself; until it is
-    in, such an assembly is refused in one line rather than run as something else."""
-    from ..errors import ParameterError
-    from ..fe.clamp import MeshClamp
-
-    if not assembly.is_shorthand:
-        raise ParameterError(
-            "this build's FE runs one body on the rigid base with one preload and one "
-            "material (--contact-set, --clamp-set, --normal-force, --modulus, "
-            f"--poisson-ratio); the assembly ({_summary(assembly)}) needs the two-body FE "
-            "of issue 32, which is not in yet")
-    c, p, m = assembly.contacts[0], assembly.preloads[0], assembly.materials[0]
-    return MeshClamp(c.face, p.face, normal_force=p.force, modulus=m.modulus,
-                     poisson_ratio=m.poisson_ratio, friction=assembly.friction,
-                     stick_slope=assembly.stick_slope, normal_contact=assembly.normal_contact,
-                     normal_slope=assembly.normal_slope)
-
-
-def _summary(assembly: Assembly) -> str:
-    parts = [f"{len(x)} {name}{'s' if len(x) != 1 else ''}" for name, x in (
-        ("contact", assembly.contacts), ("preload", assembly.preloads),
-        ("support", assembly.supports), ("material", assembly.materials))]
-    return ", ".join(parts)
-
-
 def check_mesh_input(path: str, assembly: Assembly, loads: Any = (),
                      sets: tuple[tuple[str, str], ...] = (), warn: bool = False) -> None:
     """Before anything is built: the assembly's sets, materials and bodies, and its values
@@ -218,7 +189,7 @@ def mesh_case(args: argparse.Namespace) -> Any:
     loads = tuple(MeshLoad.parse(s) for s in args.load)
     check_mesh_input(args.mesh, assembly, loads)
     return OwnMeshCase(
-        args.mesh, library_clamp(assembly), loads,
+        args.mesh, assembly, loads,
         substeps=args.substeps, history=args.history or "settle",
         tol=1e-3 if args.settle_tol is None else args.settle_tol,
         max_cycles=10 if args.max_cycles is None else args.max_cycles,

@@ -128,13 +128,15 @@ def run(args: argparse.Namespace) -> int:
     check_writable(args.out, (".npz",), "--out")
     from ..meshdynamics.case import clamped
 
-    model = clamped(structure_case(args))
+    case = structure_case(args)
+    model = clamped(case)
+    args.density = case.density  # --density, or the materials' own
     t0 = time.perf_counter()
-    mass = full_mass(model, args.density)
-    rom = build_rom(model, args.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,
+    mass = full_mass(model, case.density)
+    rom = build_rom(model, case.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,
                     response_set=args.response_set, mass=mass)
     build_s = time.perf_counter() - t0
-    table = convergence(model, args.density, mode_counts(rom.modes), COMPARE, mass, rom=rom)
+    table = convergence(model, case.density, mode_counts(rom.modes), COMPARE, mass, rom=rom)
     write_rom(args.out, rom)
     out = _summary(args, model, rom, build_s, table)
     for w in out["warnings"]:
