@@ -139,19 +139,11 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
 
 
 def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
+    from .assembly import as_assembly
     from .calculix.meshrun import run_mesh_calculix
 
-    a = as_assembly(case.clamp)
-    if not a.is_shorthand:
-        raise ParameterError("--solver calculix takes one body on the rigid base for now; "
-                             "assemblies run with --solver builtin")
-    options: dict[str, Any] = {"contact_set": a.contact_set, "clamp_set": a.clamp_set,
-               "normal_force": a.clamp_force, "modulus": a.modulus,
-               "poisson_ratio": a.poisson_ratio, "friction": a.friction,
-               "stick_slope": a.stick_slope, "normal_contact": a.normal_contact,
-               "normal_slope": a.normal_slope}
     result = run_mesh_calculix(
-        mesh, **options, loads=case.loads,
+        mesh, as_assembly(case.clamp), loads=case.loads,
         increments_per_cycle=case.increments,
         cycles=1 if case.history == "paper" else case.cycles,
         startup="quarter" if case.history == "paper" else "ramp", **case.options)

@@ -226,7 +226,7 @@ class MeshModel:
         close before the node presses again)."""
         if self.normal is None:
             return np.asarray(self.normal_force, dtype=float)
-        return np.asarray(-self.normal.stiffness * self.u0[self.normal.dofs], dtype=float)
+        return np.asarray(self.normal.stiffness * self.normal.penetration(self.u0), dtype=float)
 
     @property
     def force_scale(self) -> float:
@@ -443,6 +443,7 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         part = kind.assemble(nodes, elements if len(groups) == 1 else elements[rows],
                              mat.modulus, mat.poisson_ratio, element)
         k_all = part if k_all is None else k_all + part
+    assert k_all is not None
 
     c_mesh, area, quad = _contact_areas(mesh, contact_faces, contact_weights)
     c_model = inv[c_mesh]
@@ -466,20 +467,29 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         k_all = (transform.T @ k_all @ transform).tocsr()
         full = np.asarray(transform.T @ full)
     supports = layout.support_dofs(inv, rotation)
+    gap = layout.gaps(mesh, contact_nodes)
     # fixed normal contact: nodes the clamp pulls off the base are released (active set);
     # quadratic faces recover N_i from the pressure instead (their corner reactions are
-    # negative by the face's consistent weights, not by lift-off): one pass
+    # negative by the face's consistent weights, not by lift-off): one pass. A curved face
+    # starts with the nodes that touch the base held (at u_n = -g_0) and the others released
     released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
+    if gap is not None and not penalty:
+        released = gap > FLAT_TOL * size
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
-                k_all, contact, area, lam, k_n, penalty, released, supports)
+                k_all, contact, area, lam, k_n, penalty, released, supports,
+                None if gap is None or not penalty else gap)
             with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
                 backend = _backend(linear_solver, k_ff, cdofs, kc,
                                    None if springs is None else springs.stiffness)
             clamp = full[free]
             held = 3 * (contact if released is None else contact[~released]) + 2
             clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+            if gap is not None and released is not None:  # held at u_n = -g_0
+                g_h = gap[~released]
+                clamp = clamp + np.asarray(k_rf.T @ g_h)
+                clamp_fixed = full[held] + np.asarray(k_all[held][:, held] @ g_h)
             reactions: Any = k_rf
             if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
                 reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
@@ -491,7 +501,8 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
                 break
             # release the held nodes in tension; press back the released ones below the base
             below = np.zeros(contact.size, dtype=bool)
-            below[released] = u[index[3 * contact[released] + 2]] < 0.0
+            below[released] = u[index[3 * contact[released] + 2]] + (
+                0.0 if gap is None else gap[released]) < 0.0
             new = (released | ((normal <= 0.0) & ~released)) & ~below
             if np.array_equal(new, released):
                 break
