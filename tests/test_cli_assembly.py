@@ -258,18 +258,41 @@ def test_the_assembly_case_file_runs_as_its_options(capsys: pytest.CaptureFixtur
     assert by_case["assembly"] == by_flags["assembly"]
 
 
-def test_a_structure_takes_one_density(capsys: pytest.CaptureFixture[str],
-                                       tmp_path: Path) -> None:
-    """reduce (as modal and frf --mesh) on two bodies: the materials' own density, or
-    --density; two different ones are refused in one line, none is a usage line."""
-    argv = ["reduce", "--mesh", BLOCK, *PARTS[:6], "--friction", "0.5", "--rom-modes", "5",
-            "--out", tmp_path / "r.npz"]
-    code, out, err = run(capsys, *argv, "--material", "BAR:70000:0.33:2700", "--material",
-                         "BASE:7e7:0.33:2700", "--json")
+@pytest.mark.slow
+@pytest.mark.ccx
+def test_validate_runs_the_assembly_with_its_default_fixed_contact(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    """validate --mesh on the bar on its block (about 30 s): the default fixed contact
+    compared as a hard contact and said so, both sides settled and within the tolerances,
+    the case's fixed W beside; CalculiX's progress on stderr although it is not a
+    terminal."""
+    code, out, err = run(capsys, "validate", "--mesh", BLOCK, *PARTS, "--stick-slope", "1e4",
+                         "--load", "tip:1,0,0:300", "--out", tmp_path / "v")
     assert code == 0, err
-    assert '"density_kg_m3": 2700.0' in out and (tmp_path / "r.npz").exists()
-    one_line_error(run(capsys, *argv, "--material", "BAR:70000:0.33:2700", "--material",
-                       "BASE:7e7:0.33:7800"), "the materials give densities 2700, 7800")
+    assert "normal contact: the case's fixed; CalculiX has no fixed normal contact" in out
+    assert "the case's fixed contact, built-in: W " in out and "passed; wrote" in out
+    assert "CalculiX (node-to-surface): " in err and "increments (100 %)" in err
+
+
+def test_a_structure_takes_each_materials_density(capsys: pytest.CaptureFixture[str],
+                                                   tmp_path: Path) -> None:
+    """reduce (as modal and frf --mesh) on two bodies: each material's own density (the
+    block's is the structure's mass, so a heavier block lowers the frequencies), --density
+    for those that give none; no density at all is a usage line."""
+    import json
+
+    argv = ["reduce", "--mesh", BLOCK, *PARTS[:6], "--friction", "0.5", "--rom-modes", "5",
+            "--out", tmp_path / "r.npz", "--json"]
+    freq = {}
+    for rho in ("2700", "7800"):
+        code, out, err = run(capsys, *argv, "--material", "BAR:70000:0.33:2700", "--material",
+                             f"BASE:7e7:0.33:{rho}")
+        assert code == 0, err
+        freq[rho] = json.loads(out)["full_frequencies_Hz"]
+    assert all(h < light for h, light in zip(freq["7800"], freq["2700"], strict=True))
+    code, out, err = run(capsys, *argv, "--material", "BAR:70000:0.33", "--material",
+                         "BASE:7e7:0.33:2700", "--density", "2700")
+    assert code == 0 and json.loads(out)["full_frequencies_Hz"] == freq["2700"], err
     code, _, err = run(capsys, *argv, "--material", "BAR:70000:0.33", "--material",
                        "BASE:7e7:0.33")
     assert code == 2 and "--density KG/M3" in err

@@ -218,7 +218,8 @@ _OPTIONS: tuple[Option, ...] = (
            "pressure-overclosure law of normal_slope, lift-off allowed", "",
            " | ".join(NORMAL_CONTACTS), type=None, choices=NORMAL_CONTACTS,
            key="mesh.normal_contact", check=choice(NORMAL_CONTACTS), scope="mesh",
-           case_default="fixed", case_note="CalculiX takes penalty only (its default)"),
+           case_default="fixed", case_note="validate compares fixed as a hard penalty "
+           "contact; fe --solver calculix takes penalty only"),
     Option("normal_slope", "penalty normal stiffness per area (slope of the pressure-"
            "overclosure law)", "N/mm^3", "> 0", metavar="N/MM3", key="mesh.normal_slope",
            check=positive("N/mm^3"), scope="mesh", case_default=DEFAULT_NORMAL_SLOPE,

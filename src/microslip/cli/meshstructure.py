@@ -35,8 +35,8 @@ __all__ = [
     "check_density",
     "check_mesh_structure",
     "density_needed",
-    "one_density",
     "structure_case",
+    "structure_density",
 ]
 
 
@@ -87,18 +87,16 @@ def density_needed(args: argparse.Namespace) -> tuple[str, ...]:
     return ("--density KG/M3",)
 
 
-def one_density(assembly: Any) -> float:
-    """The density of every element, kg/m^3: the structure's mass takes one density (a
-    density per material is not in the mass yet, and is refused rather than averaged)."""
-    found = sorted({m.density for m in assembly.materials if m.density is not None})
-    if len(found) > 1:
-        raise ParameterError(
-            f"the materials give densities {', '.join(f'{d:g}' for d in found)} kg/m^3: "
-            "modal, frf and reduce --mesh take one density for every element for now; give "
-            "each --material the same one, or leave theirs out and give --density")
-    if not found:  # density_needed asked for --density before: a usage line
+def structure_density(args: argparse.Namespace, assembly: Any) -> float:
+    """The structure's density, kg/m^3: ``--density`` (``[mesh] density``), the density of
+    every material that gives none; without it, a material's own (each body's mass takes its
+    material's density, :func:`microslip.meshdynamics.modes.modal_mass`)."""
+    if args.density is not None:
+        return float(args.density)
+    own = [m.density for m in assembly.materials if m.density is not None]
+    if len(own) < len(assembly.materials):  # density_needed said so before, as usage
         raise ParameterError("--density KG/M3 is needed (the structure's mass)")
-    return float(found[0])
+    return float(own[0])
 
 
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:
@@ -128,7 +126,7 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
         (getattr(args, "response_set", None), "response set"),
         (getattr(args, "load_set", None), "load set")) if name is not None)
     check_mesh_input(args.mesh, assembly, (), sets, warn=True)
-    density = one_density(assembly)
+    density = structure_density(args, assembly)
     optional = {k: v for k, v in (
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None)),

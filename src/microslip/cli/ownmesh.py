@@ -40,9 +40,11 @@ def add_own_mesh_options(p: argparse.ArgumentParser, validate: bool = False) -> 
 
     g = p.add_argument_group("your own mesh (--mesh FILE; docs/ownmesh.md)")
     if validate:
-        add_option(g, "normal_contact", choices=["penalty"], mode=MODE_MESH,
-                   note="CalculiX takes penalty normal contact only (the default)")
-        add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
+        add_option(g, "normal_contact", mode=MODE_MESH,
+                   note="default fixed: CalculiX has no fixed contact, so both solvers run a "
+                        "hard penalty contact and the case's fixed W and d are given beside it")
+        add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}; with fixed "
+                   "contact the hard contact's slope is a multiple of it", mode=MODE_MESH)
         add_option(g, "substeps", help="substeps over 1.25 cycles, a multiple of 5",
                    mode=MODE_MESH)
     add_option(g, "contact_set", mode=MODE_MESH)
@@ -147,7 +149,10 @@ def unsettled_status(args: argparse.Namespace, settled: bool) -> int:
     return EXIT_UNSETTLED
 
 
-def mesh_case(args: argparse.Namespace) -> Any:
+def mesh_case(args: argparse.Namespace, default_normal: str | None = None) -> Any:
+    """The :class:`~microslip.fe.ownmesh.OwnMeshCase` of the options (``default_normal``:
+    the normal contact when none is given; else ``penalty`` for ``--solver calculix`` and
+    ``fixed`` for the built-in solver)."""
     from ..fe.meshload import MeshLoad
     from ..fe.ownmesh import OwnMeshCase
     from ..fe.promote import ELEMENT_ORDERS
@@ -162,7 +167,8 @@ def mesh_case(args: argparse.Namespace) -> Any:
     if element is not None and element not in ELEMENT_ORDERS:
         raise ParameterError(f"--element {element} applies to the box (--mesh LEVEL) only; with "
                              f"--mesh {args.mesh} give --element {' or '.join(ELEMENT_ORDERS)}")
-    normal = args.normal_contact or ("penalty" if args.solver == "calculix" else "fixed")
+    normal = args.normal_contact or default_normal or (
+        "penalty" if args.solver == "calculix" else "fixed")
     assembly = mesh_clamp(args, normal, () if args.load else
                           ("--load SET:DX,DY,DZ:AMPLITUDE[:PHASE_DEG]",))
     for dest in ("cycles", "plot", "settle_tol", "max_cycles", "history"):
@@ -176,7 +182,7 @@ def mesh_case(args: argparse.Namespace) -> Any:
             if getattr(args, dest) is not None:
                 raise ParameterError(f"--{dest.replace('_', '-')} applies to --solver builtin "
                                      "(CalculiX runs --cycles cycles)")
-    if normal == "fixed" and given(args, "normal_slope"):
+    if normal == "fixed" and given(args, "normal_slope") and default_normal is None:
         raise ParameterError("--normal-slope needs --normal-contact penalty (the fixed normal "
                              "contact has no normal stiffness)")
     extra: dict[str, Any] = {}

@@ -130,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
 
     case = structure_case(args)
     model = clamped(case)
-    args.density = case.density  # --density, or the materials' own
+    args.density = case.density  # --density, or a material's own (each body's own in M)
     t0 = time.perf_counter()
     mass = full_mass(model, case.density)
     rom = build_rom(model, case.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,

@@ -99,12 +99,9 @@ def _run_mesh(args: argparse.Namespace) -> int:
     if "model" in getattr(args, "given_options", ()):
         raise ParameterError("--model applies to the box (--mesh LEVEL); with --mesh FILE "
                              "--load gives the loads")
-    if args.normal_contact not in (None, "penalty"):  # a case's [mesh] normal_contact
-        raise ParameterError(f"mesh.normal_contact = {args.normal_contact!r}: validate runs "
-                             "CalculiX, which takes penalty normal contact only")
     args.mesh = args.mesh[0]
     args.solver = "calculix"
-    case = mesh_case(args)
+    case = mesh_case(args, default_normal="fixed")  # fixed: compared as a hard contact
     check_output_dir(args.out)
     result = compare_on_mesh(case, args.out,
                              formulation=args.contact_formulation or DEFAULT_FORMULATION,
@@ -137,6 +134,14 @@ def _print_mesh(result: dict[str, Any], out: str) -> None:
           f"{result['increments_per_cycle']} increments, normal slope "
           f"{result['normal_slope_N_per_mm3']:g} N/mm^3, stick slope "
           f"{result['stick_slope_N_per_mm3']:g} N/mm^3 on both")
+    normal = result.get("normal_contact") or {}
+    if normal.get("reason"):
+        print(f"  normal contact: the case's {normal['case']}; {normal['reason']}")
+    fixed, off = normal.get("fixed_builtin"), normal.get("fixed_against_hard")
+    if fixed and off:
+        print(f"  the case's fixed contact, built-in: W {fixed['dissipated_energy_Nmm']:.6g} "
+              f"N·mm ({off['dissipated_energy_Nmm']:+.2%} from the hard contact), d "
+              f"{fixed['peak_displacement_mm']:.6g} mm ({off['peak_displacement_mm']:+.2%})")
     print(f"  contact built-in: {b['contact']}")
     print(f"  contact CalculiX: {c['contact']}")
     print(f"  W  built-in {b['dissipated_energy_Nmm']:.6g} N·mm, CalculiX "
