@@ -171,3 +171,21 @@ def test_modes_on_a_stiff_block_are_the_rigid_base_modes() -> None:
         moving = f0 > 1.0
         assert np.allclose(f1[moving], f0[moving], rtol=2e-4)
         assert np.all(f1[~moving] < 1.0)
+
+
+def test_a_partial_support_holds_its_global_direction_whichever_way_the_contact_faces() -> None:
+    """The contact face a_int of the lap looks up (+z): the contact frame is turned by 180
+    degrees about x, and a support holding z only still holds the global z."""
+    from pathlib import Path
+
+    from microslip.fe.meshfile import read_mesh
+
+    mesh = read_mesh(Path(__file__).parent / "data" / "meshes" / "bolted_lap_small.msh")
+    a = Assembly(contacts=(Contact("a_int", "b_int"),),
+                 preloads=(Preload("head", 5000.0), Preload("nut", 5000.0)),
+                 supports=(Support("fix"), Support("tip", "z")), materials=(Material(E, NU),),
+                 friction=0.3)
+    m = build_mesh_model(mesh, a)
+    assert m.rotation[2, 2] == -1.0
+    held = m.index.reshape(-1, 3)[m.model_nodes(mesh.node_sets["tip"])]
+    assert np.all(held[:, 2] < 0) and np.all(held[:, :2] >= 0)

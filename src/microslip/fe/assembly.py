@@ -45,7 +45,7 @@ from ..conventions import (
 from ..errors import ParameterError
 
 __all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "Material", "Preload",
-           "Support", "as_assembly", "rigid_base"]
+           "Shank", "Support", "as_assembly", "bolt", "rigid_base"]
 
 #: The normal-contact readings (the built-in solver's
 #: :data:`microslip.fe.builtin.normal.NORMAL_CONTACTS`; a test holds the two equal).
@@ -95,6 +95,43 @@ class Preload:
         _name("a preload's face", self.face)
         object.__setattr__(self, "force", check_positive(f"preload {self.face}'s force",
                                                          self.force, "N"))
+
+
+@dataclass(frozen=True)
+class Shank:
+    """A bolt's shank between its ``head`` and ``nut`` faces (node sets or surfaces): a
+    circular elastic beam of ``diameter`` (mm) and ``modulus`` (MPa; None: the first
+    material's) between the faces' mean motions, active after the preload
+    (:mod:`microslip.fe.builtin.shank`)."""
+
+    head: str
+    nut: str
+    diameter: float
+    modulus: float | None = None
+    poisson_ratio: float = 0.3
+
+    def __post_init__(self) -> None:
+        _name("a shank's head face", self.head)
+        _name("a shank's nut face", self.nut)
+        if self.head == self.nut:
+            raise ParameterError(f"bolt {self.head}: the head and the nut are one face")
+        object.__setattr__(self, "diameter", check_positive(
+            f"bolt {self.head}:{self.nut}'s diameter", self.diameter, "mm"))
+        if self.modulus is not None:
+            object.__setattr__(self, "modulus", check_positive(
+                f"bolt {self.head}:{self.nut}'s modulus", self.modulus, "MPa"))
+        nu = float(self.poisson_ratio)
+        if not -1.0 < nu < 0.5:
+            raise ParameterError(f"bolt {self.head}:{self.nut}'s poisson_ratio must be in "
+                                 f"(-1, 0.5), got {self.poisson_ratio!r}")
+
+
+def bolt(head: str, nut: str, force: float, diameter: float | None = None,
+         modulus: float | None = None) -> tuple[tuple[Preload, ...], tuple[Shank, ...]]:
+    """A bolt: its head and nut faces each pressed by ``force`` (N), and with ``diameter``
+    (mm) a shank between them. Returns (preloads, shanks) to put into an :class:`Assembly`."""
+    pre = (Preload(head, force), Preload(nut, force))
+    return pre, (() if diameter is None else (Shank(head, nut, diameter, modulus),))
 
 
 @dataclass(frozen=True)
@@ -183,10 +220,12 @@ class Assembly:
     stick_slope: float = DEFAULT_STICK_SLOPE
     normal_contact: str = DEFAULT_NORMAL_CONTACT
     normal_slope: float = DEFAULT_NORMAL_SLOPE
+    shanks: tuple[Shank, ...] = ()
 
     def __post_init__(self) -> None:
         for name, kind in (("contacts", Contact), ("preloads", Preload),
-                           ("materials", Material), ("supports", Support)):
+                           ("materials", Material), ("supports", Support),
+                           ("shanks", Shank)):
             items = tuple(getattr(self, name))
             if any(not isinstance(x, kind) for x in items):
                 raise ParameterError(f"{name} must be {kind.__name__} objects")
@@ -259,7 +298,7 @@ class Assembly:
         """One body on the rigid base, one preload, one material, no support: the clamp."""
         return (len(self.contacts) == 1 and self.rigid_base_only and len(self.preloads) == 1
                 and len(self.materials) == 1 and self.materials[0].elset is None
-                and not self.supports)
+                and not self.supports and not self.shanks)
 
     def set_names(self) -> tuple[str, ...]:
         """Every node set or surface the assembly names (for checks against a mesh)."""
@@ -267,6 +306,8 @@ class Assembly:
         for c in self.contacts:
             out += [c.face] + ([] if c.counter is None else [c.counter])
         out += [p.face for p in self.preloads] + [s.set for s in self.supports]
+        for b in self.shanks:
+            out += [b.head, b.nut]
         return tuple(dict.fromkeys(out))
 
     def with_law(self, **law: Any) -> Assembly:
@@ -284,6 +325,8 @@ class Assembly:
                          for c in self.contacts],
             "preloads": [{"face": p.face, "force_N": p.force} for p in self.preloads],
             "supports": [{"set": s.set, "directions": s.directions} for s in self.supports],
+            "shanks": [{"head": b.head, "nut": b.nut, "diameter_mm": b.diameter,
+                        "modulus_MPa": b.modulus or self.modulus} for b in self.shanks],
             "materials": [{"elset": m.elset or "all", "modulus_MPa": m.modulus,
                            "poisson_ratio": m.poisson_ratio, "density_kg_m3": m.density}
                           for m in self.materials],

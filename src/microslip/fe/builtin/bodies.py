@@ -272,14 +272,18 @@ class ContactLayout:
         global directions only needs the contact plane along the global axes."""
         if not self.supports:
             return None
-        turned = not np.array_equal(rotation, np.eye(3))
+        # a global axis is a model axis when the contact frame is a signed permutation of the
+        # global one (a contact face normal to x, y or z, either way)
+        axis = np.argmax(np.abs(rotation), axis=0)
+        aligned = bool(np.allclose(np.abs(rotation).max(axis=0), 1.0, rtol=0, atol=1e-12))
         out = []
         for name, nodes, comps in self.supports:
-            if turned and len(comps) < 3:
+            if not aligned and len(comps) < 3:
                 raise ParameterError(f"support {name}: holding some directions only needs the "
-                                     "contact faces normal to the global z axis (this mesh's "
+                                     "contact faces normal to a global axis (this mesh's "
                                      "contact plane is turned); hold xyz or rotate the mesh")
-            out.append((3 * inv[nodes][:, None] + np.asarray(comps)).ravel())
+            model = comps if len(comps) == 3 else tuple(int(axis[c]) for c in comps)
+            out.append((3 * inv[nodes][:, None] + np.asarray(model)).ravel())
         return np.unique(np.concatenate(out)).astype(np.int64)
 
 

@@ -526,6 +526,13 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
             f"is singular: {err}); every body needs a support, a face on the rigid base or a "
             "contact pressed by a preload, and the supports must stop its rigid motions"
         ) from None
+    if assembly.shanks:  # the bolts' shanks carry load after the preload (:mod:`.shank`)
+        shank = _shanks(mesh, assembly, nodes, inv, transform)[free][:, free]
+        k_ff = (k_ff + shank).tocsr()
+        clamp = clamp + np.asarray(shank @ u)
+        with single_threaded_blas():
+            backend = _backend(linear_solver, k_ff, cdofs, kc,
+                               None if springs is None else springs.stiffness)
     n_keep = contact.size * (3 if penalty else 2)
     if condensed is None:
         condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
@@ -542,6 +549,25 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
         transform=transform, contact_master=np.where(master >= 0, inv[master], -1))
+
+
+def _shanks(mesh: HexMesh, assembly: Assembly, nodes: FloatArray, inv: IntArray,
+            transform: sp.csr_matrix | None) -> sp.csr_matrix:
+    """The shanks' stiffness on every model dof (model frame; T^T S T with pairs)."""
+    from .shank import shank_stiffness
+
+    total = sp.csr_matrix((3 * len(nodes), 3 * len(nodes)))
+    for b in assembly.shanks:
+        faces = []
+        for name in (b.head, b.nut):
+            k_mesh, share, _ = face_load(mesh, set_faces(mesh, name, "bolt face"))
+            faces.append((inv[k_mesh], share))
+        total = total + shank_stiffness(nodes, faces[0], faces[1], b.diameter,
+                                        b.modulus or assembly.modulus, b.poisson_ratio,
+                                        f"bolt {b.head}:{b.nut}")
+    if transform is not None:
+        total = transform.T @ total @ transform
+    return sp.csr_matrix(total)
 
 
 @dataclass(frozen=True)
