@@ -57,6 +57,9 @@ def _flag(dest: str) -> str:
     (["--material", "BAR:7e4"], ["argument --material", "ELSET:MODULUS:POISSON[:DENSITY]"]),
     (["--material", "BAR:7e4:0.6"], ["argument --material", "poisson_ratio of BAR must be"]),
     (["--material", "BAR:7e4:0.3:7.85e-9"], ["argument --material", "t/mm^3"]),
+    (["--bolt", "head:nut"], ["argument --bolt", "HEAD:NUT:FORCE[:DIAMETER]"]),
+    (["--bolt", "head:head:10"], ["argument --bolt", "the head and the nut are one face"]),
+    (["--bolt", "head:nut:10:-1"], ["argument --bolt", "diameter must be > 0 (mm)"]),
 ])
 def test_a_malformed_value_is_one_usage_line(capsys: pytest.CaptureFixture[str], two: str,
                                               argv: list[str], words: list[str]) -> None:
@@ -105,7 +108,8 @@ def test_the_shorthand_mixes_with_the_assembly_options(two: str) -> None:
 
 @pytest.mark.parametrize(("argv", "words"), [
     ([], ["--contact-set NAME (or --contact SET[:COUNTER_SET])", "--clamp-set NAME with "
-          "--normal-force N (or --preload SET:FORCE)", "--modulus MPA and --poisson-ratio X",
+          "--normal-force N (or --preload SET:FORCE, or --bolt HEAD:NUT:FORCE)",
+          "--modulus MPA and --poisson-ratio X",
           "--friction X", "--load"]),
     (["--contact", "bar_int:base_int", "--preload", "clamp:9", "--material", "BAR:1e5:0.3",
       "--friction", "0.4", "--modulus", "1e5"], ["needs --poisson-ratio X,", "--load"]),
@@ -124,7 +128,24 @@ def test_a_normal_force_without_its_clamp_set_is_refused(capsys: pytest.CaptureF
                                                          two: str) -> None:
     one_line_error(run(capsys, "fe", "--mesh", two, *PARTS, "--normal-force", "300", "--load",
                        "tip:1,0,0:10"), "--normal-force 300 presses no face",
-                   "with --preload give each face its own force")
+                   "with --preload or --bolt give each its own force")
+
+
+def test_a_bolt_is_its_two_preloads_and_its_shank(tmp_path: Path) -> None:
+    from microslip.fe.assembly import Shank
+
+    a = mesh_clamp(_args("--mesh", CANTILEVER, "--contact", "contact", "--bolt",
+                         "clamp:tip:500:8", "--bolt", "tip:response:300", "--modulus", "7e4",
+                         "--poisson-ratio", "0.3", *LAW))
+    assert a.preloads == (Preload("clamp", 500.0), Preload("tip", 500.0),
+                          Preload("tip", 300.0), Preload("response", 300.0))
+    assert a.shanks == (Shank("clamp", "tip", 8.0),)
+    (tmp_path / "b.toml").write_text(
+        '[contact]\nfriction = 0.5\n[material]\nmodulus = 7e4\npoisson_ratio = 0.3\n'
+        f'[mesh]\nfile = "{CANTILEVER}"\ncontact_set = "contact"\n[[mesh.bolt]]\n'
+        'head = "clamp"\nnut = "tip"\nforce = 500\ndiameter = 8\n[[mesh.bolt]]\n'
+        'head = "tip"\nnut = "response"\nforce = 300\n')
+    assert mesh_clamp(_args("--case", str(tmp_path / "b.toml"))) == a
 
 
 def test_build_assembly_names_every_missing_value_in_the_callers_spelling() -> None:
@@ -244,6 +265,22 @@ def test_the_bar_on_a_stiff_block_is_the_rigid_base(capsys: pytest.CaptureFixtur
                                                            rel=2e-3)
     assert block["assembly"]["contacts"] == [{"face": "bar_int", "counter": "base_int"}]
     assert block["assembly"]["supports"] == [{"set": "base_fix", "directions": "xyz"}]
+
+
+LAP = str(Path(__file__).resolve().parent / "data" / "meshes" / "bolted_lap_small.msh")
+
+
+def test_the_bolted_lap_runs_from_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
+    """Two steel plates, one bolt with a shank, the far end held: the lateral load that the
+    lap alone cannot carry past its friction limit runs with the shank (issue 32)."""
+    out = run_json(capsys, "fe", "--mesh", LAP, "--contact", "a_int:b_int", "--bolt",
+                   "head:nut:8000:10", "--fixed", "fix", "--material", "PLATE_A:210000:0.3",
+                   "--material", "PLATE_B:210000:0.3", "--friction", "0.3",
+                   "--load", "tip:0,1,0:150")
+    assert out["settled"] and out["dissipated_energy_Nmm"] > 0
+    assert out["assembly"]["shanks"][0]["head"] == "head"
+    assert out["assembly"]["shanks"][0]["diameter_mm"] == 10.0
+    assert [p["face"] for p in out["assembly"]["preloads"]] == ["head", "nut"]
 
 
 def test_the_assembly_case_file_runs_as_its_options(capsys: pytest.CaptureFixture[str],
@@ -410,7 +447,8 @@ def test_case_check_names_the_missing_keys(capsys: pytest.CaptureFixture[str],
                     'friction = 0.5\n[clamping]\nnormal_force = 2000\n[mesh]\n'
                     'file = "cantilever.inp"\ncontact_set = "contact"\n')
     one_line_error(run(capsys, "case", "check", path), "the part needs mesh.clamp_set NAME "
-                   "with clamping.normal_force N (or [[mesh.preload]] SET:FORCE)")
+                   "with clamping.normal_force N (or [[mesh.preload]] SET:FORCE, or "
+                   "[[mesh.bolt]] HEAD:NUT:FORCE)")
     path.write_text(path.read_text() + 'clamp_set = "clmp"\n')
     one_line_error(run(capsys, "case", "check", path),
                    "no set named 'clmp' (the clamp set); did you mean 'clamp'?")
@@ -439,9 +477,9 @@ def test_case_new_writes_the_bodies_and_their_interface(capsys: pytest.CaptureFi
 
 def test_case_new_finds_a_bolts_faces_and_names_what_is_left(
         capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    """Two bodies with a bolt's head and nut faces and no support: each face a
-    [[mesh.preload]] (the [clamping] force then commented out: it has no face), the support
-    named as a role to fill."""
+    """Two bodies with a bolt's head and nut faces and no support: a [[mesh.bolt]] (the
+    [clamping] force then commented out: it has no face), the support named as a role to
+    fill."""
 
     from microslip.fe.hexmesh import HexMesh
     from microslip.fe.meshfile import write_inp
@@ -456,8 +494,8 @@ def test_case_new_finds_a_bolts_faces_and_names_what_is_left(
     code, out, _ = run(capsys, "case", "new", "--mesh", tmp_path / "b.inp", tmp_path / "b.toml")
     text = (tmp_path / "b.toml").read_text()
     assert code == 0 and "to fill: [[mesh.support]]" in out and "clamp_set" not in out
-    assert '[[mesh.preload]]\nface = "head"\nforce = 445.0' in text
-    assert '[[mesh.preload]]\nface = "nut"\nforce = 445.0' in text
+    assert ('[[mesh.bolt]]\nhead = "head"\nnut = "nut"\nforce = 445.0\n# diameter = 10.0'
+            in text) and "[[mesh.preload]]\n" not in text
     assert "\n# normal_force = 445.0" in text
     assert offer(bar_on_base()).pairs == (("bar_int", "base_int"),)
     one_line_error(run(capsys, "case", "check", tmp_path / "b.toml"), "held by nothing")

@@ -10,6 +10,7 @@ option                                       case table              piece
 ``--preload SET:FORCE``                      ``[[mesh.preload]]``    ``Preload(face, force)``
 ``--fixed SET[:DIRECTIONS]``                 ``[[mesh.support]]``    ``Support(set, directions)``
 ``--material ELSET:MODULUS:POISSON[:RHO]``   ``[[mesh.material]]``   ``Material(...)``
+``--bolt HEAD:NUT:FORCE[:DIAMETER]``          ``[[mesh.bolt]]``       two preloads, a shank
 ===========================================  ======================  ========================
 
 The clamp's options stay as the shorthand: ``--contact-set X`` is ``--contact X``,
@@ -39,11 +40,11 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from ..errors import ParameterError
-from ..fe.assembly import Assembly, Contact, Material, Preload, Support
+from ..fe.assembly import Assembly, Contact, Material, Preload, Shank, Support, bolt
 
-__all__ = ["ASSEMBLY_DESTS", "FORMS", "TABLES", "Field", "MissingInput", "build_assembly",
-           "contact_option", "fixed_option", "material_option", "preload_option",
-           "table_check"]
+__all__ = ["ASSEMBLY_DESTS", "FORMS", "TABLES", "Bolt", "Field", "MissingInput",
+           "bolt_option", "build_assembly", "contact_option", "fixed_option",
+           "material_option", "preload_option", "table_check"]
 
 #: The command-line form of each assembly option (destination -> form, with units).
 FORMS = {
@@ -51,6 +52,7 @@ FORMS = {
     "preload": "SET:FORCE (FORCE in N, > 0)",
     "fixed": "SET[:DIRECTIONS] (DIRECTIONS letters of xyz, default xyz)",
     "material": "ELSET:MODULUS:POISSON[:DENSITY] (MPa, -, kg/m^3)",
+    "bolt": "HEAD:NUT:FORCE[:DIAMETER] (FORCE in N on each face, DIAMETER of the shank in mm)",
 }
 
 #: The destinations of the assembly options, in the order of :data:`FORMS`.
@@ -112,6 +114,43 @@ def material_option(text: str) -> Material:
     return _typed("material", text, _material, 3, 4)
 
 
+@dataclass(frozen=True)
+class Bolt:
+    """A bolt as the command line and the case file give it: its ``head`` and ``nut`` faces
+    each pressed by ``force`` (N) and, with a ``diameter`` (mm), a shank between them of
+    ``modulus`` (MPa; None: the first material's); checked by
+    :func:`microslip.fe.assembly.bolt`, which makes its preloads and its shank."""
+
+    head: str
+    nut: str
+    force: float
+    diameter: float | None = None
+    modulus: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.head == self.nut:
+            raise ParameterError(f"bolt {self.head}: the head and the nut are one face")
+        self.parts()
+
+    def parts(self) -> tuple[tuple[Preload, ...], tuple[Shank, ...]]:
+        """The bolt's preloads and shank (none without a diameter)."""
+        return bolt(self.head, self.nut, self.force, self.diameter, self.modulus)
+
+    @property
+    def label(self) -> str:
+        return f"{self.head}:{self.nut}"
+
+
+def _bolt(p: list[str]) -> Bolt:
+    diameter = None if len(p) < 4 else _number("the shank's diameter", p[3], "mm")
+    return Bolt(p[0], p[1], _number("the force", p[2], "N"), diameter)
+
+
+def bolt_option(text: str) -> Bolt:
+    """argparse type of ``--bolt HEAD:NUT:FORCE[:DIAMETER]``."""
+    return _typed("bolt", text, _bolt, 3, 4)
+
+
 # -- the case file's tables -------------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -148,6 +187,14 @@ TABLES: dict[str, tuple[str, tuple[Field, ...]]] = {
         Field("poisson_ratio", "number", "", True, "Poisson's ratio nu, in (-1, 0.5)"),
         Field("density", "number", "kg/m^3", False, "density, in [100, 30000] (default: "
                                                     "[mesh] density)"))),
+    "bolt": ("bolt", (
+        Field("head", "name", "", True, "the head's face (the washer under the head)"),
+        Field("nut", "name", "", True, "the nut's face, on the other body"),
+        Field("force", "number", "N", True, "the bolt's preload, pressing each face inward"),
+        Field("diameter", "number", "mm", False, "the shank's diameter: an elastic beam "
+              "between the two faces after the preload (left out: no shank)"),
+        Field("modulus", "number", "MPa", False, "the shank's modulus (default: the first "
+                                                 "material's)"))),
 }
 
 _MAKERS: dict[str, Callable[[dict[str, Any]], Any]] = {
@@ -156,6 +203,8 @@ _MAKERS: dict[str, Callable[[dict[str, Any]], Any]] = {
     "support": lambda t: Support(t["set"], t.get("directions", "xyz")),
     "material": lambda t: Material(t["modulus"], t["poisson_ratio"], t.get("density"),
                                    t["elset"]),
+    "bolt": lambda t: Bolt(t["head"], t["nut"], t["force"], t.get("diameter"),
+                           t.get("modulus")),
 }
 
 
@@ -217,7 +266,8 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
                    normal_contact: str | None = None) -> Assembly:
     """The assembly that ``values`` (argparse destinations -> values: the shorthand's
     ``contact_set``, ``clamp_set``, ``normal_force``, ``modulus``, ``poisson_ratio``,
-    ``density``; the pieces ``contact``, ``preload``, ``fixed``, ``material``; the contact law
+    ``density``; the pieces ``contact``, ``preload``, ``fixed``, ``material``, ``bolt``; the
+    contact law
     ``friction``, ``stick_slope``, ``normal_contact``, ``normal_slope``) describe.
 
     ``spell(dest)`` is how the caller names a value in messages (``--clamp-set``, or
@@ -233,17 +283,22 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
         missing.append(f"{spell('contact_set')} NAME (or {spell('contact')} "
                        "SET[:COUNTER_SET])")
     preloads = list(_given(values, "preload") or ())
+    shanks: list[Shank] = []
+    for b in _given(values, "bolt") or ():
+        pre, sh = b.parts()
+        preloads += pre
+        shanks += sh
     clamp_set, force = _given(values, "clamp_set"), _given(values, "normal_force")
     if clamp_set is not None and force is None:
         missing.append(f"{spell('normal_force')} N (the force on {spell('clamp_set')} "
                        f"{clamp_set})")
     elif clamp_set is None and force is not None and preloads:
         raise ParameterError(f"{spell('normal_force')} {force:g} presses no face: it is the "
-                             f"force of {spell('clamp_set')}; with {spell('preload')} give "
-                             "each face its own force (SET:FORCE)")
+                             f"force of {spell('clamp_set')}; with {spell('preload')} or "
+                             f"{spell('bolt')} give each its own force")
     elif clamp_set is None and not preloads:
         missing.append(f"{spell('clamp_set')} NAME with {spell('normal_force')} N (or "
-                       f"{spell('preload')} SET:FORCE)")
+                       f"{spell('preload')} SET:FORCE, or {spell('bolt')} HEAD:NUT:FORCE)")
     if clamp_set is not None and force is not None:
         try:
             preloads.insert(0, Preload(clamp_set, force))
@@ -273,7 +328,8 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
     try:
         return Assembly(contacts=tuple(contacts), preloads=tuple(preloads),
                         materials=tuple(materials), friction=values["friction"],
-                        supports=tuple(_given(values, "fixed") or ()), **law)
+                        supports=tuple(_given(values, "fixed") or ()), shanks=tuple(shanks),
+                        **law)
     except ParameterError as exc:
         raise ParameterError(_spelled(str(exc), spell)) from None
 

@@ -38,6 +38,7 @@ from ..conventions import (
 from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS
 from .assembly import (
     FORMS,
+    bolt_option,
     contact_option,
     fixed_option,
     material_option,
@@ -197,6 +198,12 @@ _OPTIONS: tuple[Option, ...] = (
            metavar="ELSET:E:NU[:RHO]", key="mesh.material", check=table_check("material"),
            scope="mesh", case_note="[[mesh.material]] tables: elset, modulus, poisson_ratio, "
            "density; [material] gives every other element"),
+    Option("bolt", "a bolt: its HEAD and NUT faces each pressed inward by FORCE and, with a "
+           "DIAMETER, a shank between them (an elastic beam between the faces' mean motions "
+           "after the preload); repeat for several", "", FORMS["bolt"], type=bolt_option,
+           action="append", metavar="HEAD:NUT:FORCE[:DIAMETER]", key="mesh.bolt",
+           check=table_check("bolt"), scope="mesh", case_note="[[mesh.bolt]] tables: head, "
+           "nut, force, diameter, modulus"),
     Option("contact_formulation", "CalculiX's contact on the mesh: node-to-surface solves the "
            "built-in solver's nodal equations, face-to-face integrates the tractions over the "
            "faces", "", " | ".join(CCX_CONTACT_FORMULATIONS), type=None,

@@ -185,6 +185,17 @@ def _roles(offer: MeshOffer) -> dict[str, str | None]:
             for role, guesses in ROLE_GUESSES.items()}
 
 
+def _bolt_pairs(names: list[str]) -> tuple[list[tuple[str, str]], list[str]]:
+    """(head, nut) pairs of the same number among ``names`` (``head2``, ``nut2``), and the
+    names left over."""
+    key = {n: re.sub(r"^(head|nut|washer|bolt)", "", n, flags=re.IGNORECASE) for n in names}
+    heads = [n for n in names if n.lower().startswith("head")]
+    nuts = [n for n in names if n.lower().startswith("nut")]
+    pairs = [(h, n) for h in heads for n in nuts if key[h] == key[n]]
+    used = {x for p in pairs for x in p}
+    return pairs, [n for n in names if n not in used]
+
+
 def _named(offer: MeshOffer, pattern: re.Pattern[str]) -> list[str]:
     """Face sets of a mesh of several bodies whose names match ``pattern`` (not in a pair)."""
     if len(offer.bodies) < 2:
@@ -332,12 +343,21 @@ def _assembly_tables(offer: MeshOffer, base: dict[str, Any], unfilled: list[str]
                 "\"xyz\"):", "# [[mesh.support]]", '# set = "SET"', '# directions = "xyz"',
                 ""]
     force = float(base["normal_force"])
-    if bolts:
-        out += [f"# A bolt's faces found by name, each pressed by the bolt's force ({force:g} "
-                f"N of {TEMPLATE_PRESET} as an example: edit it)."]
-        for name in bolts:
+    pairs, singles = _bolt_pairs(bolts)
+    if pairs:
+        out += ["# The bolts found by name (a head and a nut face of the same number), each "
+                "pressed by", f"# the bolt's force ({force:g} N of {TEMPLATE_PRESET} as an "
+                "example: edit it). Give a diameter (mm)", "# for a shank between the faces: "
+                "without it a lateral load past the friction's limit has", "# no equilibrium."]
+        for head, nut in pairs:
+            out += ["[[mesh.bolt]]", f"head = {_toml(head)}", f"nut = {_toml(nut)}",
+                    f"force = {_toml(force)}", "# diameter = 10.0", ""]
+    if singles:
+        out += [f"# Faces named like a bolt's, each pressed by a force ({force:g} N of "
+                f"{TEMPLATE_PRESET} as an example: edit it)."]
+        for name in singles:
             out += ["[[mesh.preload]]", f"face = {_toml(name)}", f"force = {_toml(force)}", ""]
-    else:
+    if not bolts:
         out += ["# [[mesh.preload]] tables: more pressed faces (face, force N; a bolt: its "
                 "head and nut faces):", "# [[mesh.preload]]", '# face = "SET"',
                 f"# force = {_toml(force)}"]

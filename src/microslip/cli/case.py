@@ -217,8 +217,14 @@ def _mesh_lines(case: Any) -> list[str]:
 
 def _piece_text(piece: Any) -> str:
     """One assembly table in words, with units."""
+    from ..case.assembly import Bolt
     from ..fe.assembly import Contact, Material, Preload, Support
 
+    if isinstance(piece, Bolt):
+        shank = ("no shank" if piece.diameter is None else
+                 f"a shank of {piece.diameter:.6g} mm" + (
+                     "" if piece.modulus is None else f", {piece.modulus:.6g} MPa"))
+        return f"{piece.force:.6g} N on {piece.head} and on {piece.nut}, {shank}"
     if isinstance(piece, Contact):
         return (f"{piece.face} on {piece.counter}" if piece.counter is not None
                 else f"{piece.face} on the rigid base")
