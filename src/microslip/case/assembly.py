@@ -37,10 +37,12 @@ import difflib
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import ParameterError
-from ..fe.assembly import Assembly, Contact, Material, Preload, Shank, Support, bolt
+
+if TYPE_CHECKING:  # the FE package is imported when an assembly is built, not to read a case
+    from ..fe.assembly import Assembly, Contact, Material, Preload, Shank, Support
 
 __all__ = ["ASSEMBLY_DESTS", "FORMS", "TABLES", "Bolt", "Field", "MissingInput",
            "bolt_option", "build_assembly", "contact_option", "fixed_option",
@@ -89,23 +91,23 @@ def _typed(dest: str, text: str, make: Callable[[list[str]], Any], low: int,
 
 def contact_option(text: str) -> Contact:
     """argparse type of ``--contact SET[:COUNTER_SET]``."""
-    return _typed("contact", text, lambda p: Contact(*p), 1, 2)
+    return _typed("contact", text, lambda p: _fe().Contact(*p), 1, 2)
 
 
 def preload_option(text: str) -> Preload:
     """argparse type of ``--preload SET:FORCE``."""
-    return _typed("preload", text, lambda p: Preload(p[0], _number("the force", p[1], "N")),
+    return _typed("preload", text, lambda p: _fe().Preload(p[0], _number("the force", p[1], "N")),
                   2, 2)
 
 
 def fixed_option(text: str) -> Support:
     """argparse type of ``--fixed SET[:DIRECTIONS]``."""
-    return _typed("fixed", text, lambda p: Support(*p), 1, 2)
+    return _typed("fixed", text, lambda p: _fe().Support(*p), 1, 2)
 
 
 def _material(p: list[str]) -> Material:
     rho = None if len(p) < 4 else _number("the density", p[3], "kg/m^3")
-    return Material(_number("the modulus", p[1], "MPa"),
+    return _fe().Material(_number("the modulus", p[1], "MPa"),
                     _number("the Poisson ratio", p[2], "-"), rho, p[0])
 
 
@@ -134,7 +136,7 @@ class Bolt:
 
     def parts(self) -> tuple[tuple[Preload, ...], tuple[Shank, ...]]:
         """The bolt's preloads and shank (none without a diameter)."""
-        return bolt(self.head, self.nut, self.force, self.diameter, self.modulus)
+        return _fe().bolt(self.head, self.nut, self.force, self.diameter, self.modulus)
 
     @property
     def label(self) -> str:
@@ -198,10 +200,10 @@ TABLES: dict[str, tuple[str, tuple[Field, ...]]] = {
 }
 
 _MAKERS: dict[str, Callable[[dict[str, Any]], Any]] = {
-    "contact": lambda t: Contact(t["face"], t.get("counter")),
-    "preload": lambda t: Preload(t["face"], t["force"]),
-    "support": lambda t: Support(t["set"], t.get("directions", "xyz")),
-    "material": lambda t: Material(t["modulus"], t["poisson_ratio"], t.get("density"),
+    "contact": lambda t: _fe().Contact(t["face"], t.get("counter")),
+    "preload": lambda t: _fe().Preload(t["face"], t["force"]),
+    "support": lambda t: _fe().Support(t["set"], t.get("directions", "xyz")),
+    "material": lambda t: _fe().Material(t["modulus"], t["poisson_ratio"], t.get("density"),
                                    t["elset"]),
     "bolt": lambda t: Bolt(t["head"], t["nut"], t["force"], t.get("diameter"),
                            t.get("modulus")),
@@ -278,7 +280,7 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
     missing: list[str] = []
     contacts = list(_given(values, "contact") or ())
     if _given(values, "contact_set") is not None:
-        contacts.insert(0, Contact(values["contact_set"]))
+        contacts.insert(0, _fe().Contact(values["contact_set"]))
     if not contacts:
         missing.append(f"{spell('contact_set')} NAME (or {spell('contact')} "
                        "SET[:COUNTER_SET])")
@@ -301,7 +303,7 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
                        f"{spell('preload')} SET:FORCE, or {spell('bolt')} HEAD:NUT:FORCE)")
     if clamp_set is not None and force is not None:
         try:
-            preloads.insert(0, Preload(clamp_set, force))
+            preloads.insert(0, _fe().Preload(clamp_set, force))
         except ParameterError:
             raise ParameterError(f"{spell('normal_force')} must be finite and > 0 N, got "
                                  f"{force!r}") from None
@@ -326,7 +328,7 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
                              ("normal_slope", _given(values, "normal_slope")))
            if v is not None}
     try:
-        return Assembly(contacts=tuple(contacts), preloads=tuple(preloads),
+        return _fe().Assembly(contacts=tuple(contacts), preloads=tuple(preloads),
                         materials=tuple(materials), friction=values["friction"],
                         supports=tuple(_given(values, "fixed") or ()), shanks=tuple(shanks),
                         **law)
@@ -337,7 +339,7 @@ def build_assembly(values: Mapping[str, Any], spell: Callable[[str], str],
 def _default_material(modulus: Any, nu: Any, density: Any,
                       spell: Callable[[str], str]) -> Material:
     try:
-        return Material(modulus, nu, density)
+        return _fe().Material(modulus, nu, density)
     except ParameterError as exc:
         raise ParameterError(_spelled(str(exc), spell)) from None
 
@@ -357,3 +359,11 @@ def _spelled(text: str, spell: Callable[[str], str]) -> str:
         if text.startswith(dest + " "):
             return spell(dest) + text[len(dest):]
     return text
+
+
+def _fe() -> Any:
+    """:mod:`microslip.fe.assembly`, imported on first use (reading a case file does not load
+    the FE package)."""
+    from ..fe import assembly
+
+    return assembly

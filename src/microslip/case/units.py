@@ -19,8 +19,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from ..conventions import DENSITY_RANGE
 from ..errors import ParameterError
-from ..fe.assembly import DENSITY_RANGE
 
 __all__ = ["DENSITY_RANGE", "IMPOSSIBLE", "PLAUSIBLE", "check_impossible", "density",
            "plausibility_warnings"]

@@ -40,6 +40,7 @@ from ..conventions import (
     DEFAULT_NORMAL_CONTACT,
     DEFAULT_NORMAL_SLOPE,
     DEFAULT_STICK_SLOPE,
+    DENSITY_RANGE,
     check_positive,
 )
 from ..errors import ParameterError
@@ -53,8 +54,6 @@ __all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "Contact
 NORMAL_CONTACT_NAMES = ("fixed", "penalty")
 #: Global directions a support may hold.
 DIRECTIONS = "xyz"
-#: Densities (kg/m^3) a material of an engineering part can have: outside, a unit mistake.
-DENSITY_RANGE = (100.0, 30000.0)
 
 
 def _name(what: str, value: Any) -> str:
