@@ -30,8 +30,8 @@ ROOT = Path(__file__).resolve().parents[1]
 INCREMENTS = 40
 
 
-def lap_assembly(normal: str = "penalty") -> Assembly:
-    pre, shanks = bolt("head", "nut", 5000.0, 10.0)
+def lap_assembly(normal: str = "penalty", diameter: float | None = 10.0) -> Assembly:
+    pre, shanks = bolt("head", "nut", 5000.0, diameter)
     return Assembly(contacts=(Contact("a_int", "b_int"),), preloads=pre, shanks=shanks,
                     supports=(Support("fix"),), materials=(Material(210000.0, 0.3),),
                     friction=0.3, stick_slope=1e4, normal_contact=normal, normal_slope=1e5)
@@ -67,21 +67,28 @@ def main() -> None:
     for name, r in (("bolted lap, built-in", a), ("rigid-base bar 48x12x4, built-in", b)):
         print(f"{name:34s} {r['dof']:6d} {r['contact_nodes']:7d} {r['build_s']:8.2f} "
               f"{r['cycles']:6d} {r['per_cycle_s']:8.3f} {r['W_Nmm']:10.4g}")
-    ratio = (a["build_s"] + a["per_cycle_s"]) / (b["build_s"] + b["per_cycle_s"])
-    print(f"lap / rigid-base part, build + one settled cycle: {ratio:.2f}x (reference: <= 2x)")
+    print(f"lap / rigid-base part, one settled cycle: {a['per_cycle_s'] / b['per_cycle_s']:.2f}x "
+          f"(reference: <= 2x); the model build (the preload step): "
+          f"{a['build_s'] / b['build_s']:.1f}x")
     if args.no_ccx:
         return
     from microslip.fe.calculix.meshrun import run_mesh_calculix
 
+    # CalculiX's deck has no shank: both solvers on the shank-free lap, axially (no rocking)
+    same = lap_assembly(diameter=None)
+    lap_loads = [MeshLoad("tip", (1.0, 0.0, 0.0), 500.0)]
+    a = builtin(lap, same, lap_loads)
+    print(f"bolted lap without a shank, 500 N axial, built-in: build {a['build_s']:.2f} s, "
+          f"{a['cycles']} cycles of {a['per_cycle_s']:.3f} s, W = {a['W_Nmm']:.5g} N·mm")
     t0 = time.perf_counter()
-    c = run_mesh_calculix(lap, lap_assembly(), loads=lap_loads,
+    c = run_mesh_calculix(lap, same, loads=lap_loads,
                           increments_per_cycle=INCREMENTS, cycles=2, startup="ramp",
                           formulation="node-to-surface", timeout=3600)
     tc = time.perf_counter() - t0
     s = c.summary()
     per_cycle = tc / 2.25  # the ramp's quarter cycle and two cycles
     print(f"CalculiX node to surface: {tc:.1f} s for 2.25 cycles ({per_cycle:.1f} s/cycle), "
-          f"W = {s.get('dissipated_energy_Nmm')} N·mm")
+          f"W = {s.get('dissipated_energy_Nmm')} N·mm (built-in {a['W_Nmm']:.5g})")
     built_in = a["build_s"] + a["per_cycle_s"] * a["cycles"]
     print(f"CalculiX / built-in, the whole settled run: {tc / built_in:.0f}x; per cycle: "
           f"{per_cycle / a['per_cycle_s']:.0f}x (reference: >= 50x)")

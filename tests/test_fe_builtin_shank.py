@@ -128,3 +128,21 @@ def test_the_shank_carries_the_lap_past_its_friction_torque() -> None:
     w_free, d_free = run(None, 50.0)
     w_held, d_held = run(D, 50.0)
     assert w_held < 0.8 * w_free and d_held < d_free
+
+
+def test_calculix_refuses_a_shank_in_one_line() -> None:
+    """The CalculiX deck has no shank yet: an assembly with one is refused, never run
+    without it silently."""
+    from microslip.errors import ParameterError
+    from microslip.fe.assembly import Assembly, Contact, Material, Support, bolt
+    from microslip.fe.calculix.meshdeck import build_mesh_deck
+    from microslip.fe.meshfile import read_mesh
+    from microslip.fe.meshload import MeshLoad
+
+    pre, shanks = bolt("head", "nut", 5000.0, D)
+    a = Assembly(contacts=(Contact("a_int", "b_int"),), preloads=pre, shanks=shanks,
+                 supports=(Support("fix"),), materials=(Material(E, NU),), friction=0.3,
+                 normal_contact="penalty")
+    with pytest.raises(ParameterError, match="shanks are not written") as err:
+        build_mesh_deck(read_mesh(LAP), a, loads=[MeshLoad("tip", (1.0, 0.0, 0.0), 10.0)])
+    assert "\n" not in str(err.value)

@@ -526,16 +526,17 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
             f"is singular: {err}); every body needs a support, a face on the rigid base or a "
             "contact pressed by a preload, and the supports must stop its rigid motions"
         ) from None
+    n_keep = contact.size * (3 if penalty else 2)
+    if condensed is None:
+        condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
     if assembly.shanks:  # the bolts' shanks carry load after the preload (:mod:`.shank`)
         shank = _shanks(mesh, assembly, nodes, inv, transform)[free][:, free]
         k_ff = (k_ff + shank).tocsr()
         clamp = clamp + np.asarray(shank @ u)
-        with single_threaded_blas():
-            backend = _backend(linear_solver, k_ff, cdofs, kc,
-                               None if springs is None else springs.stiffness)
-    n_keep = contact.size * (3 if penalty else 2)
-    if condensed is None:
-        condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
+        if not condensed:  # the condensation factorises its own
+            with single_threaded_blas():
+                backend = _backend(linear_solver, k_ff, cdofs, kc,
+                                   None if springs is None else springs.stiffness)
     if condensed:  # the full factor goes before the condensation builds its own
         backend = _spent(backend)
     with single_threaded_blas():

@@ -229,6 +229,11 @@ def resolve_assembly(mesh: HexMesh, assembly: object) -> ResolvedAssembly:
     and its counter face must not share nodes (one body: the pair would be glued to itself).
     ``assembly``: an :class:`Assembly` or a :class:`~microslip.fe.clamp.MeshClamp`."""
     a = as_assembly(assembly)
+    if a.shanks:
+        raise ParameterError("CalculiX: bolt shanks are not written into the deck yet (a beam "
+                             "between the faces' mean motions needs *COUPLING and *PRE-TENSION "
+                             "SECTION); run CalculiX on the assembly without shanks, or the "
+                             "built-in solver alone")
     contacts = []
     for k, c in enumerate(a.contacts, start=1):
         faces = _faces(mesh, c.face, "contact face")
