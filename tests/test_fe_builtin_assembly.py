@@ -189,3 +189,19 @@ def test_a_partial_support_holds_its_global_direction_whichever_way_the_contact_
     assert m.rotation[2, 2] == -1.0
     held = m.index.reshape(-1, 3)[m.model_nodes(mesh.node_sets["tip"])]
     assert np.all(held[:, 2] < 0) and np.all(held[:, :2] >= 0)
+
+
+def test_the_model_says_what_it_built() -> None:
+    """The JSON's model object (issue 34): each role set's faces and area, the preload's
+    pressure, the contact state after the preload, the bodies."""
+    bar = cantilever_mesh(6, 2, 1)
+    m = build_mesh_model(on_block(bar), _assembly("penalty"))
+    d = m.describe()
+    assert d["bodies"] == 2 and d["dof"] == m.dof
+    area = 50.8 * 25.4
+    assert d["sets"]["bar_int"]["area_mm2"] == pytest.approx(area, rel=1e-12)
+    assert d["sets"]["base_int"]["role"] == "counter face"
+    assert d["sets"]["clamp"]["pressure_MPa"] == pytest.approx(FN / area, rel=1e-12)
+    assert d["sets"]["base_fix"] == {"role": "support", "directions": "xyz"}
+    assert d["closed_after_preload"] + d["open_after_preload"] == d["contact_nodes"]
+    assert d["contact_force_N"] == pytest.approx(FN, rel=1e-9)

@@ -295,6 +295,8 @@ def _print_text(args: argparse.Namespace, out: dict[str, Any]) -> None:
     print(f"mesh {out['mesh']}{refined} ({out['nodes']} nodes, {out['elements']} elements, "
           f"{out['dof']} DOF), {args.solver} solver ({out['element']}), {o['normal_contact']} "
           f"normal contact, stick slope {o['stick_slope_N_per_mm3']:g} N/mm^3")
+    if "model" in out:
+        print_model(out["model"])
     for k, ld in enumerate(out["loads"], 1):
         d = ", ".join(f"{x:g}" for x in ld["direction"])
         work = work_text(ld["work_Nmm"], tol).replace("  (", " (")
@@ -314,3 +316,17 @@ def _print_text(args: argparse.Namespace, out: dict[str, Any]) -> None:
     for f in out.get("files", []):
         if str(f).endswith((".pvd", ".json", ".png", ".pdf", ".svg")):
             print(f"  file                   {f}")
+
+
+def print_model(m: dict[str, Any]) -> None:
+    """The model the solver built, in lines a user can check against the part (issue 34):
+    each role set's faces, area and pressure, the contact state after the preload step."""
+    print(f"  model: {m['bodies']} bod{'y' if m['bodies'] == 1 else 'ies'}, "
+          f"{m['contact_nodes']} contact nodes ({m['closed_after_preload']} closed, "
+          f"{m['open_after_preload']} open after the preload), contact force "
+          f"{m['contact_force_N']:.6g} N")
+    for name, s in m["sets"].items():
+        area = f"{s['faces']} faces, {s['area_mm2']:.6g} mm^2" if "area_mm2" in s else "node set"
+        extra = (f", {s['force_N']:g} N = {s['pressure_MPa']:.4g} MPa" if "force_N" in s
+                 else f", holds {s['directions']}" if "directions" in s else "")
+        print(f"    {s['role']:12s} {name:16s} {area}{extra}")

@@ -135,7 +135,7 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
                              max_cycles=case.max_cycles)
     result = solve_mesh(model, case.loads, history, record=record)
     return {"solver": "builtin", "element": model.element, **result.summary(),
-            "converged": result.converged}, result
+            "converged": result.converged, "model": model.describe()}, result
 
 
 def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:

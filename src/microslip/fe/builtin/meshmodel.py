@@ -292,15 +292,38 @@ class MeshModel:
         return out
 
     def describe(self) -> dict[str, Any]:
-        """Plain summary for reports."""
+        """What the solver built (the JSON's ``model`` object, issue 34): the mesh's size, the
+        element and the normal law; each role set's faces and area (mm^2); each preload's
+        pressure F / A (MPa); the contact nodes closed and open after the preload step; the
+        bodies, the supports and the assembly."""
+        from .bodies import body_labels
+
+        sets: dict[str, Any] = {}
+        roles = [(c.face, "contact") for c in self.assembly.contacts]
+        roles += [(c.counter, "counter face") for c in self.assembly.contacts if c.counter]
+        roles += [(p.face, "preload") for p in self.assembly.preloads]
+        for name, role in roles:
+            faces = set_faces(self.mesh, name, role)
+            sets[name] = {"role": role, "faces": len(faces),
+                          "area_mm2": float(face_load(self.mesh, faces)[2])}
+        for p in self.assembly.preloads:
+            sets[p.face]["force_N"] = p.force
+            sets[p.face]["pressure_MPa"] = p.force / sets[p.face]["area_mm2"]
+        for s in self.assembly.supports:
+            sets.setdefault(s.set, {"role": "support"})["directions"] = s.directions
+        closed = int(np.count_nonzero(self.closed))
         return {"source": self.mesh.source, "nodes": len(self.mesh.nodes),
-                "assembly": self.assembly.describe(),
                 "elements": len(self.mesh.elements), "element": self.element,
-                "dof": self.dof, "contact_nodes": int(self.contact_nodes.size),
+                "dof": self.dof, "bodies": body_labels(self.mesh)[0],
+                "normal_contact": self.normal_contact, "sets": sets,
+                "contact_nodes": int(self.contact_nodes.size),
                 "contact_area_mm2": float(self.contact_area.sum()),
-                "normal_contact": self.normal_contact,
+                "closed_after_preload": closed,
+                "open_after_preload": int(self.contact_nodes.size) - closed,
+                "contact_force_N": float(self.normal_force.sum()),
                 "linear_solver": self.backend.name if self.reduced is None
-                else f"condensed ({self.reduced.keep.size} contact dofs)"}
+                else f"condensed ({self.reduced.keep.size} contact dofs)",
+                "assembly": self.assembly.describe()}
 
 
 class SpentBackend:
