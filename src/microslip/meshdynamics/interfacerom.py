@@ -205,7 +205,8 @@ PRESTRESS_LEVELS_MAX = 24
 def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> FloatArray:
     """The boundary displacements of the ROM's first loading by the inertial load of its
     stuck mode ``mode`` (0-based), ``q M phi``, at rising q from first slip to near gross
-    sliding (n_b, levels or fewer; each column one level, mm).
+    sliding (n_b, levels or fewer; each column one level, mm), after the stuck response
+    (whose shape is the stuck mode's on the boundary: the model keeps its stuck frequency).
 
     Notes
     -----
@@ -247,7 +248,8 @@ def _loadings(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
 def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
                    kn: FloatArray | None, levels: int = LOADING_LEVELS,
                    stick: FloatArray | None = None, friction: float = 1.0) -> FloatArray:
-    """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
+    """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels + 1),
+    the stuck response to p (q = 1) first, mm:
     :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None;
     ``stick`` (n_c, 2), if given, the clamping step's tangential force the sliders start
     from (N; the 3-D elements start their cycles from it): nodes left near their limit slip
@@ -261,9 +263,15 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     open_ = s <= 0.0  # open nodes (no normal force) carry nothing: no spring, no force
     kc[open_] = 0.0
     phi_slip = s / kt
-    stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
+    linear = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p)
+    stuck = linear.reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
-    q = float(np.min(phi_slip / np.where((reach > 0.0) & ~open_, reach, np.inf)))
+    # first slip over the closed nodes that move (an open node's slip displacement is 0:
+    # 0 / inf was 0 there, and every field of a part that lifts off was zero)
+    moves = (reach > 0.0) & ~open_
+    if not np.any(moves):
+        return linear[:, None]
+    q = float(np.min(phi_slip[moves] / reach[moves]))
     t0 = np.zeros((kt.size, 2)) if stick is None else np.asarray(stick, dtype=float)
     z = -t0 / kt[:, None]  # the clamped slider: k_t (0 - z) = t0
     if stick is not None:  # first slip with the stick force: |q a - z| = phi, per node
@@ -274,7 +282,10 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
         first = float(np.min(np.where((aa > 0.0) & ~open_, root, np.inf)))
         q = max(min(q, first), q * LOADING_STEP ** -PRESTRESS_LEVELS)
     u = np.zeros(nb)
-    shapes = []
+    # the stuck response first: its shape is the stuck mode's on the boundary (p is the
+    # mode's inertial load, (K + K_c)^-1 M phi = phi / w^2), so the model keeps the stuck
+    # frequency at zero amplitude whatever slips at the first level
+    shapes = [linear]
     for _ in range(levels):
         q *= LOADING_STEP
         u = u * LOADING_STEP  # the previous level scaled: exact while every node sticks
