@@ -40,3 +40,38 @@ def test_the_interface_model_keeps_the_stuck_frequency_where_nodes_lift_off() ->
     f_fe = prepared.mode.frequency_Hz
     f_if = float(model.stuck_frequencies(1)[0])
     assert abs(f_if / f_fe - 1.0) < 1e-4  # 7.0 % before
+
+
+def test_an_open_node_keeps_its_gap_in_the_interface_model() -> None:
+    """With penalty contact a node the clamp left open (preload -k_n A_i g_0 < 0) carries
+    nothing until its gap closes, in the interface model's node laws as in the ROM's 3-D
+    elements (the interface model took the preload as slip force / mu, 0 at an open node:
+    its gap was lost and it pressed at once)."""
+    from microslip.dynamics.hb import from_time, to_time
+    from microslip.dynamics.nodecontacts import NodeContacts
+    from microslip.dynamics.operators3d import Contact3D
+
+    kt = np.array([1e3, 2e3, 1.5e3])
+    kn = 100.0 * kt
+    preload = np.array([40.0, -30.0, 25.0])  # node 1 open, its gap 30 / k_n
+    slip = 0.5 * np.maximum(preload, 0.0)
+    stick = np.array([[3.0, -1.0], [0.0, 0.0], [-2.0, 4.0]])
+    h, n = 3, 64
+    synth = np.ascontiguousarray(to_time(np.eye(2 * h + 1), n).T)
+    analysis = np.ascontiguousarray(from_time(np.eye(n), h).T)
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=(9, 2 * h + 1)) * 0.02
+    x[5, 1] = -0.5  # node 1 pushed down well past its gap during the cycle
+    contacts = NodeContacts(np.eye(9), kt, slip, normal_stiffness=kn, friction=0.5,
+                            stick_force=stick, preload=preload)
+    force, _ = contacts.periodic_harmonics(x.ravel(), synth, analysis)
+    for i in range(3):
+        element = Contact3D(kt[i], kn[i], preload[i], 0.5, tuple(stick[i]))
+        f = element.periodic_force(synth @ x[3 * i:3 * i + 3].T)
+        expected = (analysis @ f).T - element.stuck_stiffness @ x[3 * i:3 * i + 3]
+        np.testing.assert_allclose(force.reshape(9, -1)[3 * i:3 * i + 3], expected,
+                                   rtol=1e-10, atol=1e-9)
+    zero_gap = NodeContacts(np.eye(9), kt, slip, normal_stiffness=kn, friction=0.5,
+                            stick_force=stick)
+    lost, _ = zero_gap.periodic_harmonics(x.ravel(), synth, analysis)
+    assert np.max(np.abs(lost - force)) > 1.0  # the gap matters here
