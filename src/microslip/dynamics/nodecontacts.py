@@ -218,7 +218,7 @@ class NodeContacts:
                 raise ParameterError(f"the periodic state of {failed} contact node(s) did not "
                                      "converge")
         else:
-            assert self.stick_force is not None
+            assert self.stick_force is not None and self.preload is not None
             _contact3d_nodes(samples, self.tangential_stiffness, self.normal_stiffness,
                              self.preload, float(self.friction),
                              self.stick_force, synth, f, jb)

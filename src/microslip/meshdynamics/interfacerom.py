@@ -277,7 +277,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     # 0 / inf was 0 there, and every field of a part that lifts off was zero)
     moves = (reach > 0.0) & ~open_
     if not np.any(moves):
-        return linear[:, None]
+        return np.asarray(linear[:, None], dtype=np.float64)
     q = float(np.min(phi_slip[moves] / reach[moves]))
     t0 = np.zeros((kt.size, 2)) if stick is None else np.asarray(stick, dtype=float)
     z = -t0 / kt[:, None]  # the clamped slider: k_t (0 - z) = t0
