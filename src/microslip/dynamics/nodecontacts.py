@@ -106,6 +106,11 @@ class NodeContacts:
         mu (used with ``normal_stiffness``).
     stick_force : ndarray, shape (n_c, 2), optional
         The clamping step's tangential force per node (3-D elements only), N.
+    preload : ndarray, shape (n_c,), optional
+        The signed normal preload per node (3-D elements only, N; :attr:`~microslip.
+        meshdynamics.reduce.Rom.preload`): N_0 > 0 where closed, minus k_n A_i times the gap
+        where the clamping left it open, which then carries nothing until the gap closes.
+        Default ``slip_force / friction`` (an open node at a zero gap).
     """
 
     shapes: np.ndarray
@@ -114,6 +119,7 @@ class NodeContacts:
     normal_stiffness: np.ndarray | None = None
     friction: float = 0.0
     stick_force: np.ndarray | None = None
+    preload: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         g = np.asarray(self.shapes, dtype=np.float64)
@@ -140,8 +146,16 @@ class NodeContacts:
                   else np.asarray(self.stick_force, dtype=np.float64))
             if t0.shape != (n_c, 2) or not np.all(np.isfinite(t0)):
                 raise ParameterError(f"stick force must be finite of shape ({n_c}, 2)")
+            n0 = (s / self.friction if self.preload is None
+                  else np.asarray(self.preload, dtype=np.float64).reshape(-1))
+            if n0.shape != kt.shape or not np.all(np.isfinite(n0)):
+                raise ParameterError(f"preload must be {n_c} finite numbers (N)")
+            if np.any((n0 > 0.0) != (s > 0.0)):
+                raise ParameterError("a node's preload is > 0 exactly where its slip force "
+                                     "is (closed after clamping)")
             object.__setattr__(self, "normal_stiffness", readonly(kn))
             object.__setattr__(self, "stick_force", readonly(np.ascontiguousarray(t0)))
+            object.__setattr__(self, "preload", readonly(np.ascontiguousarray(n0)))
 
     @property
     def directions(self) -> int:
@@ -204,9 +218,9 @@ class NodeContacts:
                 raise ParameterError(f"the periodic state of {failed} contact node(s) did not "
                                      "converge")
         else:
-            assert self.stick_force is not None
+            assert self.stick_force is not None and self.preload is not None
             _contact3d_nodes(samples, self.tangential_stiffness, self.normal_stiffness,
-                             self.slip_force / self.friction, float(self.friction),
+                             self.preload, float(self.friction),
                              self.stick_force, synth, f, jb)
         # force harmonics per node dof (n_c d, h), projected; the stuck part taken off
         fh = np.einsum("at,itb->iba", analysis, f).reshape(n_c * d, h)

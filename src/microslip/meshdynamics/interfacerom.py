@@ -101,6 +101,10 @@ class InterfaceRom:
         Seconds to reduce (a contact-node ROM's own build not included).
     characteristic_modes : int
         Of the shapes, the characteristic constraint modes (the first ones).
+    preload : ndarray, shape (n_c,) or None
+        The signed normal preload after clamping (``penalty``, N: minus k_n A_i times the
+        gap at a node the clamp left open, as :attr:`.reduce.Rom.preload`); None: every node
+        at slip force / mu (an open one at a zero gap).
     """
 
     shapes: FloatArray = field(repr=False)
@@ -117,6 +121,7 @@ class InterfaceRom:
     basis: str
     build_s: float
     characteristic_modes: int
+    preload: FloatArray | None = field(default=None, repr=False)
 
     @property
     def interface_modes(self) -> int:
@@ -138,7 +143,7 @@ class InterfaceRom:
         if self.per_node == 3:
             return NodeContacts(self.shapes, self.contact_stiffness, self.slip_force,
                                 normal_stiffness=self.normal_stiffness, friction=self.friction,
-                                stick_force=self.stick_force)
+                                stick_force=self.stick_force, preload=self.preload)
         return NodeContacts(self.shapes, self.contact_stiffness, self.slip_force)
 
     def stuck_stiffness(self) -> FloatArray:
@@ -205,7 +210,8 @@ PRESTRESS_LEVELS_MAX = 24
 def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> FloatArray:
     """The boundary displacements of the ROM's first loading by the inertial load of its
     stuck mode ``mode`` (0-based), ``q M phi``, at rising q from first slip to near gross
-    sliding (n_b, levels or fewer; each column one level, mm).
+    sliding (n_b, levels or fewer; each column one level, mm), after the stuck response
+    (whose shape is the stuck mode's on the boundary: the model keeps its stuck frequency).
 
     Notes
     -----
@@ -229,25 +235,28 @@ def first_loading_shapes(rom: Rom, mode: int, levels: int = LOADING_LEVELS) -> F
         return _first_loading(rom.stiffness[:nb, :nb], p, rom.contact_stiffness,
                               rom.slip_force, None, levels)
     return _loadings(rom.stiffness[:nb, :nb], p, rom.contact_stiffness, rom.slip_force,
-                     rom.normal_stiffness, rom.stick_force, rom.friction)
+                     rom.normal_stiffness, rom.stick_force, rom.friction, rom.preload)
 
 
 def _loadings(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
-              kn: FloatArray | None, stick: FloatArray | None, friction: float
-              ) -> FloatArray:
+              kn: FloatArray | None, stick: FloatArray | None, friction: float,
+              preload: FloatArray | None = None) -> FloatArray:
     """The first-loading fields: from sliders at zero, and with ``penalty`` (``kn``) also
-    from the clamping step's stick force ``stick`` (n_c, 2), side by side (n_b, m)."""
-    x = _first_loading(k_b, p, kt, s, kn, friction=friction)
+    from the clamping step's stick force ``stick`` (n_c, 2), side by side (n_b, m);
+    ``preload`` the signed normal preload (open nodes' gaps), default s / friction."""
+    x = _first_loading(k_b, p, kt, s, kn, friction=friction, preload=preload)
     if kn is None or stick is None:
         return x
     return np.column_stack([x, _first_loading(k_b, p, kt, s, kn, PRESTRESS_LEVELS_MAX,
-                                              stick, friction)])
+                                              stick, friction, preload)])
 
 
 def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray,
                    kn: FloatArray | None, levels: int = LOADING_LEVELS,
-                   stick: FloatArray | None = None, friction: float = 1.0) -> FloatArray:
-    """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels), mm:
+                   stick: FloatArray | None = None, friction: float = 1.0,
+                   preload: FloatArray | None = None) -> FloatArray:
+    """The boundary fields of ``K_bb~ u + f(u) = q p`` at rising q (n_b, <= levels + 1),
+    the stuck response to p (q = 1) first, mm:
     :func:`first_loading_shapes`' notes; ``kn`` the normal springs (``penalty``) or None;
     ``stick`` (n_c, 2), if given, the clamping step's tangential force the sliders start
     from (N; the 3-D elements start their cycles from it): nodes left near their limit slip
@@ -261,9 +270,15 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
     open_ = s <= 0.0  # open nodes (no normal force) carry nothing: no spring, no force
     kc[open_] = 0.0
     phi_slip = s / kt
-    stuck = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p).reshape(-1, d)[:, :2]
+    linear = np.linalg.solve(k_b + np.diag(kc.reshape(-1)), p)
+    stuck = linear.reshape(-1, d)[:, :2]
     reach = np.hypot(stuck[:, 0], stuck[:, 1])
-    q = float(np.min(phi_slip / np.where((reach > 0.0) & ~open_, reach, np.inf)))
+    # first slip over the closed nodes that move (an open node's slip displacement is 0:
+    # 0 / inf was 0 there, and every field of a part that lifts off was zero)
+    moves = (reach > 0.0) & ~open_
+    if not np.any(moves):
+        return np.asarray(linear[:, None], dtype=np.float64)
+    q = float(np.min(phi_slip[moves] / reach[moves]))
     t0 = np.zeros((kt.size, 2)) if stick is None else np.asarray(stick, dtype=float)
     z = -t0 / kt[:, None]  # the clamped slider: k_t (0 - z) = t0
     if stick is not None:  # first slip with the stick force: |q a - z| = phi, per node
@@ -274,13 +289,16 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
         first = float(np.min(np.where((aa > 0.0) & ~open_, root, np.inf)))
         q = max(min(q, first), q * LOADING_STEP ** -PRESTRESS_LEVELS)
     u = np.zeros(nb)
-    shapes = []
+    # the stuck response first: its shape is the stuck mode's on the boundary (p is the
+    # mode's inertial load, (K + K_c)^-1 M phi = phi / w^2), so the model keeps the stuck
+    # frequency at zero amplitude whatever slips at the first level
+    shapes = [linear]
     for _ in range(levels):
         q *= LOADING_STEP
         u = u * LOADING_STEP  # the previous level scaled: exact while every node sticks
         ok = False
         for _it in range(60):
-            force, blocks, _, _ = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction)
+            force, blocks, _, _ = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction, preload)
             res = k_b @ u + force.reshape(-1) - q * p
             if np.max(np.abs(res)) <= LOADING_TOLERANCE * q * np.max(np.abs(p)):
                 ok = True
@@ -294,7 +312,7 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
             u = u - (_spd_solve(tan, res) if kn is None else np.linalg.solve(tan, res))
         if not ok:
             break
-        _, _, slip, z = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction)
+        _, _, slip, z = _node_law(u.reshape(-1, d), z, t0, kt, kn, s, friction, preload)
         shapes.append(u.copy())
         if np.mean(slip) >= LOADING_STOP:
             break
@@ -302,7 +320,8 @@ def _first_loading(k_b: FloatArray, p: FloatArray, kt: FloatArray, s: FloatArray
 
 
 def _node_law(u: FloatArray, z: FloatArray, t0: FloatArray, kt: FloatArray,
-              kn: FloatArray | None, s: FloatArray, friction: float
+              kn: FloatArray | None, s: FloatArray, friction: float,
+              preload: FloatArray | None = None
               ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_], FloatArray]:
     """Each node's force (n_c, d; the tangential counted from the stick force t0), its
     tangent blocks (n_c, d, d), whether it slips (or is open / lifted off) and its new
@@ -318,7 +337,8 @@ def _node_law(u: FloatArray, z: FloatArray, t0: FloatArray, kt: FloatArray,
         limit = s
         touching = s > 0.0
     else:
-        normal = s / friction - kn * u[:, 2]
+        n0 = s / friction if preload is None else preload
+        normal = n0 - kn * u[:, 2]
         touching = normal > 0.0
         limit = friction * np.maximum(normal, 0.0)
     slip = touching & (kt * r > limit)
@@ -334,7 +354,7 @@ def _node_law(u: FloatArray, z: FloatArray, t0: FloatArray, kt: FloatArray,
     z_new = np.where(stick[:, None], z, np.where(
         slip[:, None], ut - (limit / kt)[:, None] * e, ut))
     if kn is not None:
-        force[:, 2] = np.where(touching, kn * u[:, 2], s / friction)
+        force[:, 2] = np.where(touching, kn * u[:, 2] - np.minimum(n0, 0.0), s / friction)
         blocks[:, 2, 2] = np.where(touching, kn, 0.0)
         blocks[:, :2, 2] = np.where(slip[:, None], -friction * kn[:, None] * e, 0.0)
     return force, blocks, ~stick, z_new
@@ -415,7 +435,8 @@ def build_interface_rom(rom: Rom, count: int, mode: int | None = None) -> Interf
                         normal_stiffness=rom.normal_stiffness, friction=rom.friction,
                         stick_force=rom.stick_force, per_node=rom.per_node,
                         fixed_interface_modes=rom.modes, basis=basis,
-                        build_s=time.perf_counter() - t0, characteristic_modes=int(count))
+                        build_s=time.perf_counter() - t0, characteristic_modes=int(count),
+                        preload=None if rom.per_node == 2 else rom.preload)
 
 
 def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
@@ -461,7 +482,8 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
     kn = None if per_node == 2 else np.asarray(model.normal.stiffness, dtype=float)  # type: ignore[union-attr]
     laws = NodeContacts(np.zeros((b.size, 1)), kt, model.friction_limit,
                         normal_stiffness=kn, friction=model.friction,
-                        stick_force=None if kn is None else clamped_stick_force(model))
+                        stick_force=None if kn is None else clamped_stick_force(model),
+                        preload=None if kn is None else model.preload)
     with single_threaded_blas():
         s_b = red.stiffness[np.ix_(pos, pos)]
         m_bb = m_full[b][:, b].toarray()
@@ -474,7 +496,7 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
             load = m_full @ mode.vector
             p = load[b] - k_ib.T @ red.solver.solve(load[inner])
             x = _loadings(s_b, p, kt, model.friction_limit, kn, laws.stick_force,
-                          float(model.friction))
+                          float(model.friction), laws.preload)
             g = np.column_stack([g, _new_directions(x, g, m_bb)])
             basis = f"cc+loading{mode.number}"
         n = g.shape[1]
@@ -513,7 +535,8 @@ def build_interface_model(model: MeshModel, density_kg_m3: float, count: int,
                         friction=float(model.friction),
                         stick_force=laws.stick_force, per_node=per_node,
                         fixed_interface_modes=int(phi.shape[1]), basis=basis,
-                        build_s=time.perf_counter() - t0, characteristic_modes=int(count))
+                        build_s=time.perf_counter() - t0, characteristic_modes=int(count),
+                        preload=laws.preload)
 
 
 def _count(count: int, nb: int) -> int:

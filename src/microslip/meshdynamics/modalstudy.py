@@ -37,9 +37,10 @@ from .verdict_modal import modal_verdict
 if TYPE_CHECKING:
     from .studyresult import StudyResult
 
-__all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "TRUTH", "MeshCurve",
-           "MeshSolver", "ModalSettings", "ModalStudy", "compare_all", "compare_output",
-           "modal_study", "prepare_modal", "run_solvers", "stood_in", "study_output"]
+__all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "STUCK_TOLERANCE",
+           "TRUTH", "MeshCurve", "MeshSolver", "ModalSettings", "ModalStudy", "compare_all",
+           "compare_output", "modal_study", "prepare_modal", "run_solvers", "stood_in",
+           "stuck_check", "study_output"]
 
 #: Keys of a solver's JSON that the study gives, the same for every solver: written once.
 SHARED = ("mesh", "mode", "label", "density_kg_m3", "amplitude_coordinate",
@@ -179,6 +180,8 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     curve = method(structure, np.asarray(study.amplitudes), s.harmonics, s.samples,
                    study.number - 1, failures=failures)
     count = len(study.prepared.stuck.frequencies_Hz)
+    freqs = [float(f) for f in rom.stuck_frequencies(count + 2)]
+    stuck, warn = stuck_check(study, freqs, "contact-node ROM")
     return MeshCurve(
         label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
         columns=dict(BASE_COLUMNS),
@@ -186,11 +189,33 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
                                                curve.amplitude)),
                 "frequency_Hz": nulls(curve.frequency),
                 "damping_ratio": nulls(curve.damping_ratio)},
-        extra={"rom_frequencies_Hz": [float(f) for f in rom.stuck_frequencies(count)],
+        extra={"rom_frequencies_Hz": freqs[:count],
                "rom": {"dofs": rom.dofs, "fixed_interface_modes": study.case.rom_modes,
                        "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
-                       "samples": curve.samples}},
-        warnings=failures, failures=tuple(failures))
+                       "samples": curve.samples, **stuck}},
+        warnings=warn + failures, failures=tuple(failures))
+
+
+#: A reduced model's stuck frequency of the studied mode must be the full FE's within this
+#: (relative) at zero amplitude (issue 35, item 1), or it says why not and does not stand in
+#: for the contact-node ROM.
+STUCK_TOLERANCE = 1e-3
+
+
+def stuck_check(study: ModalStudy, frequencies: Any, name: str) -> tuple[dict[str, float],
+                                                                      list[str]]:
+    """The model's stuck frequency nearest the studied mode's (Hz, of ``frequencies``) and
+    its relative error against the full FE's, and a warning when it is beyond
+    :data:`STUCK_TOLERANCE`."""
+    f_fe = float(study.mode.frequency_Hz)
+    f = np.asarray(frequencies, dtype=float)
+    nearest = float(f[np.argmin(np.abs(f - f_fe))])
+    error = nearest / f_fe - 1.0
+    warn = ([] if abs(error) <= STUCK_TOLERANCE else
+            [f"the {name}'s stuck frequency {nearest:.6g} Hz is {100 * error:+.2f} % off the "
+             f"full FE's {f_fe:.6g} Hz at zero amplitude (more than "
+             f"{100 * STUCK_TOLERANCE:g} %)"])
+    return {"stuck_frequency_Hz": nearest, "stuck_frequency_error": error}, warn
 
 
 def _output(rom: Any) -> Any:
@@ -213,6 +238,8 @@ def _interface(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCu
         s.samples, response_set=case.response_set, rom_modes=case.rom_modes,
         interface_modes=case.interface_modes, rom=rom)
     count = len(study.prepared.stuck.frequencies_Hz)
+    freqs = [float(f) for f in model.stuck_frequencies(count + 2)]
+    stuck, warn = stuck_check(study, freqs, "interface model")
     return MeshCurve(
         label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
               f"{model.interface_modes} interface modes for {model.contact_nodes} "
@@ -221,14 +248,15 @@ def _interface(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCu
         values={"amplitude_mm": [float(a) for a in curve.amplitude],
                 "frequency_Hz": [float(f) for f in curve.frequency],
                 "damping_ratio": [float(z) for z in curve.damping_ratio]},
-        extra={"interface_frequencies_Hz": [float(f) for f in model.stuck_frequencies(count)],
+        extra={"interface_frequencies_Hz": freqs[:count],
                "interface": {"dofs": model.dofs, "interface_modes": model.interface_modes,
                              "characteristic_modes": model.characteristic_modes,
                              "basis": model.basis,
                              "fixed_interface_modes": model.fixed_interface_modes,
                              "contact_nodes": model.contact_nodes,
-                             "harmonics": curve.harmonics, "samples": curve.samples}},
-        warnings=[])
+                             "harmonics": curve.harmonics, "samples": curve.samples,
+                             **stuck}},
+        warnings=warn)
 
 
 def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
@@ -332,6 +360,17 @@ def compare_all(study: ModalStudy, progress: Progress | None = None,
                          echo)
     out = compare_output(study, curves)
     out["warnings"] += [f"{name}: {why}" for name, why in skip.items()]
+    stand_in = out["solvers"].get("interface", {}).get("interface", {})
+    error = stand_in.get("stuck_frequency_error")
+    if "rom" in skip and error is not None and abs(error) > STUCK_TOLERANCE:
+        why = (f"does not stand in for the contact-node ROM: its stuck frequency is "
+               f"{100 * error:+.2f} % off the full FE's at zero amplitude (more than "
+               f"{100 * STUCK_TOLERANCE:g} %)")
+        out["warnings"].append(f"interface: {why}")
+        verdict = out["verdicts"].get("interface")
+        if verdict is not None:
+            verdict["verdict"] += f"; {why}"
+            verdict["meets_targets"] = False
     return curves, out
 
 
