@@ -129,8 +129,8 @@ def _refused(mesh: HexMesh, assembly: Assembly, match: str) -> None:
 def test_bad_assemblies_are_refused_in_one_line() -> None:
     bar = cantilever_mesh(6, 2, 1)
     mesh = on_block(bar)
-    # a body held by nothing: no support under the block
-    _refused(mesh, _assembly("fixed", supports=()), "held by nothing")
+    # no support under the block: a free-free assembly, which its one preload would push away
+    _refused(mesh, _assembly("fixed", supports=()), "push the free-free assembly")
     # elements with no material
     _refused(mesh, _assembly("fixed", materials=(Material(E, NU, elset="BAR"),)),
              "elements have no material .*BASE")
@@ -205,3 +205,46 @@ def test_the_model_says_what_it_built() -> None:
     assert d["sets"]["base_fix"] == {"role": "support", "directions": "xyz"}
     assert d["closed_after_preload"] + d["open_after_preload"] == d["contact_nodes"]
     assert d["contact_force_N"] == pytest.approx(FN, rel=1e-9)
+
+
+def _free_lap(scale: float | None = None) -> object:
+    from pathlib import Path
+
+    from microslip.fe.assembly import bolt
+    from microslip.fe.meshfile import read_mesh
+
+    mesh = read_mesh(Path(__file__).parent / "data" / "meshes" / "bolted_lap_small.msh")
+    pre, shanks = bolt("head", "nut", 5000.0, 10.0)
+    a = Assembly(contacts=(Contact("a_int", "b_int"),), preloads=pre, shanks=shanks,
+                 materials=(Material(210000.0, 0.3, 7850.0),), friction=0.3,
+                 normal_contact="penalty", normal_slope=1e6)
+    return mesh, a
+
+
+def test_a_free_free_assembly_floats_and_sets_its_rigid_modes_aside(monkeypatch) -> None:
+    """No support and no base (the Brake-Reuss beam as tested): the bolt's balanced preloads
+    are solved with a determinate soft support, which carries nothing: the preload state is
+    the same whatever its stiffness (1e-6 or 1e-3 of K's mean diagonal). The six rigid-body
+    modes are set aside: the first mode returned is elastic."""
+    from microslip.fe.builtin import bodies
+    from microslip.meshdynamics.modes import linear_modes
+
+    mesh, a = _free_lap()
+    m1 = build_mesh_model(mesh, a)
+    assert m1.free_free
+    monkeypatch.setattr(bodies, "GROUND_SCALE", 1e-3)
+    m2 = build_mesh_model(mesh, a)
+    assert np.allclose(m1.normal_force, m2.normal_force, rtol=0, atol=1e-7 * 5000.0)
+    assert float(m1.normal_force.sum()) == pytest.approx(5000.0, rel=1e-9)
+    modes = linear_modes(m1, 7850.0, 3, "stuck")
+    assert np.all(modes.frequencies_Hz > 10.0)
+    # the same modes with the stiffer ground: the springs are taken out of the modes
+    assert np.allclose(linear_modes(m2, 7850.0, 3, "stuck").frequencies_Hz,
+                       modes.frequencies_Hz, rtol=1e-6)
+
+
+def test_unbalanced_preloads_on_a_free_free_assembly_are_refused() -> None:
+    mesh, a = _free_lap()
+    from dataclasses import replace
+
+    _refused(mesh, replace(a, preloads=a.preloads[:1], shanks=()), "push the free-free")

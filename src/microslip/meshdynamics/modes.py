@@ -101,6 +101,8 @@ def modal_stiffness(model: MeshModel, contact: str = "stuck") -> sp.csr_matrix:
     K plus the contact's tangent (``stuck``: stick springs and normal stiffness; ``free``:
     normal stiffness only)."""
     k = model.stiffness + CONTACT_STATES[_check_contact(contact)](model) + _normal_springs(model)
+    if model.ground is not None:  # a free-free assembly's determinate springs are not part
+        k = k - model.ground
     return sp.csr_matrix(0.5 * (k + k.T))
 
 
@@ -334,13 +336,16 @@ def shift_inverse(a: sp.spmatrix) -> spla.LinearOperator:
 
 #: An eigenvalue w^2 at most this times the largest computed is a rigid motion's rounding.
 RIGID = 1e-9
+#: Rigid-body modes of a free-free assembly, set aside by :func:`linear_modes`.
+RIGID_BODY_MODES = 6
 
 
-def _eigen(k: sp.csr_matrix, m: sp.csr_matrix, n: int, contact: str) -> tuple[FloatArray,
-                                                                             FloatArray]:
-    # shift below 0: with the contact free K is singular (in-plane rigid motions)
+def _eigen(k: sp.csr_matrix, m: sp.csr_matrix, n: int, contact: str,
+           floating: bool = False) -> tuple[FloatArray, FloatArray]:
+    # shift below 0: with the contact free, or the assembly free-free, K is singular (rigid
+    # motions)
     scale = float(k.diagonal().max() / m.diagonal().max())
-    sigma = -1e-8 * scale if contact == "free" else 0.0
+    sigma = -1e-8 * scale if contact == "free" or floating else 0.0
     kk = min(n, k.shape[0] - 2)
     try:
         with single_threaded_blas():  # a threaded BLAS only fights for the cores here
@@ -393,7 +398,15 @@ def linear_modes(model: MeshModel, density_kg_m3: float, n_modes: int = 10,
     contact = _check_contact(contact)
     k = modal_stiffness(model, contact)
     m = modal_mass(model, density_kg_m3)
-    w2, vec = _eigen(k, m, int(n_modes), contact)
+    rigid = RIGID_BODY_MODES if model.free_free else 0
+    w2, vec = _eigen(k, m, int(n_modes) + rigid, contact, model.free_free)
+    if rigid:  # a free-free assembly: its six rigid-body modes are set aside
+        if np.count_nonzero(w2[:rigid] == 0.0) < rigid:
+            raise ParameterError(
+                f"the free-free assembly's six lowest modes are not rigid-body modes "
+                f"({', '.join(f'{math.sqrt(max(x, 0.0)) / (2 * math.pi):.3g}' for x in w2[:rigid])}"
+                " Hz): part of it is loose")
+        w2, vec = w2[rigid:], vec[rigid:]
     freq = np.sqrt(w2) / (2 * math.pi)
     shapes = model.global_vectors(vec)
     nodes = response_nodes(model, response_set)

@@ -180,6 +180,9 @@ def check_held(mesh: HexMesh, label: IntArray, n_bodies: int, assembly: Assembly
     ``links``: pairs of bodies joined by a contact)."""
     grounded = np.zeros(n_bodies, dtype=bool)
     grounded[np.unique(label[grounded_nodes])] = True
+    free_free = not grounded.any()
+    if free_free:  # no support and no base at all: one free-free assembly, if it holds together
+        grounded[links[0][0] if links else 0] = True
     changed = True
     while changed:
         changed = False
@@ -188,6 +191,12 @@ def check_held(mesh: HexMesh, label: IntArray, n_bodies: int, assembly: Assembly
                 grounded[a] = grounded[b] = True
                 changed = True
     loose = np.flatnonzero(~grounded)
+    if loose.size and free_free:
+        names = ", ".join(body_name(mesh, label, int(b)) for b in loose[:3])
+        raise ParameterError(
+            f"{mesh.source}: {names} touch no other body: a free-free assembly (no support, no "
+            "rigid base) must hold together through its contacts; give it a contact or a "
+            "support (--fixed SET)")
     if loose.size:
         names = ", ".join(body_name(mesh, label, int(b)) for b in loose[:3])
         more = f" and {loose.size - 3} more" if loose.size > 3 else ""
@@ -230,6 +239,11 @@ class ContactLayout:
     supports: tuple[tuple[str, IntArray, tuple[int, ...]], ...] = ()
     curved: bool = False
 
+    @property
+    def free_free(self) -> bool:
+        """No support and no rigid base: the assembly floats (its preloads balance)."""
+        return self.base_faces.size == 0 and not self.supports
+
     def gaps(self, mesh: HexMesh, contact_nodes: IntArray) -> FloatArray | None:
         """Each contact node's initial gap to the rigid base along the inward normal (mm,
         >= 0), or None when every contact face is flat on it (no gaps)."""
@@ -243,16 +257,28 @@ class ContactLayout:
         """The counter face's node (mesh row) at each contact node, -1 on the rigid base."""
         return _masters(self, contact_nodes)
 
-    def numbering_elements(self, elements: IntArray) -> IntArray:
+    def numbering_elements(self, elements: IntArray,
+                           coupled: tuple[IntArray, ...] = ()) -> IntArray:
         """The elements, plus a row joining each pair of nodes at the interface, so that the
-        banded numbering keeps a node and its partner close."""
-        if not self.pairs:
-            return elements
-        s = np.concatenate([p[2] for p in self.pairs])
-        m = np.concatenate([p[3] for p in self.pairs])
+        banded numbering keeps a node and its partner close; ``coupled``: groups of nodes a
+        bolt's shank joins (its head and nut faces), chained into rows too."""
         width = elements.shape[1]
-        extra = np.tile(np.stack([s, m], axis=1), (1, width // 2))
-        return np.concatenate([elements, extra]).astype(np.int64)
+        rows = [elements]
+        if self.pairs:
+            s = np.concatenate([p[2] for p in self.pairs])
+            m = np.concatenate([p[3] for p in self.pairs])
+            rows.append(np.tile(np.stack([s, m], axis=1), (1, width // 2)))
+        for group in coupled:  # overlapping windows: a chain through the group
+            g = np.asarray(group, dtype=np.int64)
+            if g.size < 2:
+                continue
+            step = max(1, width // 2)
+            starts = np.arange(0, max(g.size - width, 0) + step, step)
+            idx = np.minimum(starts[:, None] + np.arange(width), g.size - 1)
+            rows.append(g[idx])
+        if len(rows) == 1:
+            return elements
+        return np.concatenate(rows).astype(np.int64)
 
     def base_body_nodes(self, order: IntArray) -> IntArray:
         """Nodes that must not cross the rigid base: those of the bodies on it."""
@@ -392,3 +418,36 @@ def _masters(layout: ContactLayout, contact_nodes: IntArray) -> IntArray:
         hit = nodes_f[sort][pos] == contact_nodes
         out[hit] = master[sort][pos[hit]]
     return out
+
+
+#: The free-free assembly's determinate springs, times the stiffness's mean diagonal: soft
+#: enough that their six modes sit far below the elastic ones (about 1e-3 of them), stiff
+#: enough for a well-conditioned factor.
+GROUND_SCALE = 1e-6
+
+
+def ground_springs(nodes: FloatArray, avoid: IntArray, stiffness: sp.csr_matrix
+                   ) -> sp.csr_matrix:
+    """Six springs on three nodes far apart (3-2-1: a statically determinate support) that
+    stop a free-free assembly's rigid motions in the factorisations. Being determinate, they
+    carry nothing under self-equilibrated loads (preloads, a mode's inertia forces): the
+    static answer is exact whatever their stiffness; the modes leave them out.
+    ``nodes`` model-frame positions, ``avoid`` nodes not to use (the contact nodes, whose
+    dofs are relative)."""
+    ok = np.setdiff1d(np.arange(len(nodes)), avoid)
+    x = nodes[ok]
+    a = int(np.argmin(x[:, 0] + 1e-3 * x[:, 1] + 1e-6 * x[:, 2]))
+    b = int(np.argmax(np.linalg.norm(x - x[a], axis=1)))
+    ab = x[b] - x[a]
+    off = np.linalg.norm(np.cross(x - x[a], ab), axis=1)
+    c = int(np.argmax(off))
+    if not off[c] > 1e-9 * float(np.linalg.norm(ab)) ** 2:
+        raise ParameterError("a free-free assembly whose nodes lie on one line")
+    normal = np.cross(ab, x[c] - x[a])
+    along = int(np.argmax(np.abs(ab)))
+    dofs = [3 * ok[a] + k for k in range(3)]
+    dofs += [3 * ok[b] + k for k in range(3) if k != along]
+    dofs += [3 * ok[c] + int(np.argmax(np.abs(normal)))]
+    k = GROUND_SCALE * float(np.mean(stiffness.diagonal()))
+    n = stiffness.shape[0]
+    return sp.csr_matrix((np.full(6, k), (dofs, dofs)), shape=(n, n))

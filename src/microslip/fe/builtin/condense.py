@@ -28,7 +28,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ...errors import ParameterError
-from .linalg import _TBTRS, NOT_DEFINITE
+from .linalg import _TBTRS, NOT_DEFINITE, SYMMETRIC_ORDERING
 from .normal import PenaltyNormal
 
 __all__ = ["DenseBackend", "Reduced", "condense"]
@@ -85,7 +85,8 @@ class _Interior:
                 raise ParameterError(NOT_DEFINITE) from None
         else:
             try:
-                self.lu = spla.splu(k_ii.tocsc())
+                self.lu = spla.splu(k_ii.tocsc(), permc_spec=SYMMETRIC_ORDERING,
+                                    options={"SymmetricMode": True})
             except RuntimeError:
                 raise ParameterError("the stiffness is singular with the contact held: the "
                                      "contact does not hold the body") from None

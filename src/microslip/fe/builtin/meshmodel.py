@@ -40,7 +40,7 @@ from ...errors import ParameterError
 from ..assembly import Assembly, as_assembly
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
-from .bodies import contact_layout, element_materials, relative_transform
+from .bodies import contact_layout, element_materials, ground_springs, relative_transform
 from .condense import Reduced, condense
 from .element import assemble_hex8, hex8_b_matrices
 from .hex20 import (
@@ -142,6 +142,10 @@ class MeshModel:
         their partner (:mod:`.bodies`); None: the identity (no pair).
     contact_master : ndarray of int, shape (n_c,) or None
         Model node of each contact node's partner on the counter face (-1: the rigid base).
+    ground : scipy.sparse.csr_matrix or None
+        A free-free assembly's six determinate soft springs on the free dofs (in
+        ``stiffness``; :func:`~.bodies.ground_springs`), which the modes take out; None: the
+        assembly is held.
     """
 
     mesh: HexMesh
@@ -170,6 +174,12 @@ class MeshModel:
     reduced: Reduced | None = field(default=None, repr=False)
     transform: sp.csr_matrix | None = field(default=None, repr=False)
     contact_master: IntArray | None = field(default=None, repr=False)
+    ground: sp.csr_matrix | None = field(default=None, repr=False)
+
+    @property
+    def free_free(self) -> bool:
+        """No support and no rigid base: six rigid-body modes, set aside by the modes."""
+        return self.ground is not None
 
     # the assembly's values under the names the studies read
     @property
@@ -444,7 +454,9 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     contact_faces, outward, offset = layout.faces, layout.outward, layout.offset
     size = float(np.max(np.ptp(mesh.nodes, axis=0)))
     groups = element_materials(mesh, assembly.materials)
-    order = numbering(layout.numbering_elements(mesh.elements),
+    bolts = tuple(np.concatenate([_face_nodes_of(mesh, b.head), _face_nodes_of(mesh, b.nut)])
+                  for b in assembly.shanks)
+    order = numbering(layout.numbering_elements(mesh.elements, bolts),
                       np.unique(mesh.face_corners(contact_faces)))
     on_base = layout.base_body_nodes(order)
     if on_base.size and float(np.max(mesh.nodes[on_base] @ outward - offset)) > FLAT_TOL * size:
@@ -490,6 +502,11 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         k_all = (transform.T @ k_all @ transform).tocsr()
         full = np.asarray(transform.T @ full)
     supports = layout.support_dofs(inv, rotation)
+    ground = None
+    if layout.free_free:  # determinate soft springs against the rigid motions (:mod:`.bodies`)
+        _check_balanced(mesh, full, nodes, size)
+        ground = ground_springs(nodes, contact, k_all)
+        k_all = (k_all + ground).tocsr()
     gap = layout.gaps(mesh, contact_nodes)
     # fixed normal contact: nodes the clamp pulls off the base are released (active set);
     # quadratic faces recover N_i from the pressure instead (their corner reactions are
@@ -572,7 +589,27 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         contact_stiffness=kc, normal_force=normal, friction_limit=limit, clamp_load=clamp,
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
-        transform=transform, contact_master=np.where(master >= 0, inv[master], -1))
+        transform=transform, contact_master=np.where(master >= 0, inv[master], -1),
+        ground=None if ground is None else sp.csr_matrix(ground[free][:, free]))
+
+
+def _check_balanced(mesh: HexMesh, full: FloatArray, nodes: FloatArray, size: float) -> None:
+    """A free-free assembly's preloads must balance (no net force or moment: a bolt presses
+    its head and its nut alike); else they would push it away."""
+    f = full.reshape(-1, 3)
+    force = f.sum(axis=0)
+    moment = np.cross(nodes - nodes.mean(axis=0), f).sum(axis=0)
+    scale = float(np.abs(f).sum())
+    if np.linalg.norm(force) > 1e-9 * scale or np.linalg.norm(moment) > 1e-9 * scale * size:
+        raise ParameterError(
+            f"{mesh.source}: the preloads push the free-free assembly (net force "
+            f"{np.linalg.norm(force):.4g} N, moment {np.linalg.norm(moment):.4g} N·mm) and "
+            "nothing holds it: hold it with --fixed SET, put a face on the rigid base, or "
+            "balance the preloads (a bolt presses its head and its nut alike)")
+
+
+def _face_nodes_of(mesh: HexMesh, name: str) -> IntArray:
+    return face_load(mesh, set_faces(mesh, name, "bolt face"))[0]
 
 
 def _shanks(mesh: HexMesh, assembly: Assembly, nodes: FloatArray, inv: IntArray,
