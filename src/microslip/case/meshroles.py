@@ -340,6 +340,8 @@ def _body_errors(mesh: HexMesh, assembly: Assembly, labels: IntArray,
     for s in assembly.supports:
         held |= _set_bodies(mesh, node_body, s.set)
     held.discard(None)
+    if not held and links:  # free-free (no support, no base): it must hold together, and
+        held = {links[0][0]}  # the builder checks that its preloads balance
     grew = True
     while grew:
         grew = False
