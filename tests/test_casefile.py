@@ -18,6 +18,7 @@ from microslip.case import (
     plausibility_warnings,
     template,
 )
+from microslip.case.schema import TABLE_KEYS
 from microslip.errors import ParameterError
 from microslip.fe.calculix.case import DEFAULT_STICK_SLOPE
 
@@ -38,6 +39,11 @@ TITANIUM = {
 def test_template_names_every_key_with_unit_range_and_default():
     text = template()
     for key in KEYS:
+        if key.dotted in TABLE_KEYS:  # an assembly's tables: their keys, after [mesh]'s
+            assert f"#   [[{key.dotted}]]: {key.meaning}" in text
+            for f in TABLE_KEYS[key.dotted]:
+                assert f"#     {f.name} (" in text
+            continue
         line = next(i for i, s in enumerate(text.splitlines())
                     if s.lstrip("# ").startswith(f"{key.name} ="))
         doc = text.splitlines()[line - 1]
@@ -151,12 +157,15 @@ def test_plausible_values_do_not_warn_and_bad_force_is_an_error():
         plausibility_warnings({"normal_force": 0.0})
 
 
-def test_a_case_in_metres_and_pascals_carries_warnings():
-    table = {**TITANIUM, "geometry": {"length": 0.03, "width": 0.012, "thickness": 0.008},
-             "material": {"modulus": 114e9, "poisson_ratio": 0.34}}
+def test_a_case_in_metres_carries_warnings_and_in_pascals_is_an_error():
+    table = {**TITANIUM, "geometry": {"length": 0.03, "width": 0.012, "thickness": 0.008}}
     case = parse_case(table, "si.toml")
-    assert len(case.warnings) == 4
+    assert len(case.warnings) == 3
     assert all(w.startswith("case si.toml: ") for w in case.warnings)
+    table["material"] = {"modulus": 114e9, "poisson_ratio": 0.34}
+    with pytest.raises(ParameterError, match=r"^case si.toml: material.modulus 1.14e\+11 MPa "
+                       r"is above 1e\+09 MPa, far stiffer than any solid: pascals given as MPa"):
+        parse_case(table, "si.toml")
 
 
 @given(st.floats(1e-6, 1e12), st.floats(1e-6, 1e12))

@@ -229,16 +229,23 @@ def test_missing_case_file_is_one_line(capsys, tmp_path):
                    "cannot read case file")
 
 
-def test_implausible_units_warn_from_case_and_options(capsys, tmp_path):
+def test_impossible_units_are_one_line_errors_from_case_and_options(capsys, tmp_path):
+    """A modulus in pascals cannot be meant (above any solid's): an error naming the key or
+    the flag and the likely unit, never a result (issue 34, item 1)."""
     path = write(tmp_path, TITANIUM_TOML.replace("modulus = 114000", "modulus = 114e9"))
-    code, out, err = run(capsys, "loop", "--case", path, "--model", "tip", "--json",
-                         "--increments", "100")
-    assert code == 0
-    unit = "modulus 1.14e+11 MPa is above 1e+07 MPa: pascals given as MPa?"
-    # the unit warning beside the model's validity warnings (a squat block), each on one line
-    assert f"warning: {unit}" in err.splitlines()
-    assert sorted(err.splitlines()) == sorted(f"warning: {w}"
-                                              for w in json.loads(out)["warnings"])
+    one_line_error(*run(capsys, "loop", "--case", path, "--model", "tip", "--json",
+                        "--increments", "100"),
+                   "material.modulus 1.14e+11 MPa is above 1e+09 MPa", "pascals given as MPa?")
+    one_line_error(*run(capsys, "loop", "--model", "tip", "--modulus", "6.9e10",
+                        "--increments", "100"), "--modulus 6.9e+10 MPa", "pascals")
+    code, _, err = run(capsys, "loop", "--model", "tip", "--modulus", "1e8", "--increments",
+                       "100")
+    assert code == 0 and "pascals given as MPa?" in err  # a rigid part may be meant: warns
+
+
+def test_implausible_units_warn_and_still_run(capsys, tmp_path):
+    """A borderline value (a length in metres of a bar that could be that small) warns, on
+    one line, and the command runs."""
     code, out, err = run(capsys, "loop", "--model", "tip", "--length", "0.254",
                          "--increments", "100")
     assert code == 0 and "given as" not in err
@@ -246,6 +253,10 @@ def test_implausible_units_warn_from_case_and_options(capsys, tmp_path):
                          "--increments", "100")
     assert code == 0 and ("warning: length 0.0254 mm is below 0.05 mm: metres given as mm?"
                           in err.splitlines())
+    code, out, err = run(capsys, "loop", "--model", "tip", "--length", "0.0254",
+                         "--increments", "100", "--json")
+    assert code == 0 and sorted(err.splitlines()) == sorted(f"warning: {w}" for w
+                                                           in json.loads(out)["warnings"])
 
 
 def test_no_case_no_extra_keys(capsys):

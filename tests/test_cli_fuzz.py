@@ -149,19 +149,34 @@ def test_bad_options_with_extreme_extras_fail_cleanly(case):
 
 @settings(max_examples=12, deadline=None, derandomize=True)
 @given(st.sampled_from([
-    (["loop", "--model", "tip", "--increments", "20", "--modulus", "6.9e10"], "pascals"),
+    (["loop", "--model", "tip", "--increments", "20", "--modulus", "80"], "GPa given as MPa"),
     (["loop", "--model", "centre", "--increments", "20", "--length", "0.254", "--width",
       "0.0254"], "metres"),
     (["planar", "--ratio", "1", "--increments", "20", "--samples-per-cycle", "64",
-      "--modulus", "1e10"], "pascals"),
+      "--modulus", "90"], "GPa given as MPa"),
     (["sweep", "--model", "tip", "--amplitude-range", "50", "100", "--cases", "2",
       "--increments", "20", "--no-progress", "--grid", "t=0.001,0.002"], "metres"),
     (["fe", "--model", "tip", "--mesh", "tiny", "--substeps", "10", "--friction", "3"],
      "friction coefficient above 2"),
 ]))
 def test_implausible_units_warn_and_still_run(case):
+    """A borderline value warns and runs; a value that cannot be meant (a modulus in
+    pascals) is an error: :func:`test_impossible_units_fail_in_one_line`."""
     argv, words = case
     code, out, err = _run(argv)
     assert code == 0, err
     assert err.startswith("warning: ") and words in err and "Traceback" not in err
     assert out
+
+
+@pytest.mark.parametrize(("argv", "words"), [
+    (["loop", "--model", "tip", "--increments", "20", "--modulus", "6.9e10"],
+     ["--modulus 6.9e+10 MPa", "pascals"]),
+    (["planar", "--ratio", "1", "--increments", "20", "--samples-per-cycle", "64",
+      "--modulus", "1e10"], ["--modulus 1e+10 MPa", "pascals"]),
+])
+def test_impossible_units_fail_in_one_line(argv, words):
+    """A modulus above any solid's is a unit mistake: exit 1, one line, nothing printed."""
+    code, out, err = _run(argv)
+    assert code == 1 and out == "" and err.count("\n") == 1 and err.startswith("error: ")
+    assert all(w in err for w in words) and "Traceback" not in err

@@ -59,7 +59,7 @@ def test_fe_and_rom_side_by_side(capsys: pytest.CaptureFixture[str], mesh: str) 
     (["--density", "2700", "--frequency", "100"], "--frequency not used with --mesh"),
     (["--density", "2700", "--harmonics", "5"],
      "--harmonics applies to --solver rom or interface or joint only"),
-    (["--density", "-1"], "density must be > 0 kg/m^3"),
+    (["--density", "-1"], "--density must be > 0"),
 ])
 def test_bad_input_is_one_line(capsys: pytest.CaptureFixture[str], mesh: str,
                                extra: list[str], message: str) -> None:

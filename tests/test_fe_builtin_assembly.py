@@ -148,3 +148,60 @@ def test_bad_assemblies_are_refused_in_one_line() -> None:
     _refused(mesh, _assembly("fixed", materials=(Material(E, NU, elset="BAR"),
                                                  Material(E, NU, elset="BOSE"))),
              "no element set named 'BOSE'")
+
+
+def test_modes_on_a_stiff_block_are_the_rigid_base_modes() -> None:
+    """Stuck and free modes of the bar on a block 1000x stiffer (and of density 100 kg/m^3,
+    its own material's) are the rigid-base modes within 2e-4 (measured 2e-5..1.1e-4): the
+    mass is T^T M T with each body's density."""
+    from dataclasses import replace
+
+    from microslip.meshdynamics.modes import linear_modes
+
+    bar = cantilever_mesh(12, 3, 1)
+    m0 = build_mesh_model(bar, rigid_base(contact_set="contact", clamp_set="clamp",
+                                          normal_force=FN, modulus=E, poisson_ratio=NU,
+                                          friction=MU, stick_slope=1e4))
+    a = replace(_assembly("fixed"), materials=(
+        Material(E, NU, elset="BAR"), Material(1000 * E, NU, density=100.0, elset="BASE")))
+    m1 = build_mesh_model(on_block(bar), a)
+    for state in ("stuck", "free"):
+        f0 = linear_modes(m0, 2700.0, 4, state).frequencies_Hz
+        f1 = linear_modes(m1, 2700.0, 4, state).frequencies_Hz
+        moving = f0 > 1.0
+        assert np.allclose(f1[moving], f0[moving], rtol=2e-4)
+        assert np.all(f1[~moving] < 1.0)
+
+
+def test_a_partial_support_holds_its_global_direction_whichever_way_the_contact_faces() -> None:
+    """The contact face a_int of the lap looks up (+z): the contact frame is turned by 180
+    degrees about x, and a support holding z only still holds the global z."""
+    from pathlib import Path
+
+    from microslip.fe.meshfile import read_mesh
+
+    mesh = read_mesh(Path(__file__).parent / "data" / "meshes" / "bolted_lap_small.msh")
+    a = Assembly(contacts=(Contact("a_int", "b_int"),),
+                 preloads=(Preload("head", 5000.0), Preload("nut", 5000.0)),
+                 supports=(Support("fix"), Support("tip", "z")), materials=(Material(E, NU),),
+                 friction=0.3)
+    m = build_mesh_model(mesh, a)
+    assert m.rotation[2, 2] == -1.0
+    held = m.index.reshape(-1, 3)[m.model_nodes(mesh.node_sets["tip"])]
+    assert np.all(held[:, 2] < 0) and np.all(held[:, :2] >= 0)
+
+
+def test_the_model_says_what_it_built() -> None:
+    """The JSON's model object (issue 34): each role set's faces and area, the preload's
+    pressure, the contact state after the preload, the bodies."""
+    bar = cantilever_mesh(6, 2, 1)
+    m = build_mesh_model(on_block(bar), _assembly("penalty"))
+    d = m.describe()
+    assert d["bodies"] == 2 and d["dof"] == m.dof
+    area = 50.8 * 25.4
+    assert d["sets"]["bar_int"]["area_mm2"] == pytest.approx(area, rel=1e-12)
+    assert d["sets"]["base_int"]["role"] == "counter face"
+    assert d["sets"]["clamp"]["pressure_MPa"] == pytest.approx(FN / area, rel=1e-12)
+    assert d["sets"]["base_fix"] == {"role": "support", "directions": "xyz"}
+    assert d["closed_after_preload"] + d["open_after_preload"] == d["contact_nodes"]
+    assert d["contact_force_N"] == pytest.approx(FN, rel=1e-9)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 import shutil
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ import pytest
 from microslip import preset
 from microslip.errors import ParameterError
 from microslip.fe import ResultsError, SolverNotFoundError, run_case, run_loop
+from microslip.fe.assembly import Support
 from microslip.fe.calculix.case import FECase
 from microslip.fe.calculix.deck import build_deck
 from microslip.fe.calculix.mesh import MeshSpec, bar_mesh
@@ -26,6 +28,7 @@ from microslip.fe.calculix.meshdeck import (
 )
 from microslip.fe.calculix.meshhistory import load_factors, load_history, load_times
 from microslip.fe.calculix.meshrun import run_mesh_calculix
+from microslip.fe.clamp import MeshClamp
 from microslip.fe.examples import box_hexmesh, grid_mesh
 from microslip.fe.hexmesh import HexMesh
 from microslip.fe.meshload import MeshLoad
@@ -70,9 +73,14 @@ def box8(nx: int, ny: int, nz: int) -> HexMesh:
                    source="box8")
 
 
-TABLE1 = dict(contact_set="contact", clamp_set="clamp", normal_force=P.normal_force,
-              friction=P.friction, stick_slope=1e4, normal_slope=1e5, modulus=P.modulus,
-              poisson_ratio=P.poisson_ratio, increments_per_cycle=40, cycles=1)
+TABLE1_CLAMP = MeshClamp("contact", "clamp", normal_force=P.normal_force, friction=P.friction,
+                         stick_slope=1e4, normal_contact="penalty", normal_slope=1e5,
+                         modulus=P.modulus, poisson_ratio=P.poisson_ratio)
+TABLE1 = dict(increments_per_cycle=40, cycles=1)
+#: The box deck's symmetry plane y = w/2 as a support.
+SYM = replace(TABLE1_CLAMP.assembly, supports=(Support("sym", "y"),))
+ONE = MeshClamp("bottom", "top", normal_force=10.0, friction=0.5, stick_slope=1e4,
+                normal_contact="penalty", normal_slope=1e5, modulus=1000.0, poisson_ratio=0.25)
 TIP = [MeshLoad("tip", (1.0, 0.0, 0.0), 267.0)]
 
 
@@ -99,10 +107,8 @@ def test_dsload_card_is_a_pressure_on_a_surface():
 
 
 def test_one_element_deck_exactly():
-    deck = build_mesh_deck(one_element(), contact_set="bottom", clamp_set="top",
-                           normal_force=10.0, loads=[MeshLoad("end", (-1, 0, 0), 2.0, 90.0)],
-                           friction=0.5, stick_slope=1e4, normal_slope=1e5, modulus=1000.0,
-                           poisson_ratio=0.25, increments_per_cycle=4, cycles=1)
+    deck = build_mesh_deck(one_element(), ONE, loads=[MeshLoad("end", (-1, 0, 0), 2.0, 90.0)],
+                           increments_per_cycle=4, cycles=1)
     assert deck.startswith("*HEADING\nmicroslip own mesh one: 1 C3D8I, 2 x 1 x 1 mm, on a "
                            "rigid base\n*NODE\n1, 0, 0, 0\n2, 0, 0, 1\n")
     base_nodes = "".join(f"{9 + i}, {x:g}, {y:g}, {z:g}\n" for i, (z, y, x) in enumerate(
@@ -203,9 +209,7 @@ def test_loads_sharing_nodes_and_dofs_add_up():
     mesh = one_element()
     loads = [MeshLoad("end", (1, 1, 0), 3.0, 0.0), MeshLoad("end", (1, -1, 0), 2.0, 90.0),
              MeshLoad("end", (0, 0, 1), 1.0, 30.0)]
-    deck = build_mesh_deck(mesh, contact_set="bottom", clamp_set="top", normal_force=10.0,
-                           loads=loads, friction=0.5, stick_slope=1e4, modulus=1000.0,
-                           poisson_ratio=0.25, increments_per_cycle=8, cycles=2)
+    deck = build_mesh_deck(mesh, ONE, loads=loads, increments_per_cycle=8, cycles=2)
     t = load_times(8, 2)
     got = _applied_forces(deck, 8, t)
     plan = load_plan(mesh, loads)
@@ -215,9 +219,7 @@ def test_loads_sharing_nodes_and_dofs_add_up():
             w[None, :, None] * np.asarray(ld.direction)[None, None, :])
     np.testing.assert_allclose(got, want, atol=1e-11)
     assert "AMPLITUDE=M1" in deck and "AMPLITUDE=L3" in deck
-    ramped = build_mesh_deck(mesh, contact_set="bottom", clamp_set="top", normal_force=10.0,
-                             loads=loads, friction=0.5, stick_slope=1e4, modulus=1000.0,
-                             poisson_ratio=0.25, increments_per_cycle=8, cycles=2,
+    ramped = build_mesh_deck(mesh, ONE, loads=loads, increments_per_cycle=8, cycles=2,
                              startup="ramp")
     h = load_history(loads, 8, 2, "ramp")
     got = _applied_forces(ramped, 8, h.step_time)
@@ -253,7 +255,7 @@ def test_box_deck_and_mesh_deck_hold_the_same_model():
     spec = MeshSpec(8, 2, 1)
     hm, bm = box20(spec)
     old = build_deck(FECase("tip", P, 267.0, mesh=spec), bm)
-    new = build_mesh_deck(hm, loads=TIP, fixed=[("sym", 2, 2)], **TABLE1)
+    new = build_mesh_deck(hm, SYM, loads=TIP, **TABLE1)
     assert block(old, "*NODE") == block(new, "*NODE")
     for a, b in (("*ELEMENT, TYPE=C3D20R, ELSET=BAR", "*ELEMENT, TYPE=C3D20R, ELSET=BODY"),
                  ("*ELEMENT, TYPE=C3D8, ELSET=BASE", "*ELEMENT, TYPE=C3D8, ELSET=BASE"),
@@ -277,19 +279,24 @@ def test_box_deck_and_mesh_deck_hold_the_same_model():
     ({"normal_contact": "fixed"}, "normal_contact must be 'penalty' for CalculiX, got 'fixed'"),
     ({"contact_set": "contakt"}, "no set named 'contakt'"),
     ({"clamp_set": "tip"}, ""),
-    ({"normal_force": -1.0}, "normal_force must be > 0 N"),
     ({"increments_per_cycle": 42}, "multiple of 4"),
-    ({"fixed": [("nope", 1, 1)]}, "no non-empty node set named 'nope'"),
+    ({"supports": (Support("nope", "x"),)}, "no set named 'nope' (support)"),
     ({"loads": []}, "at least one load"),
 ])
 def test_bad_input_is_one_line(change, message):
     hm = box8(4, 1, 1)
-    args = {**TABLE1, "loads": TIP, **change}
+    clamp = {k: v for k, v in change.items() if k in ("normal_contact", "contact_set",
+                                                          "clamp_set")}
+    assembly = replace(TABLE1_CLAMP, **clamp).assembly
+    if "supports" in change:
+        assembly = replace(assembly, supports=change["supports"])
+    args = {**TABLE1, "loads": TIP, **{k: v for k, v in change.items()
+                                       if k in ("increments_per_cycle", "loads")}}
     if change == {"clamp_set": "tip"}:  # a legal set: the deck is written
-        assert build_mesh_deck(hm, **args).endswith("*END STEP\n")
+        assert build_mesh_deck(hm, assembly, **args).endswith("*END STEP\n")
         return
     with pytest.raises(ParameterError, match=re.escape(message)):
-        build_mesh_deck(hm, **args)
+        build_mesh_deck(hm, assembly, **args)
 
 
 def test_a_contact_set_that_is_not_flat_is_refused():
@@ -326,9 +333,7 @@ def test_a_run_without_results_is_a_results_error(tmp_path):
     fake.write_text("#!/bin/sh\nexit 0\n")
     fake.chmod(0o755)
     with pytest.raises(ResultsError, match=r"job\.dat is missing") as err:
-        run_mesh_calculix(one_element(), contact_set="bottom", clamp_set="top",
-                          normal_force=10.0, loads=[MeshLoad("end", (1, 0, 0), 2.0)],
-                          friction=0.5, stick_slope=1e4, modulus=1000.0, poisson_ratio=0.25,
+        run_mesh_calculix(one_element(), ONE, loads=[MeshLoad("end", (1, 0, 0), 2.0)],
                           increments_per_cycle=4, job_dir=tmp_path / "job",
                           executable=str(fake))
     assert err.value.job_dir == tmp_path / "job"
@@ -337,9 +342,7 @@ def test_a_run_without_results_is_a_results_error(tmp_path):
 
 def test_no_solver_is_one_line_before_anything_is_written(tmp_path):
     with pytest.raises(SolverNotFoundError, match="not on PATH"):
-        run_mesh_calculix(one_element(), contact_set="bottom", clamp_set="top",
-                          normal_force=10.0, loads=[MeshLoad("end", (1, 0, 0), 2.0)],
-                          friction=0.5, stick_slope=1e4, modulus=1000.0, poisson_ratio=0.25,
+        run_mesh_calculix(one_element(), ONE, loads=[MeshLoad("end", (1, 0, 0), 2.0)],
                           increments_per_cycle=4, job_dir=tmp_path / "job",
                           executable="no-such-ccx")
     assert not (tmp_path / "job").exists()
@@ -362,7 +365,7 @@ def box_run(tmp_path_factory):
 def test_mesh_deck_on_the_box_gives_the_box_decks_loop(box_run, tmp_path):
     """Same model (with the box deck's symmetry plane): the same loop to ccx's round-off."""
     hm, _ = box20(TINY)
-    r = run_mesh_calculix(hm, loads=TIP, fixed=[("sym", 2, 2)], job_dir=tmp_path, **TABLE1)
+    r = run_mesh_calculix(hm, SYM, loads=TIP, job_dir=tmp_path, **TABLE1)
     assert r.converged and r.element == "C3D20R"
     np.testing.assert_allclose(r.force[:, 0], box_run.force, rtol=0, atol=1e-9)
     np.testing.assert_allclose(r.displacement[:, 0], box_run.displacement, rtol=0, atol=2e-9)
@@ -381,7 +384,7 @@ def test_without_the_symmetry_plane_the_box_loop_barely_moves(box_run, tmp_path)
     """Friction alone holds the lateral motion (the built-in solver's set-up): on 8 x 2 x 1
     W rises by 0.5 % (0.16 % on 20 x 2 x 1), the peak moves by 2e-5 (docs/validation.md)."""
     hm, _ = box20(TINY)
-    r = run_mesh_calculix(hm, loads=TIP, job_dir=tmp_path, **TABLE1)
+    r = run_mesh_calculix(hm, TABLE1_CLAMP, loads=TIP, job_dir=tmp_path, **TABLE1)
     assert r.converged
     w0, d0 = box_run.damping.dissipated_energy, box_run.loop.peak_displacement
     assert 0.0 < r.dissipated_energy / w0 - 1.0 < 0.01
@@ -395,7 +398,7 @@ def test_8_node_box_agrees_with_the_builtin_solver(tmp_path):
     """C3D8I on the built-in solver's box 8 x 2 x 1 against the built-in solver with the
     same penalty normal contact: W +0.8 %, peak -0.06 % (nodal against face-to-face friction;
     on 24 x 4 x 1 -0.02 % and -0.006 %, docs/validation.md)."""
-    r = run_mesh_calculix(box8(8, 2, 1), loads=TIP, job_dir=tmp_path, **TABLE1)
+    r = run_mesh_calculix(box8(8, 2, 1), TABLE1_CLAMP, loads=TIP, job_dir=tmp_path, **TABLE1)
     b, _ = run_loop("tip", solver="builtin", mesh="8x2x1", normal_contact="penalty",
                     normal_slope=1e5)
     assert r.converged and r.element == "C3D8I" and r.dof == 3 * 9 * 3 * 2
@@ -416,9 +419,10 @@ def cantilever(clamped: int, overhang: int, ny: int, nz: int) -> HexMesh:
                    source="cantilever")
 
 
-CANTILEVER = dict(contact_set="contact", clamp_set="clamp", normal_force=2000.0, friction=0.5,
-                  stick_slope=1e4, normal_slope=1e6, modulus=70000.0, poisson_ratio=0.33,
-                  increments_per_cycle=40)
+CANTILEVER_CLAMP = MeshClamp("contact", "clamp", normal_force=2000.0, friction=0.5,
+                             stick_slope=1e4, normal_contact="penalty", normal_slope=1e6,
+                             modulus=70000.0, poisson_ratio=0.33)
+CANTILEVER = dict(increments_per_cycle=40)
 
 
 @pytest.mark.ccx
@@ -429,7 +433,8 @@ def test_cantilever_axial_end_load_dissipates_a_plausible_energy(tmp_path):
     bounding box); W within 25 % of the 1-D tip model on the clamped length (measured -13 % on
     this coarse mesh), d0 within 2 % of it plus the overhang's stretch (+0.7 %)."""
     f0 = 600.0
-    r = run_mesh_calculix(cantilever(4, 8, 2, 1), loads=[MeshLoad("end", (1, 0, 0), f0)],
+    r = run_mesh_calculix(cantilever(4, 8, 2, 1), CANTILEVER_CLAMP,
+                          loads=[MeshLoad("end", (1, 0, 0), f0)],
                           job_dir=tmp_path, cycles=1, **CANTILEVER)
     ea, q = 70000.0 * 25.4 * 6.35, 0.5 * 2000.0 / 50.8
     d0 = r.peak_displacement[0]
@@ -446,7 +451,8 @@ def test_cantilever_axial_end_load_dissipates_a_plausible_energy(tmp_path):
 @pytest.mark.skipif(shutil.which("ccx") is None, reason=NO_CCX)
 def test_cantilever_small_load_sticks_and_dissipates_nothing(tmp_path):
     """20 N: the tractions stay below mu p everywhere, so W = 0 exactly, with the reason."""
-    r = run_mesh_calculix(cantilever(4, 8, 2, 1), loads=[MeshLoad("end", (1, 0, 0), 20.0)],
+    r = run_mesh_calculix(cantilever(4, 8, 2, 1), CANTILEVER_CLAMP,
+                          loads=[MeshLoad("end", (1, 0, 0), 20.0)],
                           job_dir=tmp_path, cycles=1, **CANTILEVER)
     assert r.converged and r.dissipated_energy == 0.0 and r.work.tolist() == [0.0]
     assert "stick throughout" in r.message and r.peak_displacement[0] > 0.0
@@ -459,7 +465,8 @@ def test_cantilever_axial_and_lateral_at_90_degrees(tmp_path):
     """Two loads on the end face, 90 degrees apart, two cycles after the built-in solver's
     start-up ramp: both loops are read, each dissipates, and W is their sum."""
     loads = [MeshLoad("end", (1, 0, 0), 600.0), MeshLoad("end", (0, 1, 0), 50.0, 90.0)]
-    r = run_mesh_calculix(cantilever(4, 8, 2, 1), loads=loads, job_dir=tmp_path, cycles=2,
+    r = run_mesh_calculix(cantilever(4, 8, 2, 1), CANTILEVER_CLAMP, loads=loads,
+                          job_dir=tmp_path, cycles=2,
                           startup="ramp", **CANTILEVER)
     assert r.converged and r.cycles == 2 and (r.time[0], r.time[-1]) == (-0.25, 2.0)
     np.testing.assert_allclose(r.force[10:, 1], loads[1].force(r.time[10:]), atol=1e-12)
@@ -480,18 +487,16 @@ def test_node_to_surface_deck_differs_only_in_its_contact_cards():
     F_N / A (10 N on 2 mm^2: 5 MPa -> 5e-5 MPa); everything else is the face-to-face deck."""
     from microslip.fe.calculix.meshdeck import N2S_TENSION_RATIO
 
-    args = dict(contact_set="bottom", clamp_set="top", normal_force=10.0,
-                loads=[MeshLoad("end", (1, 0, 0), 2.0)], friction=0.5, stick_slope=1e4,
-                normal_slope=1e5, modulus=1000.0, poisson_ratio=0.25, increments_per_cycle=4)
-    f2f = build_mesh_deck(one_element(), **args)
-    n2s = build_mesh_deck(one_element(), formulation="node-to-surface", **args)
-    assert f2f == build_mesh_deck(one_element(), formulation="face-to-face", **args)
+    args = dict(loads=[MeshLoad("end", (1, 0, 0), 2.0)], increments_per_cycle=4)
+    f2f = build_mesh_deck(one_element(), ONE, **args)
+    n2s = build_mesh_deck(one_element(), ONE, formulation="node-to-surface", **args)
+    assert f2f == build_mesh_deck(one_element(), ONE, formulation="face-to-face", **args)
     assert N2S_TENSION_RATIO == 1e-5
     expected = f2f.replace("LINEAR\n100000\n", "LINEAR\n100000, 5e-05\n").replace(
         "TYPE=SURFACE TO SURFACE", "TYPE=NODE TO SURFACE")
     assert n2s == expected and n2s != f2f
     with pytest.raises(ParameterError, match="contact formulation must be one of"):
-        build_mesh_deck(one_element(), formulation="mortar", **args)
+        build_mesh_deck(one_element(), ONE, formulation="mortar", **args)
 
 
 def test_the_command_lines_formulations_are_the_decks():

@@ -45,7 +45,7 @@ def test_two_gmsh_volumes_run(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 @pytest.mark.parametrize("name, message", [
-    ("separate_volumes.msh", r"9 nodes lie at the same place as others .* not joined"),
+    ("separate_volumes.msh", r"touch at 9 coincident nodes with no contact named"),
     ("contact_curve.msh", r"set 'contact' \(the contact set\) is a curve \(1-D\) group"),
     ("contact_volume.msh", r"set 'contact' \(the contact set\) is a volume \(3-D\) group"),
 ])
@@ -59,14 +59,14 @@ def test_bad_gmsh_files_are_one_line(capsys: pytest.CaptureFixture[str], name: s
     assert __import__("re").search(message, lines[0]), lines[0]
 
 
-def test_a_mesh_in_metres_warns_twice(capsys: pytest.CaptureFixture[str]) -> None:
+def test_a_mesh_in_metres_is_refused_in_one_line(capsys: pytest.CaptureFixture[str]) -> None:
+    """A part 0.004 mm across with forces in N cannot be meant (issue 34): an error, not a
+    result with a warning."""
     pytest.importorskip("meshio")
-    _code, out, err = _fe(capsys, "metres.msh")
-    warnings = json.loads(out)["warnings"]
-    assert "the part is 0.004 mm across" in warnings[0] and "metres" in warnings[0]
-    assert "times the modulus" in warnings[1] and "a mesh in metres" in warnings[1]
-    assert [ln for ln in err.splitlines() if ln.startswith("warning: ")][:2] == [
-        f"warning: {w}" for w in warnings[:2]]
+    code, out, err = _fe(capsys, "metres.msh")
+    lines = [ln for ln in err.splitlines() if ln.startswith("error: ")]
+    assert code == 1 and out.strip() == "" and len(lines) == 1
+    assert "the part is 0.004 mm across" in lines[0] and "a mesh in metres" in lines[0]
 
 
 def test_scale_warnings_bounds() -> None:

@@ -107,3 +107,12 @@ def test_bad_distributions_are_refused_in_one_line():
     mesh = _strip(2)
     with pytest.raises(ParameterError, match="lie across it"):
         Preload("clamp", 1.0, PARABOLIC, axis="z").shares(mesh, set_faces(mesh, "clamp", "x"))
+
+
+def test_calculix_refuses_a_pressure_law_rather_than_press_uniformly():
+    from microslip.fe.calculix.assemblydeck import resolve_assembly
+
+    a = Assembly(contacts=(Contact("contact"),), preloads=(Preload("clamp", 1.0, PARABOLIC),),
+                 materials=(Material(P.modulus, P.poisson_ratio),), friction=P.friction)
+    with pytest.raises(ParameterError, match="'clamp' has a pressure law"):
+        resolve_assembly(box_hexmesh(P, (8, 2, 1)), a)

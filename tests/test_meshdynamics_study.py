@@ -17,6 +17,7 @@ import microslip
 from microslip.cli.main import main
 from microslip.cli.meshstructure import structure_case
 from microslip.errors import ParameterError
+from microslip.fe.assembly import rigid_base
 from microslip.fe.clamp import NORMAL_CONTACT_NAMES, MeshClamp
 from microslip.fe.constants import DEFAULT_NORMAL_CONTACT, DEFAULT_NORMAL_SLOPE
 from microslip.fe.examples import cantilever_mesh
@@ -90,11 +91,13 @@ def test_the_command_line_builds_the_case_once(mesh: str) -> None:
 
     argv = ["modal", "--mesh", mesh, *FLAGS, "--mode", "2", "--rom-modes", "12"]
     case = structure_case(build_parser(argv).parse_args(argv))
-    assert case == StructureCase(mesh, MeshClamp(**CLAMP), density=2700.0, mode=2,  # type: ignore[arg-type]
+    # the command line's --density is the material's (an assembly's bodies carry their own)
+    expected = rigid_base(**CLAMP, density=2700.0)  # type: ignore[arg-type]
+    assert case == StructureCase(mesh, expected, density=2700.0, mode=2,
                                  response_set="response", rom_modes=12)
     args = argparse.Namespace(**{**vars(build_parser(argv).parse_args(argv)),
                                  "normal_force": -5.0})
-    with pytest.raises(ParameterError, match=re.escape("--normal-force must be > 0 (N)")):
+    with pytest.raises(ParameterError, match=re.escape("--normal-force must be finite and > 0 N")):
         structure_case(args)
 
 

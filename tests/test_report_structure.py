@@ -58,7 +58,8 @@ def _toml(text: str) -> dict:
 
 @pytest.mark.parametrize(("value", "message"), [("mode = 0", "mesh.mode must be a whole "
                                                   "number in [1, 50]"),
-                                                 ("density = -2", "mesh.density must be > 0")])
+                                                 ("density = -2",
+                                                  "mesh.density must be a finite number > 0")])
 def test_bad_structure_keys_are_refused(value: str, message: str) -> None:
     text = re.sub(r"^" + value.split(" ")[0] + " = .*$", value, CASE, flags=re.M)
     with pytest.raises(Exception, match=re.escape(message)):

@@ -38,6 +38,7 @@ __all__ = [
     "DEFAULT_NORMAL_SLOPE",
     "DEFAULT_ROM_MODES",
     "DEFAULT_STICK_SLOPE",
+    "DENSITY_RANGE",
     "JOINT_MODELS",
     "MAX_MODE",
     "MAX_ROM_MODES",
@@ -174,3 +175,7 @@ def check_whole(name: str, value: Any, low: int, high: float = math.inf) -> int:
         rng = f">= {low}" if high == math.inf else f"in [{low}, {int(high)}]"
         raise ParameterError(f"{name} must be a whole number {rng}, got {value!r}")
     return int(value)
+
+#: Densities (kg/m^3) a material of an engineering part can have: outside, a unit mistake
+#: (t/mm^3 or g/cm^3 for kg/m^3).
+DENSITY_RANGE = (100.0, 30000.0)

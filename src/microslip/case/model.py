@@ -21,7 +21,7 @@ from ..named import result
 from ..params import PRESETS, ClampParams
 from .joints import JointSpec, parse_joints
 from .schema import CLAMP_KEYS, KEYS, MESH_LOAD_KEYS, SECTIONS
-from .units import plausibility_warnings
+from .units import check_impossible, plausibility_warnings
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -96,7 +96,7 @@ def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     flat: dict[str, Any] = {}
     for key, value in table.items():
         dotted = f"{prefix}{key}"
-        if isinstance(value, dict):
+        if isinstance(value, dict) and dotted not in _BY_DOTTED:
             if dotted not in SECTIONS:
                 raise ParameterError(f"unknown case section [{dotted}]"
                                      f"{_suggest(dotted, [s for s in SECTIONS if s])}")
@@ -149,10 +149,12 @@ def parse_case(table: Mapping[str, Any], source: str | None = None) -> Case:
         _exclusive(values, "load.planar.ratio", "load.planar.centre_amplitude")
         params = _clamp(values)
         joints = () if joint_tables is None else parse_joints(joint_tables, values)
-        warnings = plausibility_warnings(
-            {field: values.get(k) for k, field in CLAMP_KEYS.items()}, where)
+        clamp_values = {field: values.get(k) for k, field in CLAMP_KEYS.items()}
+        check_impossible(clamp_values, names={f: k for k, f in CLAMP_KEYS.items()})
+        warnings = plausibility_warnings(clamp_values, where)
         for j in joints:
             if j.clamp is not None and j.clamp != params:
+                check_impossible(j.clamp.as_dict(), f"joint {j.number}: ")
                 warnings += plausibility_warnings(j.clamp.as_dict(),
                                                   f"{where}joint {j.number}: ")
     except ParameterError as exc:

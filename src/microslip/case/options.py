@@ -22,7 +22,7 @@ from ..params import preset
 from .model import Case, load_case
 from .schema import CLAMP_KEYS
 from .table import CASE_DESTS, OPTIONS, add_option
-from .units import plausibility_warnings
+from .units import IMPOSSIBLE, check_impossible, plausibility_warnings
 
 __all__ = ["CASE_OPTIONS", "add_case_option", "annotate_json", "case_output", "parse_args",
            "unread", "warn"]
@@ -225,7 +225,9 @@ def case_defaults(case: Case, command: str, dests: dict[str, argparse.Action],
         if dest in explicit or dest == "amplitude":
             continue  # the command line wins; the amplitude is resolved after the parse
         value = case.values[key]
-        out[dest] = [value] if isinstance(dests[dest], argparse._AppendAction) else value
+        if isinstance(dests[dest], argparse._AppendAction):  # a repeatable option
+            value = list(value) if isinstance(value, tuple) else [value]  # tables: a tuple
+        out[dest] = value
     for key, (dest, scope) in CASE_OPTIONS.items():
         # a required option the file leaves out takes the default the case file documents
         # (``load.model``: tip), as the file's comment promises
@@ -295,6 +297,8 @@ def parse_args(parser: argparse.ArgumentParser, argv: Sequence[str] | None
         _resolve_amplitude(args, case, explicit)
         args.case_name = case.name
         args.case_joints = case.joints if args.command in STRUCTURE_COMMANDS else ()
+    check_impossible({d: getattr(args, d, None) for d in IMPOSSIBLE},
+                     names={d: "--" + d.replace("_", "-") for d in IMPOSSIBLE})
     warnings = plausibility_warnings({d: getattr(args, d, None) for d in UNIT_DESTS})
     for line in warnings:
         print(f"warning: {line}", file=sys.stderr)

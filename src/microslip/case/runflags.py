@@ -18,7 +18,18 @@ import argparse
 from ..conventions import MAX_ROM_MODES
 from .checks import Option, set_name
 
-__all__ = ["RUN_OPTIONS", "positive_int", "seed"]
+__all__ = ["EXIT_STATUS", "EXIT_UNSETTLED", "RUN_OPTIONS", "positive_int", "seed"]
+
+#: The exit status of a run whose result did not settle (W per cycle still changing after
+#: the last cycle): the figures are printed, but a script must not take them as converged.
+#: ``--accept-unsettled`` makes it 0. (1: an error, 2: a usage mistake, 130: interrupted.)
+EXIT_UNSETTLED = 3
+
+#: The exit statuses of every command, as the help's epilog states them.
+EXIT_STATUS = (f"exit status: 0 done; 1 an error (one line on stderr); 2 a usage mistake; "
+               f"{EXIT_UNSETTLED} a result that did not settle (W per cycle still changing: "
+               "fe --mesh FILE, its --convergence, validate --mesh FILE; --accept-unsettled "
+               "makes it 0); 130 interrupted")
 
 
 
@@ -129,6 +140,8 @@ RUN_OPTIONS: tuple[Option, ...] = (
            "> 0", metavar="X"),
     Option("max_cycles", "builtin: at most N cycles before W settles", "", ">= 1", type=int,
            metavar="N"),
+    _flag("accept_unsettled", f"exit 0 with a result whose W per cycle did not settle (by "
+          f"default such a result exits with status {EXIT_UNSETTLED}, its figures printed)"),
     # -- the structure on a mesh: its reduced models and loads
     Option("rom_modes", "fixed-interface modes kept in the contact-node ROM, the lowest N", "",
            f"[1, {MAX_ROM_MODES}]", type=int, metavar="N"),

@@ -26,6 +26,7 @@ from ..conventions import (
 from ..errors import ParameterError
 from ..jointspec import JOINT_USES
 from ..params import PRESETS, ClampParams
+from .assembly import TABLES, Field
 from .table import (
     OPTIONS,
     PRESSURE_LAWS,
@@ -52,6 +53,7 @@ __all__ = [
     "PAIRINGS",
     "PRESSURE_LAWS",
     "SECTIONS",
+    "TABLE_KEYS",
     "TRANSVERSE",
     "Key",
 ]
@@ -125,8 +127,10 @@ SECTIONS = {
     "load": "uniaxial load case (read by loop, fe, sweep, validate)",
     "load.planar": "planar load case (read by planar)",
     "structure": "a structure from a file with its joints (read by modal and frf)",
-    "mesh": "a mesh of your own part: its sets, contact, density, mode, response set and "
-            "[[mesh.load]] tables (read by fe, validate, modal, frf, reduce, report)",
+    "mesh": "a mesh of your own part: its sets, contact, density, mode, response set, its "
+            "assembly's [[mesh.contact]], [[mesh.preload]], [[mesh.support]] and "
+            "[[mesh.material]] tables and its [[mesh.load]] tables (read by fe, validate, "
+            "modal, frf, reduce, report)",
 }
 
 #: The keys of a ``[[mesh.load]]`` table: name -> (default, None if required; meaning).
@@ -170,6 +174,13 @@ KEYS: tuple[Key, ...] = (
     Key("load", "amplitude_fraction", positive("", 1.0), "", "(0, 1)",
         DEFAULT_AMPLITUDE_FRACTION, "load amplitude as a fraction of the slip limit mu F_N"),
 )
+
+#: The assembly's tables of the case file (``[[mesh.contact]]``, ``[[mesh.preload]]``,
+#: ``[[mesh.support]]``, ``[[mesh.material]]``): dotted key -> the keys of one table. Each is
+#: the key of a repeatable option (``--contact``, ...), whose check reads the tables.
+TABLE_KEYS: dict[str, tuple[Field, ...]] = {f"mesh.{name}": fields
+                                            for name, (_, fields) in TABLES.items()}
+assert all(k in {o.key for o in OPTIONS.values()} for k in TABLE_KEYS)
 
 #: The keys of one ``[[joint]]`` table (section ``joint``): where it sits, and the options
 #: of ``--joint`` with a ``joint_key``; a tip or centre joint also takes ``preset`` and the

@@ -36,6 +36,15 @@ from ..conventions import (
     TRANSVERSE,
 )
 from ..meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS
+from .assembly import (
+    FORMS,
+    bolt_option,
+    contact_option,
+    fixed_option,
+    material_option,
+    preload_option,
+    table_check,
+)
 from .checks import (
     PRESSURE_LAWS,
     Check,
@@ -56,6 +65,7 @@ from .checks import (
     whole,
 )
 from .runflags import RUN_OPTIONS
+from .units import DENSITY_RANGE, density
 
 __all__ = [
     "CASE_DESTS",
@@ -157,18 +167,52 @@ _OPTIONS: tuple[Option, ...] = (
            "its loads are [[mesh.load]] tables: set, direction = [DX, DY, DZ], amplitude (N), "
            "phase_deg"),
     Option("contact_set", "set of the mesh on the rigid base (node set or element-face "
-           "surface)", "", "a set name of the mesh file", type=set_name, metavar="NAME",
-           key="mesh.contact_set", check=text, scope="mesh"),
-    Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area", "",
+           "surface; the shorthand of --contact NAME)", "", "a set name of the mesh file",
+           type=set_name, metavar="NAME", key="mesh.contact_set", check=text, scope="mesh"),
+    Option("clamp_set", "set of the mesh that carries the clamping pressure F_N / area "
+           "(with --normal-force F_N the shorthand of --preload NAME:F_N)", "",
            "a set name of the mesh file", type=set_name, metavar="NAME", key="mesh.clamp_set",
            check=text, scope="mesh"),
+    # the assembly of the user's own mesh (issue 32, item 5): each repeatable, each a
+    # [[mesh.<table>]] of the case file; the clamp's options above stay as its shorthand
+    Option("contact", "a contact: the face SET of one body on the face COUNTER_SET of "
+           "another (coincident nodes), or without a counter set on the rigid flat base; "
+           "repeat for several", "", FORMS["contact"], type=contact_option, action="append",
+           metavar="SET[:COUNTER_SET]", key="mesh.contact", check=table_check("contact"),
+           scope="mesh", case_note="[[mesh.contact]] tables: face, counter; --contact-set X "
+           "is --contact X"),
+    Option("preload", "a preload: FORCE pressing the face SET inward, as a uniform traction "
+           "(a bolt: its head and its nut face); repeat for several", "", FORMS["preload"],
+           type=preload_option, action="append", metavar="SET:FORCE", key="mesh.preload",
+           check=table_check("preload"), scope="mesh", case_note="[[mesh.preload]] tables: "
+           "face, force; --clamp-set Y --normal-force F is --preload Y:F"),
+    Option("fixed", "a support: the nodes of SET held in the global DIRECTIONS (letters of "
+           "xyz, default xyz); repeat for several", "", FORMS["fixed"], type=fixed_option,
+           action="append", metavar="SET[:DIRECTIONS]", key="mesh.support",
+           check=table_check("support"), scope="mesh",
+           case_note="[[mesh.support]] tables: set, directions"),
+    Option("material", "the material of the element set ELSET (a gmsh volume group or an "
+           "*ELSET): modulus MPa, Poisson's ratio, density kg/m^3 (default --density); "
+           "repeat for several; --modulus and --poisson-ratio give every other element",
+           "", FORMS["material"], type=material_option, action="append",
+           metavar="ELSET:E:NU[:RHO]", key="mesh.material", check=table_check("material"),
+           scope="mesh", case_note="[[mesh.material]] tables: elset, modulus, poisson_ratio, "
+           "density; [material] gives every other element"),
+    Option("bolt", "a bolt: its HEAD and NUT faces each pressed inward by FORCE and, with a "
+           "DIAMETER, a shank between them (an elastic beam between the faces' mean motions "
+           "after the preload); repeat for several", "", FORMS["bolt"], type=bolt_option,
+           action="append", metavar="HEAD:NUT:FORCE[:DIAMETER]", key="mesh.bolt",
+           check=table_check("bolt"), scope="mesh", case_note="[[mesh.bolt]] tables: head, "
+           "nut, force, diameter, modulus"),
     Option("contact_formulation", "CalculiX's contact on the mesh: node-to-surface solves the "
            "built-in solver's nodal equations, face-to-face integrates the tractions over the "
            "faces", "", " | ".join(CCX_CONTACT_FORMULATIONS), type=None,
            choices=CCX_CONTACT_FORMULATIONS),
     # the structure of the user's own mesh (modal --mesh FILE; the report's structure section)
-    Option("density", "density of the body of the mesh (aluminium 2700, steel 7850)",
-           "kg/m^3", "> 0", metavar="KG/M3", key="mesh.density", check=positive("kg/m^3"),
+    Option("density", "density of the body of the mesh (aluminium 2700, steel 7850; a "
+           "value outside it is a unit mistake: t/mm^3, g/cm^3)", "kg/m^3",
+           f"[{DENSITY_RANGE[0]:g}, {DENSITY_RANGE[1]:g}]", metavar="KG/M3",
+           key="mesh.density", check=density,
            scope="mesh", case_note="with it, report adds the damping of the structure's mode"),
     Option("mode", "the structure's mode followed, 1-based by stuck frequency (1: the lowest "
            "stuck mode)", "", f"[1, {MAX_MODE}]", type=int, metavar="N", key="mesh.mode",
@@ -181,7 +225,8 @@ _OPTIONS: tuple[Option, ...] = (
            "pressure-overclosure law of normal_slope, lift-off allowed", "",
            " | ".join(NORMAL_CONTACTS), type=None, choices=NORMAL_CONTACTS,
            key="mesh.normal_contact", check=choice(NORMAL_CONTACTS), scope="mesh",
-           case_default="fixed", case_note="CalculiX takes penalty only (its default)"),
+           case_default="fixed", case_note="validate compares fixed as a hard penalty "
+           "contact; fe --solver calculix takes penalty only"),
     Option("normal_slope", "penalty normal stiffness per area (slope of the pressure-"
            "overclosure law)", "N/mm^3", "> 0", metavar="N/MM3", key="mesh.normal_slope",
            check=positive("N/mm^3"), scope="mesh", case_default=DEFAULT_NORMAL_SLOPE,
@@ -299,6 +344,13 @@ def _help(opt: Option, default: Any, note: str, help_text: str | None) -> str:
 #: structure file or one mode (``modal``, ``frf`` without ``--mesh``).
 MODE_MESH, MODE_BOX, MODE_STRUCTURE = "mesh", "box", "structure"
 
+#: What the help of an option of one mode says (``modal --help``: ``--method`` is for a
+#: structure file or one mode, not for ``--mesh``).
+MODE_NOTES = {MODE_MESH: "[--mesh FILE only]",
+              MODE_BOX: "[the box only: not with --mesh FILE]",
+              MODE_STRUCTURE: "[1-D structure (--structure FILE or one mode) only: not with "
+                              "--mesh]"}
+
 #: The parser default under which :func:`add_option` records the mode an option belongs to
 #: (``mode="mesh"``): destination -> mode, for :func:`mode_options`.
 MODES_KEY = "option_modes"
@@ -333,6 +385,8 @@ def add_option(group: Any, name: str, *, default: Any = _TABLE_DEFAULT, note: st
     if default is _TABLE_DEFAULT:
         default = opt.default
     kwargs: dict[str, Any] = {"dest": opt.name, "help": _help(opt, default, note, help)}
+    if mode is not None:
+        kwargs["help"] += f" {MODE_NOTES[mode]}"
     if opt.action == "store_true":
         kwargs["action"] = "store_true"
         kwargs["default"] = False if default is None else default
@@ -374,7 +428,7 @@ def add_solver(group: Any, command: str, choices: Sequence[str] | None = None,
     action = group.add_argument(
         "--solver", choices=names, default=names[0] if mode is None else None,
         help="; ".join(f"{k}: {meaning[k]}" for k in names) + f" (default {names[0]})"
-        + (f"; {note}" if note else ""))
+        + (f"; {note}" if note else "") + (f" {MODE_NOTES[mode]}" if mode else ""))
     if mode is not None:
         _record_mode(group, action.dest, mode)
     return action

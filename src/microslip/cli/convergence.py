@@ -43,6 +43,8 @@ def check_convergence(args: argparse.Namespace, files: tuple[str, ...] = ()) -> 
 
 
 def _progress(line: str) -> None:
+    """A convergence level's start (and, where the study reports it, its finished figures):
+    one line on standard error as it happens, also with --json or the output in a file."""
     print(f"convergence: {line}", file=sys.stderr, flush=True)
 
 
@@ -51,8 +53,7 @@ def mesh_convergence(args: argparse.Namespace, case: Any) -> tuple[dict[str, Any
     ``discretisation_error_estimate`` added, and the lines of the text table."""
     from ..fe.convergence import converge_own_mesh
 
-    study = converge_own_mesh(case, args.mesh_levels or 2, args.solver,
-                              progress=None if args.json else _progress)
+    study = converge_own_mesh(case, args.mesh_levels or 2, args.solver, progress=_progress)
     out = dict(study.first.summary)
     out["solver_converged"] = all(lv.solver_converged for lv in study.levels)
     out["converged"] = study.summary()  # the estimate (the solver's flag: solver_converged)

@@ -15,6 +15,7 @@ from typing import Any
 
 from ..case.options import add_case_option
 from ..case.run import compute_fe, fe_inputs, fe_json, portion_text
+from ..case.runflags import EXIT_STATUS
 from ..case.table import MODE_BOX, OPTIONS, add_option, add_solver, mesh_or_file
 from ..conventions import DEFAULT_MESH
 from ..errors import ParameterError
@@ -36,6 +37,7 @@ __all__ = ["add_parser", "run"]
 
 
 
+
 def add_parser(sub: Any) -> None:
     p = sub.add_parser(
         "fe", help="finite-element run (built-in solver or CalculiX) of the tip or centre case",
@@ -43,7 +45,8 @@ def add_parser(sub: Any) -> None:
         "friction, clamping pressure, then F_T = F0 sin(2 pi t) over 1.25 s in equal "
         "substeps), run it, and report the loop, W_d, U and eta. The built-in solver "
         "(default) needs nothing else; --solver calculix needs CalculiX (ccx): "
-        "bash scripts/setup.sh or apt-get install calculix-ccx.")
+        "bash scripts/setup.sh or apt-get install calculix-ccx.",
+        epilog=EXIT_STATUS)
     add_option(p, "model", choices=list(LOAD_CASES), mode=MODE_BOX,
                help="the box's load case (required unless --mesh is a file): "
                + "; ".join(f"{k}: {v.description}" for k, v in LOAD_CASES.items()))

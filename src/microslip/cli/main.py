@@ -21,9 +21,12 @@ from typing import NoReturn
 
 from .. import __version__
 from ..case.options import case_output, parse_args
+from ..case.runflags import EXIT_STATUS, EXIT_UNSETTLED
 from ..errors import MicroslipError
 
-__all__ = ["COMMANDS", "SUBCOMMANDS", "UsageError", "build_parser", "entry", "main"]
+__all__ = ["COMMANDS", "EXIT_STATUS", "EXIT_UNSETTLED", "SUBCOMMANDS", "UsageError",
+           "build_parser", "entry", "main"]
+
 
 #: Subcommand -> its one-line summary in ``microslip --help``, in the order listed there; the
 #: module ``microslip.cli.<name>`` is imported only when the command runs.
@@ -66,7 +69,7 @@ def build_parser(argv: Sequence[str] | None = None) -> Parser:
     parser = Parser(
         prog="microslip",
         description="Microslip friction damping in clamped joints (Lord & Rongong 2016). "
-        "Units: N, mm, MPa, N·mm.",
+        "Units: N, mm, MPa, N·mm.", epilog=EXIT_STATUS,
     )
     parser.add_argument("--version", action="version", version=f"microslip {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
@@ -85,8 +88,9 @@ def _command(argv: Sequence[str]) -> str | None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code (0 success, 1 failure, 2 usage, 130
-    interrupted: Ctrl-C at any moment is one line, never a traceback)."""
+    """Run the command line; returns the exit code (0 success, 1 failure, 2 usage, 3 a result
+    that did not settle (:data:`EXIT_UNSETTLED`), 130 interrupted: Ctrl-C at any moment is
+    one line, never a traceback)."""
     try:
         return _main(argv)
     except KeyboardInterrupt:

@@ -23,24 +23,21 @@ from ..conventions import BACKBONE_NAMES
 from ..errors import ParameterError
 from ..fe.constants import DEFAULT_NORMAL_SLOPE
 from .common import flagged
-from .ownmesh import REQUIRED as OWN_MESH_REQUIRED
-from .ownmesh import given, mesh_clamp
+from .ownmesh import add_assembly_options, check_mesh_input, given, mesh_clamp
 
 if TYPE_CHECKING:
     from ..meshdynamics.case import StructureCase
 
 __all__ = [
     "MAX_MODE",
-    "REQUIRED",
     "add_mesh_structure_options",
     "add_reduced_model_options",
     "check_density",
     "check_mesh_structure",
+    "density_needed",
     "structure_case",
+    "structure_density",
 ]
-
-#: The clamp's values and the density a mesh structure needs: destination -> flag.
-REQUIRED = {**OWN_MESH_REQUIRED, "density": "--density KG/M3"}
 
 
 def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None:
@@ -53,6 +50,7 @@ def add_mesh_structure_options(g: Any, response_help: str | None = None) -> None
                     "...): its modes and the damping its clamp gives them")
     for name in ("contact_set", "clamp_set"):
         add_option(g, name, mode=MODE_MESH)
+    add_assembly_options(g)
     add_option(g, "normal_contact", note="default fixed", mode=MODE_MESH)
     add_option(g, "normal_slope", note=f"default {DEFAULT_NORMAL_SLOPE:g}", mode=MODE_MESH)
     add_option(g, "mesh_element", note="default: as the file", mode=MODE_MESH)
@@ -70,10 +68,35 @@ def add_reduced_model_options(g: Any) -> None:
 
 
 def check_density(density: float) -> float:
-    """The density, kg/m^3, finite and > 0 (one line otherwise)."""
+    """The density, kg/m^3, finite and > 0 (one line otherwise; a value outside every
+    engineering material's is refused when the command line is read)."""
     if not (isinstance(density, float) and 0.0 < density < float("inf")):
         raise ParameterError(f"--density must be finite and > 0 kg/m^3, got {density!r}")
     return density
+
+
+def density_needed(args: argparse.Namespace) -> tuple[str, ...]:
+    """``("--density KG/M3",)`` when a material has no density of its own and no
+    ``--density`` gives one, else ``()``."""
+    if getattr(args, "density", None) is not None:
+        return ()
+    own = getattr(args, "material", None) or []
+    if own and all(m.density is not None for m in own) and getattr(args, "modulus",
+                                                                   None) is None:
+        return ()
+    return ("--density KG/M3",)
+
+
+def structure_density(args: argparse.Namespace, assembly: Any) -> float:
+    """The structure's density, kg/m^3: ``--density`` (``[mesh] density``), the density of
+    every material that gives none; without it, a material's own (each body's mass takes its
+    material's density, :func:`microslip.meshdynamics.modes.modal_mass`)."""
+    if args.density is not None:
+        return float(args.density)
+    own = [m.density for m in assembly.materials if m.density is not None]
+    if len(own) < len(assembly.materials):  # density_needed said so before, as usage
+        raise ParameterError("--density KG/M3 is needed (the structure's mass)")
+    return float(own[0])
 
 
 def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = ()) -> None:
@@ -85,14 +108,7 @@ def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = (
     if bad:
         raise ParameterError(f"{', '.join(bad)} not used with --mesh (the mesh gives the "
                              "structure, its contact the joint)")
-    missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
-    for dest in ("contact_set", "clamp_set"):
-        if getattr(args, dest, None) is None:
-            missing.insert(0, f"--{dest.replace('_', '-')} NAME")
-    if missing:
-        from .main import UsageError  # a required option left out: a usage mistake
-
-        raise UsageError(f"--mesh {args.mesh} needs {', '.join(missing)}")
+    mesh_clamp(args, needs=density_needed(args))  # one usage line names all left out
     if args.normal_contact != "penalty" and args.normal_slope is not None:
         raise ParameterError("--normal-slope needs --normal-contact penalty")
 
@@ -100,17 +116,22 @@ def check_mesh_structure(args: argparse.Namespace, not_with: tuple[str, ...] = (
 def structure_case(args: argparse.Namespace) -> StructureCase:
     """The typed case of the structure the command line describes (the one place a mesh
     study's namespace becomes a :class:`~microslip.meshdynamics.case.StructureCase`): the
-    clamp (:class:`~microslip.fe.clamp.MeshClamp`), the density, the mode, the response set
-    and the reduced models' settings, each validated once by the case (its one-line message
-    naming the option)."""
+    assembly (:func:`.ownmesh.mesh_clamp`, checked against the mesh), the density, the mode,
+    the response set and the reduced models' settings, each validated once by the case (its
+    one-line message naming the option)."""
     from ..meshdynamics.case import StructureCase
 
-    clamp = mesh_clamp(args)
+    assembly = mesh_clamp(args, needs=density_needed(args))
+    sets = tuple((name, role) for name, role in (
+        (getattr(args, "response_set", None), "response set"),
+        (getattr(args, "load_set", None), "load set")) if name is not None)
+    check_mesh_input(args.mesh, assembly, (), sets, warn=True)
+    density = structure_density(args, assembly)
     optional = {k: v for k, v in (
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None)),
         ("interface_modes", getattr(args, "interface_modes", None)),
         ("element", getattr(args, "mesh_element", None))) if v is not None}
     with flagged():
-        return StructureCase(args.mesh, clamp, density=args.density,
+        return StructureCase(args.mesh, assembly, density=density,
                              response_set=args.response_set, **optional)

@@ -58,7 +58,7 @@ def add_parser(sub: Any) -> None:
     add_option(g, "amplitudes")
     add_option(g, "method", choices=list(METHODS), default="epmc", mode=NOT_MESH)
     add_option(g, "json")
-    add_option(g, "csv")
+    add_option(g, "csv", mode=NOT_MESH)
     add_option(g, "plot", help="write a figure of frequency and damping ratio vs amplitude")
     p.set_defaults(func=run)
 

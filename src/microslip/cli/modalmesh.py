@@ -106,13 +106,17 @@ def mesh_study(args: argparse.Namespace) -> ModalStudy:
 
 
 def progress_printer(args: argparse.Namespace) -> Any:
-    """The full FE's progress on stderr (none with --json), ended by a newline."""
-    if args.json:
-        return None
+    """The full FE's progress on stderr, also with --json or the output in a file: on a
+    terminal one line rewritten in place, ended by a newline; otherwise a line per
+    amplitude."""
+    live = sys.stderr.isatty()
 
     def progress(done: int, total: int, eta: float) -> None:
-        print(f"\r  amplitude {done}/{total}, about {eta:.0f} s left", end="",
-              file=sys.stderr, flush=True)
+        text = f"  amplitude {done}/{total}, about {eta:.0f} s left"
+        if not live:
+            print(text.strip(), file=sys.stderr, flush=True)
+            return
+        print(f"\r{text}", end="", file=sys.stderr, flush=True)
         if done == total:
             print(file=sys.stderr)
 

@@ -25,8 +25,12 @@ from ..case.table import DEFAULT_ROM_MODES, MAX_ROM_MODES, add_option
 from ..conventions import DEFAULT_STICK_SLOPE
 from ..errors import ParameterError
 from .common import print_json
-from .meshstructure import add_mesh_structure_options, check_density, structure_case
-from .ownmesh import REQUIRED as MESH_REQUIRED
+from .meshstructure import (
+    add_mesh_structure_options,
+    check_density,
+    density_needed,
+    structure_case,
+)
 
 __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts", "run"]
 
@@ -34,9 +38,6 @@ __all__ = ["COMPARE", "MAX_ROM_MODES", "WARN_ERROR", "add_parser", "mode_counts"
 COMPARE = 6
 #: Largest relative error of the compared frequencies before a warning.
 WARN_ERROR = 1e-3
-#: Values the command needs: destination -> flag.
-REQUIRED = {"contact_set": "--contact-set NAME", "clamp_set": "--clamp-set NAME",
-            **MESH_REQUIRED, "density": "--density KG/M3"}
 #: What the ROM's contact nodes carry, by --normal-contact.
 ELEMENTS = {"fixed": "a 2-D circular Jenkins element per contact node at its clamping-step "
                      "normal force",
@@ -83,9 +84,17 @@ def mode_counts(modes: int) -> list[int]:
 
 
 def _check(args: argparse.Namespace) -> None:
+    from ..case.assembly import MissingInput, build_assembly
     from .main import UsageError
 
-    missing = [flag for dest, flag in REQUIRED.items() if getattr(args, dest, None) is None]
+    missing: list[str] = []
+    try:
+        build_assembly(vars(args), lambda d: "--" + d.replace("_", "-"))
+    except MissingInput as exc:
+        missing += exc.missing
+    except ParameterError:
+        pass  # a bad value: said in one line once the assembly is built (structure_case)
+    missing += density_needed(args)
     if args.mesh is None:
         missing.insert(0, "--mesh FILE")
     if args.out is None:
@@ -93,7 +102,8 @@ def _check(args: argparse.Namespace) -> None:
     if missing:  # a usage mistake, as argparse's own "required" (exit 2)
         raise UsageError("microslip reduce: the following arguments are required: "
                          f"{', '.join(missing)}")
-    check_density(args.density)
+    if args.density is not None:
+        check_density(args.density)
     if args.rom_modes is not None and args.cutoff_frequency is not None:
         raise UsageError("microslip reduce: argument --cutoff-frequency: not allowed with "
                          "argument --rom-modes (give one: the modes kept by count or by "
@@ -118,13 +128,15 @@ def run(args: argparse.Namespace) -> int:
     check_writable(args.out, (".npz",), "--out")
     from ..meshdynamics.case import clamped
 
-    model = clamped(structure_case(args))
+    case = structure_case(args)
+    model = clamped(case)
+    args.density = case.density  # --density, or a material's own (each body's own in M)
     t0 = time.perf_counter()
-    mass = full_mass(model, args.density)
-    rom = build_rom(model, args.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,
+    mass = full_mass(model, case.density)
+    rom = build_rom(model, case.density, modes=args.rom_modes, cutoff_hz=args.cutoff_frequency,
                     response_set=args.response_set, mass=mass)
     build_s = time.perf_counter() - t0
-    table = convergence(model, args.density, mode_counts(rom.modes), COMPARE, mass, rom=rom)
+    table = convergence(model, case.density, mode_counts(rom.modes), COMPARE, mass, rom=rom)
     write_rom(args.out, rom)
     out = _summary(args, model, rom, build_s, table)
     for w in out["warnings"]:

@@ -41,20 +41,20 @@ from ..conventions import (
     DEFAULT_NORMAL_CONTACT,
     DEFAULT_NORMAL_SLOPE,
     DEFAULT_STICK_SLOPE,
+    DENSITY_RANGE,
     check_positive,
 )
 from ..errors import ParameterError
 
-__all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "Material", "Preload",
-           "Support", "as_assembly", "rigid_base"]
+__all__ = ["DIRECTIONS", "NORMAL_CONTACT_NAMES", "Assembly", "Contact", "ContactPair",
+           "Material", "Preload",
+           "Shank", "Support", "as_assembly", "bolt", "rigid_base"]
 
 #: The normal-contact readings (the built-in solver's
 #: :data:`microslip.fe.builtin.normal.NORMAL_CONTACTS`; a test holds the two equal).
 NORMAL_CONTACT_NAMES = ("fixed", "penalty")
 #: Global directions a support may hold.
 DIRECTIONS = "xyz"
-#: Densities (kg/m^3) a material of an engineering part can have: outside, a unit mistake.
-DENSITY_RANGE = (100.0, 30000.0)
 
 
 def _name(what: str, value: Any) -> str:
@@ -113,6 +113,11 @@ class Preload:
             raise ParameterError(f"preload {self.face}: the distribution's axis must be one "
                                  f"of x, y, z, got {self.axis!r}")
 
+    def __repr__(self) -> str:
+        more = ("" if self.distribution is None else
+                f", distribution={self.distribution.name!r}, axis={self.axis!r}")
+        return f"Preload(face={self.face!r}, force={self.force!r}{more})"
+
     def shares(self, mesh: Any, faces: Any) -> tuple[Any, Any]:
         """The nodes of ``faces`` (element, face rows of ``mesh``) and their shares of the
         force (adding up to 1): the consistent shares of a uniform traction
@@ -124,6 +129,48 @@ class Preload:
             nodes, share, _ = face_load(mesh, faces)
             return nodes, share
         return law_face_load(mesh, faces, self.distribution.shape, DIRECTIONS.index(self.axis))
+
+
+@dataclass(frozen=True)
+class Shank:
+    """A bolt's shank between its ``head`` and ``nut`` faces (node sets or surfaces): a
+    circular elastic beam of ``diameter`` (mm) and ``modulus`` (MPa; None: the first
+    material's) between the faces' mean motions, active after the preload
+    (:mod:`microslip.fe.builtin.shank`)."""
+
+    head: str
+    nut: str
+    diameter: float
+    modulus: float | None = None
+    poisson_ratio: float = 0.3
+
+    def __post_init__(self) -> None:
+        _name("a shank's head face", self.head)
+        _name("a shank's nut face", self.nut)
+        if self.head == self.nut:
+            raise ParameterError(f"bolt {self.head}: the head and the nut are one face")
+        object.__setattr__(self, "diameter", check_positive(
+            f"bolt {self.head}:{self.nut}'s diameter", self.diameter, "mm"))
+        if self.modulus is not None:
+            object.__setattr__(self, "modulus", check_positive(
+                f"bolt {self.head}:{self.nut}'s modulus", self.modulus, "MPa"))
+        nu = float(self.poisson_ratio)
+        if not -1.0 < nu < 0.5:
+            raise ParameterError(f"bolt {self.head}:{self.nut}'s poisson_ratio must be in "
+                                 f"(-1, 0.5), got {self.poisson_ratio!r}")
+
+
+#: The assembly's contact under the name the top-level API gives it (``microslip.Contact`` is
+#: the 1-D models' contact).
+ContactPair = Contact
+
+
+def bolt(head: str, nut: str, force: float, diameter: float | None = None,
+         modulus: float | None = None) -> tuple[tuple[Preload, ...], tuple[Shank, ...]]:
+    """A bolt: its head and nut faces each pressed by ``force`` (N), and with ``diameter``
+    (mm) a shank between them. Returns (preloads, shanks) to put into an :class:`Assembly`."""
+    pre = (Preload(head, force), Preload(nut, force))
+    return pre, (() if diameter is None else (Shank(head, nut, diameter, modulus),))
 
 
 @dataclass(frozen=True)
@@ -212,10 +259,12 @@ class Assembly:
     stick_slope: float = DEFAULT_STICK_SLOPE
     normal_contact: str = DEFAULT_NORMAL_CONTACT
     normal_slope: float = DEFAULT_NORMAL_SLOPE
+    shanks: tuple[Shank, ...] = ()
 
     def __post_init__(self) -> None:
         for name, kind in (("contacts", Contact), ("preloads", Preload),
-                           ("materials", Material), ("supports", Support)):
+                           ("materials", Material), ("supports", Support),
+                           ("shanks", Shank)):
             items = tuple(getattr(self, name))
             if any(not isinstance(x, kind) for x in items):
                 raise ParameterError(f"{name} must be {kind.__name__} objects")
@@ -288,7 +337,7 @@ class Assembly:
         """One body on the rigid base, one preload, one material, no support: the clamp."""
         return (len(self.contacts) == 1 and self.rigid_base_only and len(self.preloads) == 1
                 and len(self.materials) == 1 and self.materials[0].elset is None
-                and not self.supports)
+                and not self.supports and not self.shanks)
 
     def set_names(self) -> tuple[str, ...]:
         """Every node set or surface the assembly names (for checks against a mesh)."""
@@ -296,6 +345,8 @@ class Assembly:
         for c in self.contacts:
             out += [c.face] + ([] if c.counter is None else [c.counter])
         out += [p.face for p in self.preloads] + [s.set for s in self.supports]
+        for b in self.shanks:
+            out += [b.head, b.nut]
         return tuple(dict.fromkeys(out))
 
     def with_law(self, **law: Any) -> Assembly:
@@ -316,6 +367,8 @@ class Assembly:
                             {"distribution": p.distribution.name, "axis": p.axis})
                          for p in self.preloads],
             "supports": [{"set": s.set, "directions": s.directions} for s in self.supports],
+            "shanks": [{"head": b.head, "nut": b.nut, "diameter_mm": b.diameter,
+                        "modulus_MPa": b.modulus or self.modulus} for b in self.shanks],
             "materials": [{"elset": m.elset or "all", "modulus_MPa": m.modulus,
                            "poisson_ratio": m.poisson_ratio, "density_kg_m3": m.density}
                           for m in self.materials],

@@ -27,6 +27,8 @@ singular); node sets lose them too. Units as in the file: mm.
 
 from __future__ import annotations
 
+import contextlib
+import io
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
@@ -74,7 +76,8 @@ def read_meshio(path: str | Path) -> HexMesh:
 
     src = str(path)
     try:
-        m = meshio.read(path)
+        with contextlib.redirect_stdout(io.StringIO()):  # meshio's gmsh reader prints
+            m = meshio.read(path)
     except (meshio.ReadError, OSError, ValueError, KeyError, IndexError) as err:
         raise ParameterError(f"{src}: not a mesh meshio can read ({err})") from None
     others = sorted({_MESHIO_OTHER_SOLIDS[b.type] for b in m.cells

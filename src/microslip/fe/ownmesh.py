@@ -31,7 +31,7 @@ from .clamp import MeshClamp
 from .hexmesh import HexMesh
 from .meshload import MeshLoad
 
-__all__ = ["HISTORIES", "OWN_MESH_SOLVERS", "OwnMeshCase", "OwnMeshRun", "run_own_mesh"]
+__all__ = ["HISTORIES", "OWN_MESH_SOLVERS", "OwnMeshCase", "OwnMeshRun", "run_fe", "run_own_mesh"]
 
 #: Load histories of an own-mesh run (see :class:`OwnMeshCase`).
 HISTORIES = {"settle": "cycles until the work per cycle settles to the tolerance",
@@ -56,7 +56,7 @@ class OwnMeshCase:
     refinement), ``hex8`` refuses a 20-node mesh; None: as the file.
     """
 
-    mesh_file: str
+    mesh_file: str | Path | HexMesh
     clamp: Assembly | MeshClamp
     loads: tuple[MeshLoad, ...]
     substeps: int = 50
@@ -115,7 +115,7 @@ def _mesh_of(case: OwnMeshCase) -> HexMesh:
     from .promote import as_element
     from .refine import refine_mesh
 
-    mesh = read_mesh(case.mesh_file)
+    mesh = case.mesh_file if isinstance(case.mesh_file, HexMesh) else read_mesh(case.mesh_file)
     check_assembly(mesh, as_assembly(case.clamp), case.loads)
     return as_element(refine_mesh(mesh, case.refine), case.element)
 
@@ -135,23 +135,15 @@ def _builtin(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, 
                              max_cycles=case.max_cycles)
     result = solve_mesh(model, case.loads, history, record=record)
     return {"solver": "builtin", "element": model.element, **result.summary(),
-            "converged": result.converged}, result
+            "converged": result.converged, "model": model.describe()}, result
 
 
 def _calculix(mesh: HexMesh, case: OwnMeshCase, record: bool) -> tuple[dict[str, Any], Any]:
+    from .assembly import as_assembly
     from .calculix.meshrun import run_mesh_calculix
 
-    a = as_assembly(case.clamp)
-    if not a.is_shorthand:
-        raise ParameterError("--solver calculix takes one body on the rigid base for now; "
-                             "assemblies run with --solver builtin")
-    options: dict[str, Any] = {"contact_set": a.contact_set, "clamp_set": a.clamp_set,
-               "normal_force": a.clamp_force, "modulus": a.modulus,
-               "poisson_ratio": a.poisson_ratio, "friction": a.friction,
-               "stick_slope": a.stick_slope, "normal_contact": a.normal_contact,
-               "normal_slope": a.normal_slope}
     result = run_mesh_calculix(
-        mesh, **options, loads=case.loads,
+        mesh, as_assembly(case.clamp), loads=case.loads,
         increments_per_cycle=case.increments,
         cycles=1 if case.history == "paper" else case.cycles,
         startup="quarter" if case.history == "paper" else "ramp", **case.options)
@@ -218,7 +210,8 @@ def run_own_mesh(case: OwnMeshCase, solver: str = "builtin", *, out: str | Path 
     units = scale_warnings(mesh, case.clamp.clamp_set, case.clamp.normal_force, case.clamp.modulus)
     if units:
         summary["warnings"] = [*units, *summary.get("warnings", [])]
-    summary = {"mesh": str(case.mesh_file), "nodes": len(mesh.nodes),
+    summary = {"mesh": mesh.source if isinstance(case.mesh_file, HexMesh)
+               else str(case.mesh_file), "nodes": len(mesh.nodes),
                "elements": len(mesh.elements), **summary}
     if case.refine > 1:
         summary["refine"] = case.refine
@@ -266,3 +259,24 @@ def compare_solvers(case: OwnMeshCase, out: str | Path | None = None) -> dict[st
         with atomic_write(Path(out) / "validation_mesh.json") as fh:
             json.dump(result, fh, indent=2, default=float)
     return result
+
+
+def run_fe(mesh: str | Path | HexMesh, assembly: Assembly | MeshClamp,
+           loads: Sequence[MeshLoad], *, solver: str = "builtin",
+           out: str | Path | None = None, **options: Any) -> OwnMeshRun:
+    """The frictional FE of ``mesh`` (a file or a :class:`~.hexmesh.HexMesh`) under
+    ``assembly`` (:class:`~.assembly.Assembly`, or a clamp on the rigid base) and ``loads``
+    (:class:`~.meshload.MeshLoad`, N): one call, one named result (``summary`` as the
+    command line's JSON, ``result`` the solver's own, ``files`` with ``out``). ``options``
+    are :class:`OwnMeshCase`'s (``substeps``, ``tol``, ``max_cycles``, ``refine``,
+    ``element``, ...).
+
+    >>> from microslip.fe.assembly import rigid_base
+    >>> run = run_fe("examples/cantilever.inp", rigid_base(
+    ...     contact_set="contact", clamp_set="clamp", normal_force=2000.0, modulus=70000.0,
+    ...     poisson_ratio=0.33, friction=0.5, stick_slope=1e4),
+    ...     [MeshLoad("tip", (1.0, 0.0, 0.0), 300.0)])  # doctest: +SKIP
+    >>> run.summary["dissipated_energy_Nmm"]  # doctest: +SKIP
+    """
+    return run_own_mesh(OwnMeshCase(mesh, assembly, tuple(loads), **options), solver,
+                        out=out)

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -36,6 +36,9 @@ from .case import (
     set_rows,
     structure_rom,
 )
+
+if TYPE_CHECKING:
+    from .studyresult import StudyResult
 
 __all__ = ["DAMPING_DEFINITION", "DEFAULT_MESH_HARMONICS", "FRF_MESH_SOLVERS", "MESH_RANGE",
            "REFERENCE", "ForcedModel", "FrfMeshSolver", "FrfSettings", "FrfStudy",
@@ -391,9 +394,12 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
 def frf_study(case: StructureCase, forces: Sequence[float],
               settings: FrfSettings | None = None, solvers: Sequence[str] = (REFERENCE,),
               load_set: str | None = None, load_direction: Sequence[float] | None = None
-              ) -> dict[str, Any]:
+              ) -> StudyResult:
     """The forced response of the case's structure at each force (N) by each named solver:
-    :func:`frf_output` (several solvers: side by side, peaks against the ROM's)."""
+    :func:`frf_output` (several solvers: side by side, peaks against the ROM's), as a named
+    :class:`~.studyresult.StudyResult` (``["curves"]``, ``.solvers``, ``.to_json()``)."""
+    from .studyresult import StudyResult
+
     settings = FrfSettings() if settings is None else settings
     levels = [float(f) for f in forces]
     bad = [f for f in levels if not (math.isfinite(f) and f > 0.0)]
@@ -402,4 +408,5 @@ def frf_study(case: StructureCase, forces: Sequence[float],
                              f"{bad[0] if bad else None!r}")
     study = prepare_frf(case, load_set, load_direction)
     runs = run_forced(study, levels, settings, solvers)
-    return frf_output(study, runs, settings, compare=len(runs) > 1 or REFERENCE not in runs)
+    return StudyResult("frf", frf_output(study, runs, settings,
+                                         compare=len(runs) > 1 or REFERENCE not in runs))

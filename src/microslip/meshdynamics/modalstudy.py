@@ -16,7 +16,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -33,6 +33,9 @@ from .case import (
     structure_rom,
 )
 from .verdict_modal import modal_verdict
+
+if TYPE_CHECKING:
+    from .studyresult import StudyResult
 
 __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "TRUTH", "MeshCurve",
            "MeshSolver", "ModalSettings", "ModalStudy", "compare_all", "compare_output",
@@ -436,9 +439,10 @@ def _verdict(name: str, truth: dict[str, Any], curve: dict[str, Any],
 def modal_study(case: StructureCase, settings: ModalSettings | None = None,
                 solvers: Sequence[str] = tuple(MESH_SOLVERS),
                 progress: Progress | None = None,
-                echo: Callable[[str], None] | None = None) -> dict[str, Any]:
+                echo: Callable[[str], None] | None = None) -> StudyResult:
     """Every named solver on one structure and one amplitude grid, side by side with the
-    verdicts against the full FE (when ``fe`` is among them): :func:`compare_output`.
+    verdicts against the full FE (when ``fe`` is among them): :func:`compare_output`, as a
+    named :class:`~.studyresult.StudyResult` (``.solvers``, ``.verdicts``, ``.to_json()``).
 
     Examples
     --------
@@ -450,7 +454,10 @@ def modal_study(case: StructureCase, settings: ModalSettings | None = None,
     ...                      response_set="response")
     >>> out = modal_study(case, ModalSettings(amplitudes=3), ("fe", "rom"))  # doctest: +SKIP
     """
+    from .studyresult import StudyResult
+
     study = prepare_modal(case, settings)
     if tuple(solvers) == tuple(MESH_SOLVERS):
-        return compare_all(study, progress, echo)[1]
-    return compare_output(study, run_solvers(study, solvers, progress, echo))
+        return StudyResult("modal", compare_all(study, progress, echo)[1])
+    return StudyResult("modal", compare_output(study, run_solvers(study, solvers, progress,
+                                                                    echo)))

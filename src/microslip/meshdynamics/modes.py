@@ -105,15 +105,27 @@ def modal_stiffness(model: MeshModel, contact: str = "stuck") -> sp.csr_matrix:
 
 
 def modal_mass(model: MeshModel, density_kg_m3: float) -> sp.csr_matrix:
-    """The consistent mass on the model's free dofs (model frame, t); the density in kg/m^3.
+    """The consistent mass on the model's free dofs (model frame, t); the density in kg/m^3,
+    for every body whose material (:class:`~microslip.fe.assembly.Material`) gives none.
 
     The mass of a node block is rho-weighted identity in x, y, z, so it is the same in the
-    contact frame as in the global one."""
-    rho = density_t_per_mm3(density_kg_m3)
+    contact frame as in the global one. An assembly's relative interface coordinates
+    (u = T v) give T^T M T."""
+    from ..fe.builtin.bodies import element_materials
+
     inv = np.full(len(model.mesh.nodes), -1, dtype=np.int64)
     inv[model.order] = np.arange(model.order.size)
-    m = mass_matrix(model.mesh.nodes[model.order], inv[model.mesh.elements], rho)
-    return sp.csr_matrix(m[model.free][:, model.free])
+    nodes, elements = model.mesh.nodes[model.order], inv[model.mesh.elements]
+    groups = element_materials(model.mesh, model.assembly.materials)
+    m: sp.csr_matrix | None = None
+    for rows, mat in groups:
+        rho = density_t_per_mm3(density_kg_m3 if mat.density is None else mat.density)
+        part = mass_matrix(nodes, elements if len(groups) == 1 else elements[rows], rho)
+        m = part if m is None else m + part
+    assert m is not None
+    if model.transform is not None:
+        m = model.transform.T @ m @ model.transform
+    return sp.csr_matrix(m.tocsr()[model.free][:, model.free])
 
 
 #: Labels of a mode's shape (:func:`describe_motion`): name -> what dominates the response

@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..assembly import rigid_base
 from ..errors import ParameterError
+from ..fe.assembly import rigid_base
 from ..fe.builtin.meshmodel import MeshModel, build_mesh_model
 from ..fe.hexmesh import HexMesh
 from .modes import Modes, linear_modes

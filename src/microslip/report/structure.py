@@ -53,4 +53,4 @@ def structure_section(case: Case, amplitudes: int = REPORT_AMPLITUDES
     structure = case_structure(case)
     if structure is None:
         return None
-    return modal_study(structure, ModalSettings(amplitudes=amplitudes))
+    return modal_study(structure, ModalSettings(amplitudes=amplitudes)).to_dict()

@@ -57,7 +57,7 @@ def structure_study(stage: Path, echo: Any = None, counts: tuple[int, int, int] 
         case = StructureCase(str(mesh), STRUCTURE_CLAMP,
                              density=STRUCTURE_DENSITY, mode=number,
                              response_set=STRUCTURE_RESPONSE)
-        out = modal_study(case, ModalSettings(amplitudes=amplitudes))
+        out = modal_study(case, ModalSettings(amplitudes=amplitudes)).to_dict()
         out["mesh"] = name  # the staged path is gone once the results are in place
         data, figure = folder / f"mode{number}.json", folder / f"mode{number}.png"
         write_json(data, out)

@@ -228,6 +228,16 @@ class ContactLayout:
     label: IntArray
     n_bodies: int
     supports: tuple[tuple[str, IntArray, tuple[int, ...]], ...] = ()
+    curved: bool = False
+
+    def gaps(self, mesh: HexMesh, contact_nodes: IntArray) -> FloatArray | None:
+        """Each contact node's initial gap to the rigid base along the inward normal (mm,
+        >= 0), or None when every contact face is flat on it (no gaps)."""
+        if not self.curved:
+            return None
+        gap = self.offset - mesh.nodes[contact_nodes] @ self.outward
+        gap[self.masters(contact_nodes) >= 0] = 0.0  # conforming pairs touch
+        return np.asarray(np.maximum(gap, 0.0), dtype=float)
 
     def masters(self, contact_nodes: IntArray) -> IntArray:
         """The counter face's node (mesh row) at each contact node, -1 on the rigid base."""
@@ -262,14 +272,18 @@ class ContactLayout:
         global directions only needs the contact plane along the global axes."""
         if not self.supports:
             return None
-        turned = not np.array_equal(rotation, np.eye(3))
+        # a global axis is a model axis when the contact frame is a signed permutation of the
+        # global one (a contact face normal to x, y or z, either way)
+        axis = np.argmax(np.abs(rotation), axis=0)
+        aligned = bool(np.allclose(np.abs(rotation).max(axis=0), 1.0, rtol=0, atol=1e-12))
         out = []
         for name, nodes, comps in self.supports:
-            if turned and len(comps) < 3:
+            if not aligned and len(comps) < 3:
                 raise ParameterError(f"support {name}: holding some directions only needs the "
-                                     "contact faces normal to the global z axis (this mesh's "
+                                     "contact faces normal to a global axis (this mesh's "
                                      "contact plane is turned); hold xyz or rotate the mesh")
-            out.append((3 * inv[nodes][:, None] + np.asarray(comps)).ravel())
+            model = comps if len(comps) == 3 else tuple(int(axis[c]) for c in comps)
+            out.append((3 * inv[nodes][:, None] + np.asarray(model)).ravel())
         return np.unique(np.concatenate(out)).astype(np.int64)
 
 
@@ -295,13 +309,18 @@ def _face_nodes(mesh: HexMesh, faces: IntArray) -> IntArray:
 
 def contact_layout(mesh: HexMesh, assembly: Assembly) -> ContactLayout:
     """Check and place the contacts and preloads of ``assembly`` on ``mesh``."""
-    from .meshgeometry import plane, set_faces
+    from .meshgeometry import base_plane, plane, set_faces
 
     n_bodies, label = body_labels(mesh)
     found = []
+    curved = False
     for c in assembly.contacts:
         faces = set_faces(mesh, c.face, "contact set", boundary=True)
-        out, off = plane(mesh, faces, c.face)
+        if c.counter is None:
+            out, off, bent = base_plane(mesh, faces, c.face)
+            curved = curved or bent
+        else:
+            out, off = plane(mesh, faces, c.face)
         found.append((c, faces, out, off))
     base = [f for f in found if f[0].counter is None]
     ref = base[0] if base else found[0]
@@ -361,7 +380,7 @@ def contact_layout(mesh: HexMesh, assembly: Assembly) -> ContactLayout:
     base_nodes = (np.concatenate(base_faces) if base_faces else np.zeros(0, np.int64))
     return ContactLayout(np.concatenate(faces_all), outward, offset,
                          base[0][0].face if base else "", base_nodes, tuple(pairs),
-                         tuple(preloads), label, n_bodies, tuple(supports))
+                         tuple(preloads), label, n_bodies, tuple(supports), curved)
 
 
 def _masters(layout: ContactLayout, contact_nodes: IntArray) -> IntArray:

@@ -181,7 +181,7 @@ def condense(stiffness: sp.csr_matrix, contact_dofs: IntArray, normal: PenaltyNo
     s = 0.5 * (s + s.T)
     cdofs = np.stack([pos[contact_dofs[:, 0]], pos[contact_dofs[:, 1]]], axis=1)
     springs = (None if normal is None else
-               PenaltyNormal(normal.stiffness, pos[normal.dofs], normal.slope))
+               PenaltyNormal(normal.stiffness, pos[normal.dofs], normal.slope, normal.gap))
     backend = DenseBackend(s, cdofs[:, 0], cdofs[:, 1],
                            None if springs is None else springs.dofs)
     clamp_i = clamp_load[interior]

@@ -17,7 +17,8 @@ from ...errors import ParameterError
 from ..hexmesh import HexMesh
 from ..meshcheck import check_set
 
-__all__ = ["FLAT_TOL", "connected", "contact_rotation", "numbering", "plane", "set_faces"]
+__all__ = ["CURVED_MAX_DEG", "FLAT_TOL", "base_plane", "connected", "contact_rotation",
+           "numbering", "plane", "set_faces"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -62,6 +63,37 @@ def plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float]
             f"{math.degrees(2 * math.asin(min(angle / 2, 1.0))):.3g} deg, its nodes lie up to "
             f"{gap:.3g} mm off one plane); the built-in solver needs one flat face")
     return n, offset
+
+
+#: Largest angle (deg) between a curved contact face's normals and their mean: a face within it
+#: (a paraboloid, a crowned pad) touches the rigid base at its lowest points and carries each
+#: node's gap to the base; beyond it the face is refused as not flat.
+CURVED_MAX_DEG = 30.0
+
+
+def base_plane(mesh: HexMesh, faces: IntArray, name: str) -> tuple[FloatArray, float, bool]:
+    """The rigid base under a contact face: the outward unit normal, the base plane's offset
+    n . x (mm) and whether the face is curved. A flat face gives :func:`plane`'s; a curved one
+    (every face normal within :data:`CURVED_MAX_DEG` of their mean) the plane normal to the
+    mean normal through its outermost node, so that each node keeps its gap to the base."""
+    try:
+        n, offset = plane(mesh, faces, name)
+        return n, offset, False
+    except ParameterError as err:
+        flat_error = err
+    x = mesh.nodes[mesh.face_corners(faces)]
+    inward = np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
+    length = np.linalg.norm(inward, axis=1)
+    if np.any(length <= 0.0):
+        raise flat_error
+    out = -inward / length[:, None]
+    n = out.sum(axis=0)
+    if not np.linalg.norm(n) > 0.5 * len(out):
+        raise flat_error
+    n /= np.linalg.norm(n)
+    if float(np.degrees(np.arccos(np.clip(np.min(out @ n), -1.0, 1.0)))) > CURVED_MAX_DEG:
+        raise flat_error
+    return n, float(np.max(x.reshape(-1, 3) @ n)), True
 
 
 def contact_rotation(outward: FloatArray) -> FloatArray:

@@ -226,7 +226,7 @@ class MeshModel:
         close before the node presses again)."""
         if self.normal is None:
             return np.asarray(self.normal_force, dtype=float)
-        return np.asarray(-self.normal.stiffness * self.u0[self.normal.dofs], dtype=float)
+        return np.asarray(self.normal.stiffness * self.normal.penetration(self.u0), dtype=float)
 
     @property
     def force_scale(self) -> float:
@@ -292,15 +292,38 @@ class MeshModel:
         return out
 
     def describe(self) -> dict[str, Any]:
-        """Plain summary for reports."""
+        """What the solver built (the JSON's ``model`` object, issue 34): the mesh's size, the
+        element and the normal law; each role set's faces and area (mm^2); each preload's
+        pressure F / A (MPa); the contact nodes closed and open after the preload step; the
+        bodies, the supports and the assembly."""
+        from .bodies import body_labels
+
+        sets: dict[str, Any] = {}
+        roles = [(c.face, "contact") for c in self.assembly.contacts]
+        roles += [(c.counter, "counter face") for c in self.assembly.contacts if c.counter]
+        roles += [(p.face, "preload") for p in self.assembly.preloads]
+        for name, role in roles:
+            faces = set_faces(self.mesh, name, role)
+            sets[name] = {"role": role, "faces": len(faces),
+                          "area_mm2": float(face_load(self.mesh, faces)[2])}
+        for p in self.assembly.preloads:
+            sets[p.face]["force_N"] = p.force
+            sets[p.face]["pressure_MPa"] = p.force / sets[p.face]["area_mm2"]
+        for s in self.assembly.supports:
+            sets.setdefault(s.set, {"role": "support"})["directions"] = s.directions
+        closed = int(np.count_nonzero(self.closed))
         return {"source": self.mesh.source, "nodes": len(self.mesh.nodes),
-                "assembly": self.assembly.describe(),
                 "elements": len(self.mesh.elements), "element": self.element,
-                "dof": self.dof, "contact_nodes": int(self.contact_nodes.size),
+                "dof": self.dof, "bodies": body_labels(self.mesh)[0],
+                "normal_contact": self.normal_contact, "sets": sets,
+                "contact_nodes": int(self.contact_nodes.size),
                 "contact_area_mm2": float(self.contact_area.sum()),
-                "normal_contact": self.normal_contact,
+                "closed_after_preload": closed,
+                "open_after_preload": int(self.contact_nodes.size) - closed,
+                "contact_force_N": float(self.normal_force.sum()),
                 "linear_solver": self.backend.name if self.reduced is None
-                else f"condensed ({self.reduced.keep.size} contact dofs)"}
+                else f"condensed ({self.reduced.keep.size} contact dofs)",
+                "assembly": self.assembly.describe()}
 
 
 class SpentBackend:
@@ -443,6 +466,7 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         part = kind.assemble(nodes, elements if len(groups) == 1 else elements[rows],
                              mat.modulus, mat.poisson_ratio, element)
         k_all = part if k_all is None else k_all + part
+    assert k_all is not None
 
     c_mesh, area, quad = _contact_areas(mesh, contact_faces, contact_weights)
     c_model = inv[c_mesh]
@@ -467,20 +491,29 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         k_all = (transform.T @ k_all @ transform).tocsr()
         full = np.asarray(transform.T @ full)
     supports = layout.support_dofs(inv, rotation)
+    gap = layout.gaps(mesh, contact_nodes)
     # fixed normal contact: nodes the clamp pulls off the base are released (active set);
     # quadratic faces recover N_i from the pressure instead (their corner reactions are
-    # negative by the face's consistent weights, not by lift-off): one pass
+    # negative by the face's consistent weights, not by lift-off): one pass. A curved face
+    # starts with the nodes that touch the base held (at u_n = -g_0) and the others released
     released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
+    if gap is not None and not penalty:
+        released = gap > FLAT_TOL * size
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
-                k_all, contact, area, lam, k_n, penalty, released, supports)
+                k_all, contact, area, lam, k_n, penalty, released, supports,
+                None if gap is None or not penalty else gap)
             with single_threaded_blas():  # a threaded BLAS only fights for the 2 cores here
                 backend = _backend(linear_solver, k_ff, cdofs, kc,
                                    None if springs is None else springs.stiffness)
             clamp = full[free]
             held = 3 * (contact if released is None else contact[~released]) + 2
             clamp_fixed = None if penalty or not np.any(full[held]) else full[held]
+            if gap is not None and released is not None:  # held at u_n = -g_0
+                g_h = gap[~released]
+                clamp = clamp + np.asarray(k_rf.T @ g_h)
+                clamp_fixed = full[held] + np.asarray(k_all[held][:, held] @ g_h)
             reactions: Any = k_rf
             if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
                 reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
@@ -492,7 +525,8 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
                 break
             # release the held nodes in tension; press back the released ones below the base
             below = np.zeros(contact.size, dtype=bool)
-            below[released] = u[index[3 * contact[released] + 2]] < 0.0
+            below[released] = u[index[3 * contact[released] + 2]] + (
+                0.0 if gap is None else gap[released]) < 0.0
             new = (released | ((normal <= 0.0) & ~released)) & ~below
             if np.array_equal(new, released):
                 break
@@ -519,6 +553,14 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     n_keep = contact.size * (3 if penalty else 2)
     if condensed is None:
         condensed = free.size >= CONDENSE_MIN_DOF and 4 * n_keep <= free.size
+    if assembly.shanks:  # the bolts' shanks carry load after the preload (:mod:`.shank`)
+        shank = _shanks(mesh, assembly, nodes, inv, transform)[free][:, free]
+        k_ff = (k_ff + shank).tocsr()
+        clamp = clamp + np.asarray(shank @ u)
+        if not condensed:  # the condensation factorises its own
+            with single_threaded_blas():
+                backend = _backend(linear_solver, k_ff, cdofs, kc,
+                                   None if springs is None else springs.stiffness)
     if condensed:  # the full factor goes before the condensation builds its own
         backend = _spent(backend)
     with single_threaded_blas():
@@ -532,6 +574,25 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
         transform=transform, contact_master=np.where(master >= 0, inv[master], -1))
+
+
+def _shanks(mesh: HexMesh, assembly: Assembly, nodes: FloatArray, inv: IntArray,
+            transform: sp.csr_matrix | None) -> sp.csr_matrix:
+    """The shanks' stiffness on every model dof (model frame; T^T S T with pairs)."""
+    from .shank import shank_stiffness
+
+    total = sp.csr_matrix((3 * len(nodes), 3 * len(nodes)))
+    for b in assembly.shanks:
+        faces = []
+        for name in (b.head, b.nut):
+            k_mesh, share, _ = face_load(mesh, set_faces(mesh, name, "bolt face"))
+            faces.append((inv[k_mesh], share))
+        total = total + shank_stiffness(nodes, faces[0], faces[1], b.diameter,
+                                        b.modulus or assembly.modulus, b.poisson_ratio,
+                                        f"bolt {b.head}:{b.nut}")
+    if transform is not None:
+        total = transform.T @ total @ transform
+    return sp.csr_matrix(total)
 
 
 @dataclass(frozen=True)

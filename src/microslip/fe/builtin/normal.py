@@ -44,19 +44,28 @@ class PenaltyNormal:
         Free-dof positions of the nodes' u_z.
     slope : float
         k_n, N/mm^3.
+    gap : ndarray, shape (n_c,), or None
+        Initial gaps g_0 to the base, mm (a curved contact face); None: 0.
     """
 
     stiffness: FloatArray
     dofs: IntArray
     slope: float
+    gap: FloatArray | None = None
+
+    def penetration(self, u: FloatArray) -> FloatArray:
+        """-(u_z + g_0), mm: how far each node is pressed into the base (g_0 its initial gap,
+        0 on a flat face)."""
+        un = u[self.dofs]
+        return np.asarray(-un if self.gap is None else -(un + self.gap), dtype=float)
 
     def forces(self, u: FloatArray) -> FloatArray:
         """N_i >= 0, N: the base's push on the body along +z."""
-        return np.asarray(self.stiffness * np.maximum(-u[self.dofs], 0.0), dtype=float)
+        return np.asarray(self.stiffness * np.maximum(self.penetration(u), 0.0), dtype=float)
 
     def closed(self, u: FloatArray) -> NDArray[np.bool_]:
-        """True where the node touches the base (u_z <= 0)."""
-        return np.asarray(u[self.dofs] <= 0.0)
+        """True where the node touches the base (u_z + g_0 <= 0)."""
+        return np.asarray(self.penetration(u) >= 0.0)
 
     def tangent(self, u: FloatArray) -> FloatArray:
         """d N_i / d(-u_z,i): k_n A_i closed, 0 open, N/mm."""

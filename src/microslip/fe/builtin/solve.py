@@ -33,8 +33,8 @@ BoolArray = NDArray[np.bool_]
 
 def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray, lam: float,
                       k_n: float, penalty: bool, released: BoolArray | None = None,
-                      fixed: IntArray | None = None) -> tuple[IntArray, IntArray, sp.csr_matrix,
-                                                              sp.csr_matrix, IntArray,
+                      fixed: IntArray | None = None, gap: FloatArray | None = None
+                      ) -> tuple[IntArray, IntArray, sp.csr_matrix, sp.csr_matrix, IntArray,
                                  FloatArray, PenaltyNormal | None]:
     """The dofs of a body on its rigid base (any mesh), its contact nodes ``contact`` (with
     their areas, mm^2) on the plane normal to z (the model frame).
@@ -46,7 +46,8 @@ def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
     springs lambda A_i, N/mm) and the penalty normal springs (None under ``fixed``).
     ``released`` (``fixed`` only): contact nodes the clamping step lifted off, whose u_z is
     free too (``k_rf`` then has the held nodes' rows only). ``fixed``: further dofs held
-    at zero (an assembly's supports).
+    at zero (an assembly's supports); ``gap`` (``penalty``): the nodes' initial gaps to the
+    base, mm.
     """
     n_all = k_all.shape[0]
     held = 3 * (contact if released is None else contact[~released]) + 2
@@ -62,7 +63,7 @@ def contact_partition(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
     k_rf = k_all[held][:, free].tocsr()
     cdofs = np.stack([index[3 * contact], index[3 * contact + 1]], axis=1)
     kc = lam * area
-    springs = PenaltyNormal(k_n * area, index[3 * contact + 2], k_n) if penalty else None
+    springs = PenaltyNormal(k_n * area, index[3 * contact + 2], k_n, gap) if penalty else None
     return free, index, k_ff, k_rf, cdofs, kc, springs
 
 

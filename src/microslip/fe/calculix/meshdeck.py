@@ -1,22 +1,26 @@
-"""CalculiX input deck of the user's own clamp mesh (issue 22, item 4), one card per function.
+"""CalculiX input deck of the user's own mesh and its assembly (issues 22 and 32), one card
+per function.
 
 The deck of :func:`build_mesh_deck` is the box deck of :mod:`~microslip.fe.calculix.deck`
-(docs/validation.md) on any :class:`~microslip.fe.hexmesh.HexMesh`, with the roles given by
-named sets:
+(docs/validation.md) on any :class:`~microslip.fe.hexmesh.HexMesh` of one or more bodies,
+with the roles given by an :class:`~microslip.fe.assembly.Assembly` naming the mesh's sets
+(its cards: :mod:`.assemblydeck`):
 
 1. the user's mesh: C3D8I for 8-node hexahedra (the built-in solver's element), C3D20R for
-   20-node ones; node and element ids are the mesh's rows + 1;
-2. a rigid base under the contact set (:func:`base_slab`): a flat slab of fixed C3D8 bricks
-   below the contact plane, larger than the contact faces by one grid spacing all round, as
-   the box deck's base (on the box it is that base, node for node);
-3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the contact set's faces
-   (slave) and the base's upper face (master): linear pressure-overclosure law with the normal
-   slope (``normal_contact="penalty"``, lift-off allowed) and Coulomb friction mu with the stick
-   slope lambda (``*FRICTION``); or, with ``formulation="node-to-surface"``
-   (:mod:`.contactform`), node-to-surface penalty contact: the built-in solver's nodal law;
-4. step 1: the clamping pressure F_N / A on the clamp set's faces (``*DSLOAD``, P), friction
-   active;
-5. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
+   20-node ones; node and element ids are the mesh's rows + 1; a material per element set;
+2. under each contact face on the rigid base (``Contact(face)``) a rigid base
+   (:func:`base_slab`): a flat slab of fixed C3D8 bricks below the contact plane, larger than
+   the contact faces by one grid spacing all round, as the box deck's base (on the box it is
+   that base, node for node);
+3. each contact a penalty ``*CONTACT PAIR``: slave the contact face, master the base's upper
+   face or the counter face of another body (``Contact(face, counter)``), face-to-face
+   (``TYPE=SURFACE TO SURFACE``, default) or, with ``formulation="node-to-surface"``
+   (:mod:`.contactform`), node-to-surface (the built-in solver's nodal law); linear
+   pressure-overclosure law with the normal slope (``normal_contact="penalty"``, lift-off
+   allowed) and Coulomb friction mu with the stick slope lambda (``*FRICTION``);
+4. the supports as ``*BOUNDARY`` on their node sets' held components;
+5. step 1: every preload's pressure F / A on its faces (``*DSLOAD``, P), friction active;
+6. step 2: the loads F_l(t) = A_l sin(2 pi t + phi_l) (:class:`~microslip.fe.meshload.MeshLoad`)
    as ``*CLOAD`` nodal forces, the consistent shares of a uniform traction on each load's
    faces (:func:`~microslip.fe.hexmesh.face_load`) times its direction, each scaled by a
    tabular ``*AMPLITUDE`` exact at every increment end
@@ -24,12 +28,16 @@ named sets:
    the ``.dat`` file, u and the contact slips and tractions to the ``.frd`` file at every
    increment.
 
-Unlike the box deck there is no symmetry plane (a general mesh has none): as in the built-in
-solver, the in-plane rigid-body motions are held by friction alone.
+The rigid-base shorthand (a :class:`~microslip.fe.clamp.MeshClamp`, or
+:func:`~microslip.fe.assembly.rigid_base`: one body, one contact on the base, one preload, one
+material) writes the deck of issue 22 card for card. Unlike the box deck there is no symmetry
+plane unless a support holds one: as in the built-in solver, the in-plane rigid-body motions
+of a body on the base are held by friction alone.
 
 ``normal_contact="fixed"`` (the built-in solver's default: normal forces frozen at the clamping
-step's) has no CalculiX counterpart: a face-to-face contact's pressure always follows the
-overclosure. It is refused with one line; compare with the built-in solver's ``penalty``.
+step's) has no CalculiX counterpart: a contact's pressure always follows the overclosure. It is
+refused with one line; ``validate --mesh`` compares a ``fixed`` case as a hard (stiff penalty)
+contact on both sides (:mod:`.compare`).
 
 Units: N, mm, MPa; time in cycles (1 s per cycle).
 """
@@ -44,37 +52,43 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import ParameterError
-from ..constants import DEFAULT_NORMAL_SLOPE
+from ..assembly import Assembly, as_assembly
+from ..clamp import MeshClamp
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
+from .assemblydeck import (
+    ResolvedAssembly,
+    ResolvedContact,
+    boundary_rows,
+    contact_cards,
+    dsload_card,
+    material_cards,
+    preload_cards,
+    resolve_assembly,
+    support_cards,
+)
 from .contactform import (
     CONTACT_FORMULATIONS,
     N2S_TENSION_RATIO,
     ContactFormulation,
     check_formulation,
-    interaction_cards,
 )
 from .deck import (
     _name,
-    _num,
     amplitude_card,
     boundary_card,
     cload_card,
     contact_file_card,
-    contact_pair_card,
     controls_card,
     elements_card,
     end_step_card,
     heading_card,
-    material_card,
     node_file_card,
     node_print_card,
     nodes_card,
     nset_card,
-    solid_section_card,
     static_card,
     step_card,
-    surface_interaction_card,
 )
 from .meshhistory import _STARTUP_TEXT, LoadHistory, load_history
 
@@ -127,16 +141,6 @@ def element_surface_card(name: str, faces: ArrayLike) -> str:
         raise ParameterError(f"surface {name}: faces must be rows (element >= 0, face 0..5)")
     return (f"*SURFACE, NAME={_name('surface', name)}, TYPE=ELEMENT\n"
             + "".join(f"{int(e) + 1}, S{int(k) + 1}\n" for e, k in f))
-
-
-def dsload_card(surface: str, pressure: float) -> str:
-    """``*DSLOAD``: uniform pressure (MPa, positive into the faces) on an element-face surface.
-
-    >>> dsload_card("SCLAMP", 0.5)
-    '*DSLOAD\\nSCLAMP, P, 0.5\\n'
-    """
-    return (f"*DSLOAD\n{_name('surface', surface)}, P, "
-            f"{_num(pressure, 'pressure (MPa)', positive=True)}\n")
 
 
 @dataclass(frozen=True, eq=False)
@@ -346,115 +350,107 @@ def _load_cards(plan: MeshLoadPlan, history: LoadHistory, first_node: int = 1
     return "".join(amps), "".join(cloads)
 
 
-def _fixed_cards(mesh: HexMesh, fixed: Sequence[tuple[str, int, int]]
-                 ) -> tuple[str, list[tuple[str, int, int]]]:
-    """``*NSET`` cards ``NFIX<j>`` of the held node sets and their ``*BOUNDARY`` rows."""
-    cards, rows = [], []
-    for j, row in enumerate(fixed):
-        try:
-            name, first, last = row
-        except (TypeError, ValueError):
-            raise ParameterError(f"fixed entries must be (set, first dof, last dof), got "
-                                 f"{row!r}") from None
-        if name not in mesh.node_sets or mesh.node_sets[name].size == 0:
-            raise ParameterError(f"{mesh.source}: no non-empty node set named {name!r} to hold "
-                                 f"fixed; the node sets are {', '.join(sorted(mesh.node_sets))}")
-        cards.append(nset_card(f"NFIX{j + 1}", mesh.node_sets[name] + 1))
-        rows.append((f"NFIX{j + 1}", first, last))
-    return "".join(cards), rows
+def _layout(mesh: HexMesh, r: ResolvedAssembly) -> list[tuple[ResolvedContact, BaseSlab, int, int]]:
+    """The rigid bases of the contacts on the base: (contact, slab, first node id, first
+    element id), numbered after the mesh's nodes and elements in the contacts' order."""
+    out = []
+    node0, el0 = mesh.nodes.shape[0] + 1, mesh.elements.shape[0] + 1
+    for c in r.contacts:
+        if c.on_base:
+            slab = base_slab(mesh, c.faces, c.contact.face)
+            out.append((c, slab, node0, el0))
+            node0 += slab.nodes.shape[0]
+            el0 += slab.elements.shape[0]
+    return out
 
 
-def _check_positive(name: str, value: float, unit: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}") from None
-    if not (math.isfinite(v) and v > 0):
-        raise ParameterError(f"{name} must be > 0 {unit}, got {value!r}")
-    return v
+def _body_cards(mesh: HexMesh, layout: Sequence[tuple[ResolvedContact, BaseSlab, int, int]],
+                etype: str, heading: str) -> list[str]:
+    """The heading, every node (the bodies', then each base's), the bodies' elements (BODY),
+    each base's elements (BASE<k>) and each base's node set NBASE<k>."""
+    parts = [heading_card(heading),
+             nodes_card(np.vstack([mesh.nodes, *(b.nodes for _, b, _, _ in layout)])),
+             elements_card(etype, "BODY", mesh.elements + 1, first=1)]
+    parts += [elements_card("C3D8", f"BASE{c.suffix}", b.elements + n0, first=e0)
+              for c, b, n0, e0 in layout]
+    parts += [nset_card(f"NBASE{c.suffix}", np.arange(n0, n0 + b.nodes.shape[0]))
+              for c, b, n0, _ in layout]
+    return parts
 
 
-def _role_faces(mesh: HexMesh, contact_set: str, clamp_set: str
-                ) -> tuple[IntArray, IntArray, float]:
-    """The contact and clamp sets' faces (each must hold one) and the clamp's area, mm^2."""
-    contact = mesh.faces(contact_set)
-    clamp = mesh.faces(clamp_set)
-    for name, faces in ((contact_set, contact), (clamp_set, clamp)):
-        if faces.size == 0:
-            raise ParameterError(f"{mesh.source}: set {name!r} holds no element face")
-    _, _, clamp_area = face_load(mesh, clamp)
-    return contact, clamp, clamp_area
+def _surface_cards(r: ResolvedAssembly,
+                   layout: Sequence[tuple[ResolvedContact, BaseSlab, int, int]]) -> list[str]:
+    """SCONTACT<k> of every contact, SCLAMP<k> of every preload, SBASE<k> (face S2, the top)
+    of every base and SCOUNTER<k> of every counter face."""
+    out = [element_surface_card(c.slave, c.faces) for c in r.contacts]
+    out += [element_surface_card(p.surface, p.faces) for p in r.preloads]
+    for c, b, _, e0 in layout:
+        ids = np.arange(e0 - 1, e0 - 1 + b.elements.shape[0])
+        out.append(element_surface_card(c.master, np.column_stack([ids, np.ones_like(ids)])))
+    out += [element_surface_card(c.master, c.counter_faces) for c in r.contacts
+            if c.counter_faces is not None]
+    return out
 
 
-def _body_cards(mesh: HexMesh, base: BaseSlab, etype: str, heading: str) -> list[str]:
-    """The heading, every node (the body's, then the base's), the body and base elements and
-    the base's node set NBASE."""
-    n_nodes, n_el = mesh.nodes.shape[0], mesh.elements.shape[0]
-    base_nodes = np.arange(n_nodes + 1, n_nodes + base.nodes.shape[0] + 1)
-    return [heading_card(heading),
-            nodes_card(np.vstack([mesh.nodes, base.nodes])),
-            elements_card(etype, "BODY", mesh.elements + 1, first=1),
-            elements_card("C3D8", "BASE", base.elements + n_nodes + 1, first=n_el + 1),
-            nset_card("NBASE", base_nodes)]
+def _boundary(r: ResolvedAssembly,
+              layout: Sequence[tuple[ResolvedContact, BaseSlab, int, int]]) -> str:
+    """Every base node held, then the supports."""
+    rows = [(f"NBASE{c.suffix}", 1, 3) for c, _, _, _ in layout] + boundary_rows(r)
+    if not rows:
+        raise ParameterError(
+            "the assembly holds nothing: no contact on the rigid base and no support; give a "
+            "support (--fixed SET[:DIRECTIONS]) to the body that carries the others")
+    return boundary_card(rows)
 
 
-def _surface_cards(mesh: HexMesh, base: BaseSlab, contact: IntArray, clamp: IntArray
-                   ) -> list[str]:
-    """SCONTACT and SCLAMP on the body, SBASE (face S2, the top) on the base's elements."""
-    n_el = mesh.elements.shape[0]
-    base_ids = np.arange(n_el + 1, n_el + base.elements.shape[0] + 1)
-    return [element_surface_card("SCONTACT", contact),
-            element_surface_card("SCLAMP", clamp),
-            element_surface_card("SBASE", np.column_stack([base_ids - 1,
-                                                           np.ones_like(base_ids)]))]
+def _clamping_step(r: ResolvedAssembly) -> list[str]:
+    """The clamping step's opening: its comment, ``*STEP``, ``*STATIC`` and the preloads."""
+    comments, dsloads = preload_cards(r)
+    return [*comments, step_card(100), static_card(1.0, CLAMP_TIME, direct=False), *dsloads]
 
 
-def _clamping_step(normal_force: float, clamp_area: float, clamp_set: str) -> list[str]:
-    """The clamping step's opening: its comment, ``*STEP``, ``*STATIC`` and the pressure."""
-    return [f"** step 1: clamping pressure F_N / A = {normal_force:g} N / {clamp_area:g} "
-            f"mm^2 on {clamp_set}\n",
-            step_card(100),
-            static_card(1.0, CLAMP_TIME, direct=False),
-            dsload_card("SCLAMP", normal_force / clamp_area)]
+def _where(r: ResolvedAssembly) -> str:
+    """The heading's tail: where the bodies touch."""
+    a = r.assembly
+    if len(a.contacts) == 1 and a.rigid_base_only:
+        return "on a rigid base"
+    return "contacts " + "; ".join(c.label + (" on a rigid base" if c.counter is None else "")
+                                   for c in a.contacts)
 
 
-def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
-                    loads: Sequence[MeshLoad], friction: float, stick_slope: float,
-                    normal_contact: str = "penalty", normal_slope: float = DEFAULT_NORMAL_SLOPE,
-                    modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
-                    cycles: int = 1, max_iterations: int = 26,
-                    fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
+def _check_normal_contact(a: Assembly) -> None:
+    if a.normal_contact not in NORMAL_CONTACTS:
+        raise ParameterError(
+            f"normal_contact must be {' or '.join(repr(k) for k in NORMAL_CONTACTS)} for "
+            f"CalculiX, got {a.normal_contact!r}: its contact pressure always follows the "
+            "overclosure, so normal forces frozen at the clamping step ('fixed') have no "
+            "counterpart; compare with the built-in solver's 'penalty' (validate --mesh compares "
+            "'fixed' with CalculiX's stiff penalty contact, and says so)")
+
+
+def build_mesh_deck(mesh: HexMesh, assembly: Assembly | MeshClamp, *,
+                    loads: Sequence[MeshLoad], increments_per_cycle: int = 40,
+                    cycles: int = 1, max_iterations: int = 26, startup: str = "quarter",
                     formulation: str = "face-to-face") -> str:
-    """The complete ``.inp`` deck of the user's mesh on a rigid frictional base.
+    """The complete ``.inp`` deck of the user's mesh and its assembly.
 
     Parameters
     ----------
     mesh : HexMesh
-        8-node (C3D8I) or 20-node (C3D20R) hexahedra, mm.
-    contact_set, clamp_set : str
-        Sets (node sets or surfaces, :meth:`HexMesh.faces`) of the face on the rigid base and
-        of the face that carries the clamping pressure.
-    normal_force : float
-        F_N, N: the pressure F_N / A on the clamp set's faces of area A.
+        8-node (C3D8I) or 20-node (C3D20R) hexahedra, mm; one or more bodies.
+    assembly : Assembly or MeshClamp
+        The contacts (on another body or on a rigid base), the preloads (the clamping step),
+        the supports, the materials and the contact law (:mod:`.assemblydeck`). The law's
+        ``normal_contact`` must be a key of :data:`NORMAL_CONTACTS` (``"penalty"``; ``"fixed"``
+        is refused). The rigid-base shorthand (a :class:`~microslip.fe.clamp.MeshClamp`, or
+        :func:`~microslip.fe.assembly.rigid_base`) writes the one-body deck of issue 22.
     loads : sequence of MeshLoad
         F_l(t) = A_l sin(2 pi t + phi_l) on their sets (:func:`~.meshhistory.load_factors`).
-    friction, stick_slope : float
-        mu and lambda (N/mm^3) of ``*FRICTION``.
-    normal_contact : str
-        A key of :data:`NORMAL_CONTACTS` (``"penalty"``); ``"fixed"`` is refused.
-    normal_slope : float
-        Slope of the linear pressure-overclosure law, N/mm^3.
-    modulus, poisson_ratio : float
-        E (MPa) and nu of the body (and of the base, whose nodes are all fixed).
     increments_per_cycle, cycles : int
         Equal ``DIRECT`` increments per cycle (a multiple of 4) and full cycles after the
         start-up (:func:`~.meshhistory.load_history`).
     max_iterations : int
         Equilibrium iterations per increment (``*CONTROLS`` I_C; the box deck's 26).
-    fixed : sequence of (str, int, int)
-        Node sets of the mesh with the dofs first..last (1 x, 2 y, 3 z) held at zero, e.g.
-        ``[("sym", 2, 2)]`` for a symmetry plane y = const. None by default: the in-plane
-        rigid-body motions are held by friction alone, as in the built-in solver.
     startup : str
         How the loads start (:data:`~.meshhistory.STARTUPS`): ``"quarter"`` (the paper's load
         step) or ``"ramp"`` (the built-in own-mesh solver's sine cycles, sample for sample).
@@ -469,23 +465,16 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
     """
     if not isinstance(mesh, HexMesh):
         raise ParameterError("build_mesh_deck needs a HexMesh")
-    if normal_contact not in NORMAL_CONTACTS:
-        raise ParameterError(
-            f"normal_contact must be {' or '.join(repr(k) for k in NORMAL_CONTACTS)} for "
-            f"CalculiX, got {normal_contact!r}: its contact pressure always follows the "
-            "overclosure, so normal forces frozen at the clamping step ('fixed') have no "
-            "counterpart; compare with the built-in solver's 'penalty'")
-    fn = _check_positive("normal_force", normal_force, "N")
-    contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
-    interaction = interaction_cards(formulation, normal_slope, friction, stick_slope,
-                                     fn / face_load(mesh, contact)[2])
+    a = as_assembly(assembly)
+    _check_normal_contact(a)
+    check_formulation(formulation)
+    r = resolve_assembly(mesh, a)
     plan = load_plan(mesh, loads)
     history = load_history(plan.loads, increments_per_cycle, cycles, startup)
-    base = base_slab(mesh, contact, contact_set)
+    layout = _layout(mesh, r)
     etype = MESH_ELEMENTS[mesh.nodes_per_element]
     n_el = mesh.elements.shape[0]
     amps, cloads = _load_cards(plan, history)
-    fixed_sets, fixed_rows = _fixed_cards(mesh, fixed)
     n = int(history.time.size - 1)
     dt = 1.0 / increments_per_cycle
     ext = np.ptp(mesh.nodes, axis=0)
@@ -493,19 +482,17 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
         f"{ld.set} {ld.amplitude:g} N along ({', '.join(f'{d:g}' for d in ld.direction)}) "
         f"at {ld.phase_deg:g} deg" for ld in plan.loads)
     parts = [
-        *_body_cards(mesh, base, etype,
+        *_body_cards(mesh, layout, etype,
                      f"microslip own mesh {mesh.source}: {n_el} {etype}, "
-                     f"{ext[0]:g} x {ext[1]:g} x {ext[2]:g} mm, on a rigid base"),
+                     f"{ext[0]:g} x {ext[1]:g} x {ext[2]:g} mm, {_where(r)}"),
         nset_card(LOADED_NSET, plan.loaded + 1),
-        fixed_sets,
-        *_surface_cards(mesh, base, contact, clamp),
-        material_card("BODY", modulus, poisson_ratio),
-        solid_section_card("BODY", "BODY"),
-        solid_section_card("BASE", "BODY"),
-        *interaction,
-        boundary_card([("NBASE", 1, 3), *fixed_rows]),
+        support_cards(r),
+        *_surface_cards(r, layout),
+        *material_cards(r),
+        *contact_cards(r, formulation),
+        _boundary(r, layout),
         amps,
-        *_clamping_step(fn, clamp_area, clamp_set),
+        *_clamping_step(r),
         node_print_card(LOADED_NSET),
         node_file_card(),
         contact_file_card(),
@@ -524,29 +511,27 @@ def build_mesh_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_f
     return "".join(parts)
 
 
-def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
-                         normal_force: float, friction: float, stick_slope: float,
-                         normal_slope: float = DEFAULT_NORMAL_SLOPE, modulus: float,
-                         poisson_ratio: float,
-                         density_kg_m3: float, modes: int = 10, element: str | None = None
-                         ) -> str:
+def build_frequency_deck(mesh: HexMesh, assembly: Assembly | MeshClamp, *,
+                         density_kg_m3: float | None = None, modes: int = 10,
+                         element: str | None = None) -> str:
     """The deck of the linear modes about the clamped state (issue 23): the deck of
-    :func:`build_mesh_deck` without loads, the material with ``*DENSITY`` (t/mm^3), step 1
-    the clamping pressure, step 2 ``*STEP, PERTURBATION`` with ``*FREQUENCY``: only there does
+    :func:`build_mesh_deck` without loads, the materials with ``*DENSITY`` (t/mm^3), step 1
+    the preloads, step 2 ``*STEP, PERTURBATION`` with ``*FREQUENCY``: only there does
     CalculiX linearise the contact of the clamping step (normal slope and stick slope); a
     frequency step without it ignores the contact, and every mode is a 0 Hz rigid motion.
     The eigenvalues go to the ``.dat`` file (:func:`~microslip.fe.calculix.meshrun.
-    read_frequencies`). Penalty normal contact only. ``element``: the 8-node element type
-    (default C3D8I, the built-in solver's; C3D8 for a comparison free of the two
-    incompatible-mode formulations)."""
+    read_frequencies`). Face-to-face penalty contact with the assembly's normal slope, whatever
+    its ``normal_contact``. ``density_kg_m3``: the density of a material that gives none.
+    ``element``: the 8-node element type (default C3D8I, the built-in solver's; C3D8 for a
+    comparison free of the two incompatible-mode formulations)."""
     if not isinstance(mesh, HexMesh):
         raise ParameterError("build_frequency_deck needs a HexMesh")
-    fn = _check_positive("normal_force", normal_force, "N")
-    rho = _check_positive("density", density_kg_m3, "kg/m^3") * 1e-12
+    if density_kg_m3 is not None:
+        _check_positive("density", density_kg_m3, "kg/m^3")
     if isinstance(modes, bool) or not isinstance(modes, int) or not 1 <= modes <= 1000:
         raise ParameterError(f"modes must be a whole number in [1, 1000], got {modes!r}")
-    contact, clamp, clamp_area = _role_faces(mesh, contact_set, clamp_set)
-    base = base_slab(mesh, contact, contact_set)
+    r = resolve_assembly(mesh, assembly)
+    layout = _layout(mesh, r)
     etype = MESH_ELEMENTS[mesh.nodes_per_element]
     if element is not None:
         if mesh.nodes_per_element != 8 or element not in ("C3D8I", "C3D8"):
@@ -554,18 +539,15 @@ def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
                                  f"{element!r}")
         etype = element
     parts = [
-        *_body_cards(mesh, base, etype,
+        *_body_cards(mesh, layout, etype,
                      f"microslip own mesh {mesh.source}: linear modes about the clamped "
                      f"state, {mesh.elements.shape[0]} {etype}"),
-        *_surface_cards(mesh, base, contact, clamp),
-        material_card("BODY", modulus, poisson_ratio),
-        f"*DENSITY\n{rho:.10g}\n",
-        solid_section_card("BODY", "BODY"),
-        solid_section_card("BASE", "BODY"),
-        surface_interaction_card("SI", normal_slope, friction, stick_slope),
-        contact_pair_card("SI", "SCONTACT", "SBASE"),
-        boundary_card([("NBASE", 1, 3)]),
-        *_clamping_step(fn, clamp_area, clamp_set),
+        support_cards(r),
+        *_surface_cards(r, layout),
+        *material_cards(r, density=True, default_density=density_kg_m3),
+        *contact_cards(r, "face-to-face"),
+        _boundary(r, layout),
+        *_clamping_step(r),
         end_step_card(),
         "** step 2: linear modes with the contact linearised about the clamped state\n",
         "*STEP, PERTURBATION\n*FREQUENCY\n",
@@ -573,3 +555,13 @@ def build_frequency_deck(mesh: HexMesh, *, contact_set: str, clamp_set: str,
         end_step_card(),
     ]
     return "".join(parts)
+
+
+def _check_positive(name: str, value: float, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number ({unit}), got {value!r}") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ParameterError(f"{name} must be > 0 {unit}, got {value!r}")
+    return v

@@ -41,7 +41,8 @@ from ...energy import loop_work
 from ...errors import ParameterError
 from ...io import atomic_write
 from ...named import result
-from ..constants import DEFAULT_NORMAL_SLOPE
+from ..assembly import Assembly, as_assembly
+from ..clamp import MeshClamp
 from ..errors import ResultsError
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
@@ -52,6 +53,7 @@ from ..result import (
     idle_loop_reason,
     join_message,
 )
+from .assemblydeck import resolve_assembly
 from .collect import contact_status
 from .meshdeck import (
     CLAMP_TIME,
@@ -301,21 +303,22 @@ def read_mesh_results(plan: MeshLoadPlan, history: LoadHistory, job_dir: str | P
         wall_s=float(wall_s), contact=states, job_dir=job_dir)
 
 
-def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal_force: float,
-                      loads: Sequence[MeshLoad], friction: float, stick_slope: float,
-                      normal_contact: str = "penalty", normal_slope: float = DEFAULT_NORMAL_SLOPE,
-                      modulus: float, poisson_ratio: float, increments_per_cycle: int = 40,
-                      cycles: int = 1, max_iterations: int = 26,
-                      fixed: Sequence[tuple[str, int, int]] = (), startup: str = "quarter",
+def run_mesh_calculix(mesh: HexMesh, assembly: Assembly | MeshClamp, *,
+                      loads: Sequence[MeshLoad], increments_per_cycle: int = 40,
+                      cycles: int = 1, max_iterations: int = 26, startup: str = "quarter",
                       job_dir: str | Path | None = None, timeout: float | None = None,
                       threads: int = 1, executable: str | None = None,
                       formulation: str = "face-to-face",
                       progress: Callable[[int], None] | None = None) -> MeshCalculixResult:
-    """Write the deck of the user's mesh (:func:`build_mesh_deck`, same parameters), run ccx
-    and read each load's loop and the work of the last cycle.
+    """Write the deck of the user's mesh and its assembly (:func:`build_mesh_deck`, same
+    parameters), run ccx and read each load's loop and the work of the last cycle.
 
     Parameters
     ----------
+    assembly : Assembly or MeshClamp
+        The contacts, preloads, supports, materials and contact law
+        (:func:`~microslip.fe.assembly.as_assembly`); the status is read at every contact's
+        face nodes.
     job_dir : path, optional
         Created if needed; holds ``job.inp``, the solver's files and ``ccx.log``. None: a
         temporary directory, removed afterwards (``result.job_dir`` is then None).
@@ -340,14 +343,11 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         Solver missing, time-out, killed, not converged, results missing or truncated; nothing
         partial is returned.
     """
-    deck = build_mesh_deck(mesh, contact_set=contact_set, clamp_set=clamp_set,
-                           normal_force=normal_force, loads=loads, friction=friction,
-                           stick_slope=stick_slope, normal_contact=normal_contact,
-                           normal_slope=normal_slope, modulus=modulus,
-                           poisson_ratio=poisson_ratio,
-                           increments_per_cycle=increments_per_cycle, cycles=cycles,
-                           max_iterations=max_iterations, fixed=fixed, startup=startup,
+    a = as_assembly(assembly)
+    deck = build_mesh_deck(mesh, a, loads=loads, increments_per_cycle=increments_per_cycle,
+                           cycles=cycles, max_iterations=max_iterations, startup=startup,
                            formulation=formulation)
+    faces = resolve_assembly(mesh, a).contact_faces
     plan = load_plan(mesh, loads)
     history = load_history(loads, increments_per_cycle, cycles, startup)
     exe = find_ccx(executable)  # fail before touching the directory
@@ -367,8 +367,7 @@ def run_mesh_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str, normal
         try:
             return read_mesh_results(plan, history, d, JOBNAME,
                                      element=element, dof=dof, wall_s=run.wall_s,
-                                     contact=(mesh, mesh.faces(contact_set), friction,
-                                              stick_slope))
+                                     contact=(mesh, faces, a.friction, a.stick_slope))
         except ResultsError as exc:
             raise type(exc)(exc.message, d, run.log_tail) from None
 
@@ -404,20 +403,15 @@ def read_frequencies(dat: str | Path) -> FloatArray:
     return np.array(out)
 
 
-def run_frequency_calculix(mesh: HexMesh, *, contact_set: str, clamp_set: str,
-                           normal_force: float, friction: float, stick_slope: float,
-                           normal_slope: float = DEFAULT_NORMAL_SLOPE, modulus: float,
-                           poisson_ratio: float,
-                           density_kg_m3: float, modes: int = 10, element: str | None = None,
-                           job_dir: str | Path | None = None, timeout: float | None = None,
-                           executable: str | None = None) -> FloatArray:
+def run_frequency_calculix(mesh: HexMesh, assembly: Assembly | MeshClamp, *,
+                           density_kg_m3: float | None = None, modes: int = 10,
+                           element: str | None = None, job_dir: str | Path | None = None,
+                           timeout: float | None = None, executable: str | None = None
+                           ) -> FloatArray:
     """Write :func:`~microslip.fe.calculix.meshdeck.build_frequency_deck` (same parameters),
     run ccx and return the linear frequencies about the clamped state, Hz (issue 23)."""
-    deck = build_frequency_deck(mesh, contact_set=contact_set, clamp_set=clamp_set,
-                                normal_force=normal_force, friction=friction,
-                                stick_slope=stick_slope, normal_slope=normal_slope,
-                                modulus=modulus, poisson_ratio=poisson_ratio,
-                                density_kg_m3=density_kg_m3, modes=modes, element=element)
+    deck = build_frequency_deck(mesh, assembly, density_kg_m3=density_kg_m3, modes=modes,
+                                element=element)
     exe = find_ccx(executable)
 
     def run_in(d: Path) -> FloatArray:
