@@ -29,7 +29,7 @@ import numpy as np
 
 from microslip import closedform, preset
 from microslip.blas import single_threaded_blas
-from microslip.fe.builtin import available_linear_solvers, build_model, solve_uniaxial
+from microslip.fe.builtin import available_linear_solvers, box_model, solve_uniaxial
 from microslip.params import ClampParams
 
 P = preset("table1")
@@ -76,7 +76,7 @@ def bench_coarse(repeat: int) -> None:
 
 def bench_linear_solvers(mesh: Any, repeat: int) -> None:
     print(f"\n== One factorisation + solve of the tangent, mesh '{mesh}' ==")
-    m = build_model(P, mesh)
+    m = box_model(P, mesh)
     rng = np.random.default_rng(0)
     d = np.stack([m.contact_stiffness * rng.uniform(0.0, 1.0, m.contact_stiffness.size),
                   np.zeros(m.contact_stiffness.size), m.contact_stiffness], axis=1)

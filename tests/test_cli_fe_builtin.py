@@ -72,7 +72,8 @@ def test_out_writes_result_json_and_a_vtu_series_read_back(capsys, tmp_path):
     the first peak, averaged over the loaded end face with the consistent-load weights and
     measured from the clamped state, is the loop's first displacement."""
     meshio = pytest.importorskip("meshio")
-    from microslip.fe.builtin.mesh import box_mesh
+    from microslip.fe.examples import box_hexmesh
+    from microslip.fe.hexmesh import face_load
 
     out = tmp_path / "run"
     data = quiet_json(capsys, "fe", "--model", "tip", "--mesh", "tiny", "--out", str(out),
@@ -83,13 +84,12 @@ def test_out_writes_result_json_and_a_vtu_series_read_back(capsys, tmp_path):
     assert len(vtus) == data["increments"] + 1
     pvd = (out / "fe_tip.pvd").read_text()
     assert pvd.count("<DataSet") == len(vtus) and 'timestep="1.25"' in pvd
-    mesh = box_mesh(P.length, P.width, P.thickness, 8, 2, 1)
-    ids, w = mesh.face_nodes("end"), mesh.face_weights("end")
-    w = w / w.sum()
+    mesh = box_hexmesh(P, (8, 2, 1))
+    ids, w, _ = face_load(mesh, mesh.faces("tip"))
     clamped, peak = meshio.read(vtus[0]), meshio.read(vtus[10])  # t = 0 and 0.25 s
     d = (peak.point_data["displacement"][ids, 0] - clamped.point_data["displacement"][ids, 0])
     assert d @ w == pytest.approx(data["loop"]["displacement_mm"][0], rel=1e-9)
-    bottom = mesh.face_nodes("bottom")
+    bottom = mesh.node_sets["contact"]
     assert set(np.unique(clamped.point_data["contact_status"][bottom])) == {1}
     status = peak.point_data["contact_status"]
     assert set(np.unique(status[bottom])) == {1, 2} and np.all(

@@ -19,7 +19,7 @@ import pytest
 from microslip import MacroslipError, ParameterError, closedform, damping_from_loop, preset
 from microslip.fe.builtin import (
     NewtonOptions,
-    build_model,
+    box_model,
     coupling_study,
     solve_load_path,
     solve_uniaxial,
@@ -99,7 +99,7 @@ def test_rerun_is_identical(table1_loops: dict) -> None:
 
 
 def test_normal_forces_from_the_clamping_step() -> None:
-    m = build_model(P, "coarse")
+    m = box_model(P, "coarse")
     assert m.normal_force.sum() == pytest.approx(P.normal_force, rel=1e-10)
     assert np.all(m.normal_force > 0.0)
     share = P.normal_force * m.contact_area / m.contact_area.sum()

@@ -14,10 +14,9 @@ import pytest
 
 from microslip.errors import ParameterError
 from microslip.fe.assembly import Assembly, Contact, Material, Preload, Support, rigid_base
-from microslip.fe.builtin.mesh import box_mesh
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles, solve_mesh
-from microslip.fe.examples import cantilever_mesh
+from microslip.fe.examples import cantilever_mesh, grid_mesh
 from microslip.fe.hexmesh import HexMesh
 from microslip.fe.meshload import MeshLoad
 
@@ -34,8 +33,9 @@ def on_block(bar: HexMesh, layers: int = 1, thickness: float = 6.35,
     dy = ys[1] - ys[0]
     ys = np.concatenate([ys[0] - dy * np.arange(wide, 0, -1), ys,
                          ys[-1] + dy * np.arange(1, wide + 1)])
-    b = box_mesh(float(xs[-1] - xs[0]), float(ys[-1] - ys[0]), thickness, xs.size - 1,
-                 ys.size - 1, layers)
+    b = grid_mesh(np.linspace(0.0, float(xs[-1] - xs[0]), xs.size),
+                  np.linspace(0.0, float(ys[-1] - ys[0]), ys.size),
+                  np.linspace(0.0, thickness, layers + 1))
     nodes_b = b.nodes + np.array([xs[0], ys[0], -thickness])
     n = len(bar.nodes)
     top = np.flatnonzero(np.isclose(nodes_b[:, 2], 0.0)) + n

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from microslip import ParameterError, preset
-from microslip.fe.builtin import CENTRE_DIRECTIONS, build_model, run_history
+from microslip.fe.builtin import CENTRE_DIRECTIONS, BoxLoading, box_model
 
 P = preset("table1")
 AXIS = {"axial": 0, "transverse": 1}
@@ -23,19 +23,21 @@ AXIS = {"axial": 0, "transverse": 1}
 
 @pytest.fixture(scope="module")
 def model():
-    return build_model(P, (8, 2, 1))
+    return box_model(P, (8, 2, 1))
 
 
-def nodal_forces(model, key: str) -> np.ndarray:
-    """The load vector on all dofs, (n_nodes, 3), N."""
-    full = np.zeros(model.total_dof)
-    full[model.free] = model.loads[key]
-    return full.reshape(-1, 3)
+def nodal_forces(model, direction: str) -> np.ndarray:
+    """The centre's unit load vector on every mesh node, (n_nodes, 3), N."""
+    full = np.zeros(model.index.size)
+    full[model.free] = BoxLoading(P, model, direction).run.vectors[1]
+    out = np.zeros((len(model.mesh.nodes), 3))
+    out[model.order] = full.reshape(-1, 3)
+    return out
 
 
 @pytest.mark.parametrize("direction", sorted(CENTRE_DIRECTIONS))
 def test_centre_load_is_a_unit_traction_on_the_mid_section(model, direction):
-    f = nodal_forces(model, model.centre_load(direction))
+    f = nodal_forces(model, direction)
     expected = np.zeros(3)
     expected[AXIS[direction]] = 1.0
     np.testing.assert_allclose(f.sum(axis=0), expected, rtol=0, atol=1e-14)
@@ -53,7 +55,7 @@ def test_axial_and_transverse_differ_and_respond_linearly_while_stuck(model):
     small = 1e-3 * P.macroslip_force  # far below first slip: linear response
     d = {}
     for direction in CENTRE_DIRECTIONS:
-        h = run_history(model, [0.0, 0.0], [small, 2 * small], centre_direction=direction)
+        h = BoxLoading(P, model, direction).advance([0.0, 0.0], [small, 2 * small])
         assert h.converged
         d[direction] = np.asarray(h.centre_displacement)
         assert d[direction][1] == pytest.approx(2 * d[direction][0], rel=1e-9)
@@ -63,4 +65,4 @@ def test_axial_and_transverse_differ_and_respond_linearly_while_stuck(model):
 
 def test_unknown_direction_is_named(model):
     with pytest.raises(ParameterError, match="unknown centre direction 'vertical'"):
-        run_history(model, [0.0], [1.0], centre_direction="vertical")
+        BoxLoading(P, model, "vertical")

@@ -10,14 +10,27 @@ import pytest
 
 from microslip import preset
 from microslip.fe import mesh_spec
-from microslip.fe.builtin import build_model, solve_uniaxial
-from microslip.fe.builtin.mesh import box_mesh, mesh_from_spec
+from microslip.fe.builtin import box_model, solve_uniaxial
+from microslip.fe.builtin.box import box_counts, box_describe
+from microslip.fe.builtin.meshgeometry import set_faces
 from microslip.fe.calculix.mesh import bar_mesh
+from microslip.fe.examples import box_hexmesh, grid_mesh
+from microslip.fe.hexmesh import face_load
 from microslip.meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, level_axes, level_counts
 from microslip.params import ClampParams
 
 TITANIUM = ClampParams(length=30.0, width=12.0, thickness=8.0, modulus=113_800.0,
                        poisson_ratio=0.342, friction=0.5, normal_force=12_000.0)
+def _graded(mesh) -> tuple[bool, bool, bool]:
+    """Whether the node planes along x, y, z are not equally spaced."""
+    out = []
+    for c in range(3):
+        a = np.unique(mesh.nodes[:, c])
+        out.append(not np.allclose(a, np.linspace(a[0], a[-1], a.size), rtol=0.0,
+                                   atol=1e-12 * (a[-1] - a[0])))
+    return out[0], out[1], out[2]
+
+
 TABLE1_COUNTS = {"tiny": (8, 2, 1), "coarse": (24, 4, 1), "medium": (48, 4, 1),
                  "fine": (96, 8, 2), "paper": (96, 4, 1)}
 
@@ -29,15 +42,16 @@ def test_a_level_is_the_same_mesh_for_both_solvers(level):
     squat titanium block (graded)."""
     assert level_counts(preset("table1"), level) == TABLE1_COUNTS[level]
     for params in (preset("table1"), TITANIUM):
-        box = mesh_from_spec(params, level)
+        box = box_hexmesh(params, level)
         spec = mesh_spec(level, params)
         bar = bar_mesh(params, spec)
-        assert (box.nx, box.ny, box.nz) == (spec.nx, spec.ny, spec.nz)
+        assert box_counts(box) == (spec.nx, spec.ny, spec.nz)
         squat = params is TITANIUM and level not in FIXED_COUNTS
-        assert spec.graded == any(box.graded) == squat
+        assert spec.graded == box_describe(box)["graded"] == any(_graded(box)) == squat
         corners = bar.nodes[bar.grid[::2, ::2, ::2].ravel() - 1]
-        np.testing.assert_allclose(np.unique(corners[:, 0]), box.axes[0], atol=1e-12)
-        np.testing.assert_allclose(np.unique(corners[:, 2]), box.axes[2], atol=1e-12)
+        for c in (0, 2):
+            np.testing.assert_allclose(np.unique(corners[:, c]), np.unique(box.nodes[:, c]),
+                                       atol=1e-12)
 
 
 def test_explicit_counts_and_unknown_levels():
@@ -45,8 +59,8 @@ def test_explicit_counts_and_unknown_levels():
     with pytest.raises(Exception, match="unknown mesh 'huge'"):
         level_counts(TITANIUM, "huge")
     # a tuple stays a uniform mesh; a level string on a squat body is graded
-    assert not any(mesh_from_spec(TITANIUM, (12, 2, 3)).graded)
-    assert mesh_from_spec(TITANIUM, "12x2x3").graded == (True, False, True)
+    assert not any(_graded(box_hexmesh(TITANIUM, (12, 2, 3))))
+    assert _graded(box_hexmesh(TITANIUM, "12x2x3")) == (True, False, True)
 
 
 def test_a_thick_block_gets_graded_layers():
@@ -74,26 +88,29 @@ def test_graded_planes_crowd_towards_the_loaded_sections():
 
 
 def test_graded_mesh_areas_and_clamping_use_the_actual_spacing():
-    """Tributary areas add up to the faces, every node's area is its share of the elements
+    """Contact areas add up to the faces, every node's area is its share of the elements
     around it, and the clamping reactions add up to F_N on a graded mesh."""
-    box = mesh_from_spec(TITANIUM, "12x2x3")
-    w = box.face_weights("bottom").reshape(box.nx + 1, box.ny + 1)
-    dx = np.diff(box.axes[0])
+    box = box_hexmesh(TITANIUM, "12x2x3")
+    nx, ny, _ = box_counts(box)
+    m = box_model(TITANIUM, box)
+    w = m.contact_area.reshape(nx + 1, ny + 1)
+    dx = np.diff(np.unique(box.nodes[:, 0]))
     trib_x = np.concatenate([[0.5 * dx[0]], 0.5 * (dx[1:] + dx[:-1]), [0.5 * dx[-1]]])
-    np.testing.assert_allclose(w[:, 1], trib_x * TITANIUM.width / box.ny, rtol=1e-13)
-    assert box.face_weights("end").sum() == pytest.approx(12.0 * 8.0, rel=1e-13)
-    m = build_model(TITANIUM, box)
+    np.testing.assert_allclose(w[:, 1], trib_x * TITANIUM.width / ny, rtol=1e-13)
+    assert face_load(box, set_faces(box, "tip", "set"))[2] == pytest.approx(12.0 * 8.0,
+                                                                              rel=1e-13)
     assert m.normal_force.sum() == pytest.approx(TITANIUM.normal_force, rel=1e-10)
     assert np.all(m.normal_force > 0)
 
 
 def test_graded_stiffness_matches_per_element_assembly():
-    """The stiffness of a graded mesh (one element matrix per size class) equals the sum of
-    every element's own matrix."""
-    from microslip.fe.builtin.element import assemble_stiffness, element_stiffness
+    """The stiffness of a graded mesh (one element matrix per class of translated copies)
+    equals the sum of every element's own matrix."""
+    from microslip.fe.builtin.element import assemble_hex8, element_stiffness
 
-    box = box_mesh(6.0, 2.0, 3.0, 4, 2, 3, axes=([0, 1, 3, 5.5, 6], None, [0, 0.5, 1.5, 3]))
-    k = assemble_stiffness(box, 1000.0, 0.3, "C3D8I").toarray()
+    box = grid_mesh(np.array([0, 1, 3, 5.5, 6.0]), np.linspace(0.0, 2.0, 3),
+                    np.array([0, 0.5, 1.5, 3.0]))
+    k = assemble_hex8(box.nodes, box.elements, 1000.0, 0.3, "C3D8I").toarray()
     ke = element_stiffness(box.nodes[box.elements], 1000.0, 0.3, "C3D8I")
     ref = np.zeros_like(k)
     for e, conn in enumerate(box.elements):

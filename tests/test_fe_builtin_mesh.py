@@ -1,4 +1,5 @@
-"""Mesh numbering, hexahedral elements and the banded factorisation of the built-in solver."""
+"""Mesh numbering, hexahedral elements and the banded factorisation of the built-in solver
+(the paper's box as a HexMesh: :func:`microslip.fe.examples.box_hexmesh`)."""
 
 from __future__ import annotations
 
@@ -7,44 +8,59 @@ import pytest
 import scipy.sparse.linalg as spla
 
 from microslip import ParameterError, preset
-from microslip.fe.builtin.element import NODE_XI, assemble_stiffness, element_stiffness
+from microslip.fe.builtin import box_model
+from microslip.fe.builtin.element import NODE_XI, assemble_hex8, element_stiffness
 from microslip.fe.builtin.linalg import BandedBackend, SpluBackend, make_backend
-from microslip.fe.builtin.mesh import box_mesh, mesh_from_spec
+from microslip.fe.builtin.meshgeometry import set_faces
+from microslip.fe.examples import box_hexmesh, grid_mesh
+from microslip.fe.hexmesh import face_load
+
+
+def _box(length: float, width: float, thickness: float, nx: int, ny: int, nz: int):
+    """The box mesh of a clamped zone of that size, uniform (nx, ny, nz)."""
+    p = preset("table1").replace(length=length, width=width, thickness=thickness)
+    return box_hexmesh(p, (nx, ny, nz))
+
+
+def _grid(length: float, width: float, thickness: float, nx: int, ny: int, nz: int):
+    return grid_mesh(np.linspace(0.0, length, nx + 1), np.linspace(0.0, width, ny + 1),
+                     np.linspace(0.0, thickness, nz + 1))
 
 
 def test_slice_numbering_gives_a_band() -> None:
-    m = box_mesh(10.0, 2.0, 1.0, 6, 3, 2)
+    m = _box(10.0, 2.0, 1.0, 6, 3, 2)
     s = (3 + 1) * (2 + 1)
-    assert m.slice_size == s
-    assert m.half_bandwidth() == s + (2 + 1) + 1
+    e = m.elements
+    assert int(np.max(e.max(axis=1) - e.min(axis=1))) == s + (2 + 1) + 1
     # node numbers grow slice by slice along x
     assert np.all(np.diff(m.nodes[:, 0].reshape(7, s).mean(axis=1)) > 0)
-    k = assemble_stiffness(m, 1.0, 0.3).tocoo()
-    assert int(np.max(np.abs(k.row - k.col))) == 3 * m.half_bandwidth() + 2
+    k = assemble_hex8(m.nodes, m.elements, 1.0, 0.3).tocoo()
+    assert int(np.max(np.abs(k.row - k.col))) == 3 * (s + (2 + 1) + 1) + 2
 
 
-@pytest.mark.parametrize("face, area", [("bottom", 20.0), ("top", 20.0), ("end", 2.0),
-                                         ("mid", 2.0), ("start", 2.0)])
-def test_face_weights_add_up_to_the_face_area(face: str, area: float) -> None:
-    m = box_mesh(10.0, 2.0, 1.0, 6, 3, 2)
-    w = m.face_weights(face)
-    assert w.shape == m.face_nodes(face).shape
-    assert w.sum() == pytest.approx(area, rel=1e-12)
-    assert np.all(w > 0)
+@pytest.mark.parametrize("face, area", [("contact", 20.0), ("clamp", 20.0), ("tip", 2.0),
+                                         ("centre", 2.0)])
+def test_face_shares_add_up_to_the_face_area(face: str, area: float) -> None:
+    m = _box(10.0, 2.0, 1.0, 6, 3, 2)
+    nodes, share, total = face_load(m, set_faces(m, face, "set"))
+    np.testing.assert_array_equal(nodes, m.node_sets[face])
+    assert total == pytest.approx(area, rel=1e-12)
+    assert share.sum() == pytest.approx(1.0, rel=1e-12)
+    assert np.all(share > 0)
 
 
 def test_mesh_spec_errors() -> None:
     p = preset("table1")
     with pytest.raises(ParameterError, match="unknown mesh 'huge'"):
-        mesh_from_spec(p, "huge")
+        box_hexmesh(p, "huge")
     with pytest.raises(ParameterError, match="nx must be an integer >= 1"):
-        mesh_from_spec(p, (0, 2, 1))
+        box_hexmesh(p, (0, 2, 1))
     with pytest.raises(ParameterError, match="mesh must be"):
-        mesh_from_spec(p, (2, 1))
-    with pytest.raises(ParameterError, match="does not match"):
-        mesh_from_spec(p, box_mesh(1.0, 1.0, 1.0, 2, 1, 1))
+        box_hexmesh(p, (2, 1))
+    with pytest.raises(ParameterError, match="built for other parameters"):
+        box_model(p, box_model(p.replace(length=100.0), (2, 1, 1)))
     with pytest.raises(ParameterError, match="even nx"):
-        box_mesh(1.0, 1.0, 1.0, 3, 1, 1).face_nodes("mid")
+        box_model(p, (3, 1, 1))
 
 
 @pytest.mark.parametrize("kind", ["C3D8", "C3D8I"])
@@ -68,19 +84,20 @@ def test_element_rigid_modes_and_patch_test(kind: str) -> None:
 def test_incompatible_modes_remove_shear_locking() -> None:
     """Cantilever 10 x 1 x 1 under a tip shear: C3D8I is within 1 % of Timoshenko's beam;
     C3D8 locks (about 2/3 of it)."""
-    m = box_mesh(10.0, 1.0, 1.0, 10, 1, 1)
-    start = m.face_nodes("start")
-    end = m.face_nodes("end")
+    m = _grid(10.0, 1.0, 1.0, 10, 1, 1)
+    n = len(m.nodes)
+    start = np.flatnonzero(m.nodes[:, 0] == 0.0)
+    end = np.flatnonzero(m.nodes[:, 0] == 10.0)
     fixed = np.r_[3 * start, 3 * start + 1, 3 * start + 2]
-    free = np.setdiff1d(np.arange(3 * m.n_nodes), fixed)
+    free = np.setdiff1d(np.arange(3 * n), fixed)
     e, nu = 1000.0, 0.0
     beam = 10.0**3 / (3 * e / 12.0) + 10.0 / (5.0 / 6.0 * e / 2.0)
     tip = {}
     for kind in ("C3D8", "C3D8I"):
-        k = assemble_stiffness(m, e, nu, kind)[free][:, free].tocsc()
-        f = np.zeros(3 * m.n_nodes)
+        k = assemble_hex8(m.nodes, m.elements, e, nu, kind)[free][:, free].tocsc()
+        f = np.zeros(3 * n)
         f[3 * end + 2] = 1.0 / end.size
-        u = np.zeros(3 * m.n_nodes)
+        u = np.zeros(3 * n)
         u[free] = spla.spsolve(k, f[free])
         tip[kind] = float(u[3 * end + 2].mean())
     assert tip["C3D8I"] == pytest.approx(beam, rel=0.01)
@@ -88,10 +105,10 @@ def test_incompatible_modes_remove_shear_locking() -> None:
 
 
 def test_banded_and_sparse_backends_agree() -> None:
-    m = box_mesh(20.0, 2.0, 1.0, 8, 2, 1)
-    bottom = m.face_nodes("bottom")
-    free = np.setdiff1d(np.arange(3 * m.n_nodes), 3 * bottom + 2)  # u_z = 0 on the base
-    k = assemble_stiffness(m, 100.0, 0.3)[free][:, free].tocsr()
+    m = _grid(20.0, 2.0, 1.0, 8, 2, 1)
+    bottom = np.flatnonzero(m.nodes[:, 2] == 0.0)
+    free = np.setdiff1d(np.arange(3 * len(m.nodes)), 3 * bottom + 2)  # u_z = 0 on the base
+    k = assemble_hex8(m.nodes, m.elements, 100.0, 0.3, "C3D8")[free][:, free].tocsr()
     cx = np.searchsorted(free, 3 * bottom)
     cy = cx + 1
     rng = np.random.default_rng(0)

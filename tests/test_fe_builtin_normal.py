@@ -9,7 +9,7 @@ import pytest
 
 from microslip import preset
 from microslip.cli.main import main
-from microslip.fe.builtin import build_model, solve_uniaxial
+from microslip.fe.builtin import box_model, solve_uniaxial
 from microslip.fe.builtin.normal import PenaltyNormal
 from microslip.fe.result import OPEN
 from microslip.params import ClampParams
@@ -51,7 +51,7 @@ def titanium() -> dict[float, object]:
 def test_pressure_follows_the_load_on_the_titanium_block(titanium):
     r = titanium[1e5]
     assert r.converged
-    model = build_model(TITANIUM, (8, 2, 4), stick_slope=1e5, normal_contact="penalty")
+    model = box_model(TITANIUM, (8, 2, 4), stick_slope=1e5, normal_contact="penalty")
     x = model.mesh.nodes[model.contact_nodes][:, 0]
     edge = np.isclose(x, TITANIUM.length)
     n = r.details.normal_force
@@ -73,7 +73,7 @@ def test_dissipation_depends_on_the_normal_stiffness(titanium):
 
 
 def test_lift_off_and_tipping_of_a_tall_block():
-    model = build_model(TALL, (4, 2, 4), stick_slope=1e5, normal_contact="penalty")
+    model = box_model(TALL, (4, 2, 4), stick_slope=1e5, normal_contact="penalty")
     r = solve_uniaxial(TALL, "tip", 3000.0, mesh=model)
     assert r.converged and np.any(r.contact.status == OPEN)
     assert np.allclose(r.details.normal_force.sum(axis=1), TALL.normal_force, rtol=1e-12)
@@ -102,7 +102,7 @@ def test_cli_tipping_block_exits_1_without_damping(capsys):
 def test_friction_limits_follow_the_normal_forces():
     """In every converged increment the friction force of each node, k_i (g_i - s_i), lies in
     its circle mu N_i(u) of the *current* normal force, on it where the node slips."""
-    model = build_model(TITANIUM, (8, 2, 4), stick_slope=1e5, normal_contact="penalty")
+    model = box_model(TITANIUM, (8, 2, 4), stick_slope=1e5, normal_contact="penalty")
     r = solve_uniaxial(TITANIUM, "tip", 3600.0, mesh=model, record=True)
     u, slip = r.details.u, r.contact.slip
     g = u[:, model.contact_dofs]                       # (states, n_c, 2)

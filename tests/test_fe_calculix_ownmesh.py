@@ -16,7 +16,6 @@ from microslip import preset
 from microslip.errors import ParameterError
 from microslip.fe import ResultsError, SolverNotFoundError, run_case, run_loop
 from microslip.fe.assembly import Support
-from microslip.fe.builtin.mesh import box_mesh
 from microslip.fe.calculix.case import FECase
 from microslip.fe.calculix.deck import build_deck
 from microslip.fe.calculix.mesh import MeshSpec, bar_mesh
@@ -30,6 +29,7 @@ from microslip.fe.calculix.meshdeck import (
 from microslip.fe.calculix.meshhistory import load_factors, load_history, load_times
 from microslip.fe.calculix.meshrun import run_mesh_calculix
 from microslip.fe.clamp import MeshClamp
+from microslip.fe.examples import box_hexmesh, grid_mesh
 from microslip.fe.hexmesh import HexMesh
 from microslip.fe.meshload import MeshLoad
 
@@ -37,11 +37,22 @@ P = preset("table1")
 NO_CCX = "CalculiX (ccx) is not on PATH; run `bash scripts/setup.sh`"
 
 
+def _grid(length: float, width: float, thickness: float, nx: int, ny: int, nz: int,
+          x: np.ndarray | None = None) -> HexMesh:
+    """A box of hexahedra numbered slice by slice along x (corners in CalculiX order), with
+    the node sets bottom, top and end (x = length)."""
+    b = grid_mesh(np.linspace(0.0, length, nx + 1) if x is None else x,
+                  np.linspace(0.0, width, ny + 1), np.linspace(0.0, thickness, nz + 1))
+    xyz = b.nodes
+    return HexMesh(xyz, b.elements, {"bottom": np.flatnonzero(xyz[:, 2] == 0.0),
+                                     "top": np.flatnonzero(xyz[:, 2] == thickness),
+                                     "end": np.flatnonzero(xyz[:, 0] == length)},
+                   source="grid")
+
+
 def one_element() -> HexMesh:
-    b = box_mesh(2.0, 1.0, 1.0, 1, 1, 1)
-    return HexMesh(b.nodes, b.elements, {"bottom": b.face_nodes("bottom"),
-                                         "top": b.face_nodes("top"), "end": b.face_nodes("end")},
-                   source="one")
+    b = _grid(2.0, 1.0, 1.0, 1, 1, 1)
+    return HexMesh(b.nodes, b.elements, dict(b.node_sets), source="one")
 
 
 def box20(spec: MeshSpec) -> tuple[HexMesh, object]:
@@ -56,11 +67,10 @@ def box20(spec: MeshSpec) -> tuple[HexMesh, object]:
 
 
 def box8(nx: int, ny: int, nz: int) -> HexMesh:
-    """The built-in solver's 8-node box (box_mesh numbers its corners in CalculiX order)."""
-    b = box_mesh(P.length, P.width, P.thickness, nx, ny, nz)
-    return HexMesh(b.nodes, b.elements, {"contact": b.face_nodes("bottom"),
-                                         "clamp": b.face_nodes("top"),
-                                         "tip": b.face_nodes("end")}, source="box8")
+    """The built-in solver's 8-node box (box_hexmesh numbers its corners in CalculiX order)."""
+    b = box_hexmesh(P, (nx, ny, nz))
+    return HexMesh(b.nodes, b.elements, {k: b.node_sets[k] for k in ("contact", "clamp", "tip")},
+                   source="box8")
 
 
 TABLE1_CLAMP = MeshClamp("contact", "clamp", normal_force=P.normal_force, friction=P.friction,
@@ -290,16 +300,16 @@ def test_bad_input_is_one_line(change, message):
 
 
 def test_a_contact_set_that_is_not_flat_is_refused():
-    b = box_mesh(4.0, 1.0, 1.0, 2, 1, 1)
+    b = _grid(4.0, 1.0, 1.0, 2, 1, 1)
     nodes = b.nodes.copy()
-    nodes[b.face_nodes("bottom")[0], 2] = -0.1
-    hm = HexMesh(nodes, b.elements, {"bottom": b.face_nodes("bottom")}, source="bent.inp")
+    nodes[b.node_sets["bottom"][0], 2] = -0.1
+    hm = HexMesh(nodes, b.elements, {"bottom": b.node_sets["bottom"]}, source="bent.inp")
     with pytest.raises(ParameterError, match=re.escape("bent.inp: set 'bottom' is not flat")):
         base_slab(hm, hm.faces("bottom"), "bottom")
 
 
 def test_a_contact_set_inside_the_body_is_refused():
-    b = box_mesh(4.0, 1.0, 2.0, 2, 1, 2)
+    b = _grid(4.0, 1.0, 2.0, 2, 1, 2)
     hm = HexMesh(b.nodes, b.elements, {"mid": np.flatnonzero(b.nodes[:, 2] == 1.0)},
                  source="m.inp")
     both = hm.faces("mid")  # each inner face twice, once per element: opposite normals
@@ -385,7 +395,7 @@ def test_without_the_symmetry_plane_the_box_loop_barely_moves(box_run, tmp_path)
 @pytest.mark.slow
 @pytest.mark.skipif(shutil.which("ccx") is None, reason=NO_CCX)
 def test_8_node_box_agrees_with_the_builtin_solver(tmp_path):
-    """C3D8I on the built-in solver's box_mesh 8 x 2 x 1 against the built-in solver with the
+    """C3D8I on the built-in solver's box 8 x 2 x 1 against the built-in solver with the
     same penalty normal contact: W +0.8 %, peak -0.06 % (nodal against face-to-face friction;
     on 24 x 4 x 1 -0.02 % and -0.006 %, docs/validation.md)."""
     r = run_mesh_calculix(box8(8, 2, 1), TABLE1_CLAMP, loads=TIP, job_dir=tmp_path, **TABLE1)
@@ -401,11 +411,11 @@ def cantilever(clamped: int, overhang: int, ny: int, nz: int) -> HexMesh:
     6.35 mm; contact and clamp on the clamped length only, load on the free end."""
     x = np.concatenate([np.linspace(0.0, 50.8, clamped + 1),
                         np.linspace(50.8, 152.4, overhang + 1)[1:]])
-    b = box_mesh(152.4, 25.4, 6.35, clamped + overhang, ny, nz, axes=(x, None, None))
-    bottom, top = b.face_nodes("bottom"), b.face_nodes("top")
+    b = _grid(152.4, 25.4, 6.35, clamped + overhang, ny, nz, x)
+    bottom, top = b.node_sets["bottom"], b.node_sets["top"]
     inside = b.nodes[:, 0] <= 50.8 + 1e-9
     return HexMesh(b.nodes, b.elements, {"contact": bottom[inside[bottom]],
-                                         "clamp": top[inside[top]], "end": b.face_nodes("end")},
+                                         "clamp": top[inside[top]], "end": b.node_sets["end"]},
                    source="cantilever")
 
 

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 from microslip.errors import ParameterError
-from microslip.fe.builtin.mesh import mesh_from_spec
 from microslip.fe.calculix.mesh import MeshSpec
 from microslip.fe.examples import (
     EXAMPLES,
@@ -93,19 +92,30 @@ def test_bolt_pad_sets_are_the_pad_the_partial_contact_and_the_arm_end() -> None
 
 
 def test_box_is_the_built_in_box_node_for_node(tmp_path: Path) -> None:
+    """The file of the box is the box: nodes slice by slice along x (node (i, j, k) is
+    number (i (ny + 1) + j) (nz + 1) + k), its sets on their node planes, and the tip's
+    consistent load the tributary areas of the end face."""
     params = preset("table1")
-    box = mesh_from_spec(params, "24x4x1")
+    box = box_hexmesh(params, "24x4x1")
     m = read_mesh(box_inp(params, "24x4x1", tmp_path / "box.inp"))
     assert np.array_equal(m.nodes, box.nodes) and np.array_equal(m.elements, box.elements)
-    for name, face in (("contact", "bottom"), ("clamp", "top"), ("tip", "end"),
-                       ("centre", "mid")):
-        assert np.array_equal(m.node_sets[name], np.sort(box.face_nodes(face))), name
+    i, j, k = np.meshgrid(np.arange(25), np.arange(5), np.arange(2), indexing="ij")
+    number = ((i * 5 + j) * 2 + k).ravel()
+    xyz = np.stack([np.linspace(0.0, params.length, 25)[i.ravel()],
+                    np.linspace(0.0, params.width, 5)[j.ravel()],
+                    np.array([0.0, params.thickness])[k.ravel()]], axis=1)
+    assert np.array_equal(m.nodes[number], xyz)
+    for name, where in (("contact", k == 0), ("clamp", k == 1), ("tip", i == 24),
+                        ("centre", i == 12)):
+        assert np.array_equal(m.node_sets[name], np.sort(number[where.ravel()])), name
+        assert np.array_equal(m.node_sets[name], box.node_sets[name]), name
     check_roles(m, "contact", "clamp", loads=["tip", "centre"])
-    # the consistent load of the tip equals the built-in box's tributary areas
+    # the consistent load of the tip equals the box's tributary areas
     nodes, w, area = face_load(m, m.faces("tip"))
-    order = np.argsort(box.face_nodes("end"))
-    assert np.array_equal(nodes, box.face_nodes("end")[order])
-    assert np.allclose(w * area, box.face_weights("end")[order], rtol=1e-14, atol=0)
+    trib_y = np.r_[0.5, np.ones(3), 0.5] * params.width / 4
+    trib_z = np.array([0.5, 0.5]) * params.thickness
+    assert np.array_equal(nodes, m.node_sets["tip"])
+    assert np.allclose(w * area, np.outer(trib_y, trib_z).ravel(), rtol=1e-14, atol=0)
 
 
 def test_box_with_odd_nx_has_no_centre() -> None:

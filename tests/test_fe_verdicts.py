@@ -13,7 +13,7 @@ from microslip import preset
 from microslip.cli.main import main
 from microslip.energy import dissipated_energy
 from microslip.fe.builtin import NewtonOptions, coupling_study, solve_uniaxial
-from microslip.fe.builtin import solve as solve_module
+from microslip.fe.builtin import meshmodel as model_module
 from microslip.fe.result import (
     SLIP,
     STICK,
@@ -91,7 +91,7 @@ def test_cli_stuck_block_says_why(capsys):
 def one_newton_iteration(monkeypatch):
     """Newton allowed one iteration and no cutting: the clamping (linear) still converges, the
     slipping increments do not."""
-    monkeypatch.setattr(solve_module, "NewtonOptions",
+    monkeypatch.setattr(model_module, "NewtonOptions",
                         functools.partial(NewtonOptions, max_iterations=1, max_cuts=1))
 
 

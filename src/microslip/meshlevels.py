@@ -1,7 +1,7 @@
 """Mesh levels shared by both FE solvers: element counts and node planes from the geometry.
 
 A level names a resolution of the clamped zone, the same for the built-in solver (8-node
-C3D8I-like hexahedra, :mod:`microslip.fe.builtin.mesh`) and for CalculiX (20-node C3D20R,
+C3D8I-like hexahedra, :func:`microslip.fe.examples.box_hexmesh`) and for CalculiX (20-node C3D20R,
 :mod:`microslip.fe.calculix.mesh`): :func:`level_counts` gives the element counts (nx, ny, nz) along
 the length, width and thickness, :func:`level_axes` the node planes (corner nodes) along each
 axis. "The same mesh" therefore means the same elements on the same planes in both solvers;

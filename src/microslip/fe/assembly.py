@@ -8,8 +8,9 @@ A mesh of hexahedra holds one or more deformable bodies (its connected parts). T
   (conforming: coincident nodes, each node of the face paired with the counter face's node
   at the same place); with no counter face, the rigid flat base under the face;
 * **preloads** (:class:`Preload`): a face and the force that presses it inward (a uniform
-  traction F / A along the face's inward normal, consistent nodal shares). A bolt is the
-  preload of its head face and of its nut face;
+  traction F / A along the face's inward normal, consistent nodal shares; or a pressure law
+  along an axis of the face, the paper's box's clamp). A bolt is the preload of its head
+  face and of its nut face;
 * **supports** (:class:`Support`): node sets and the directions held there (global x, y, z);
 * **materials** (:class:`Material`): modulus, Poisson's ratio and density of an element set
   (a gmsh volume group or an ``*ELSET``), or of every element;
@@ -86,15 +87,48 @@ class Contact:
 
 @dataclass(frozen=True)
 class Preload:
-    """``force`` (N, > 0) pressing the face ``face`` inward, as a uniform traction."""
+    """``force`` (N, > 0) pressing the face ``face`` inward, as a uniform traction; or, with a
+    ``distribution`` (a :class:`~microslip.models.interface.PressureLaw`, mean 1), as the
+    traction p(xi) F / A along the global ``axis`` (``x``, ``y`` or ``z``), xi = 0 .. 1
+    across the face's extent along it: the paper's box takes the clamp's pressure law along
+    its length so."""
 
     face: str
     force: float
+    distribution: Any = None
+    axis: str = "x"
 
     def __post_init__(self) -> None:
         _name("a preload's face", self.face)
         object.__setattr__(self, "force", check_positive(f"preload {self.face}'s force",
                                                          self.force, "N"))
+        if self.distribution is not None:
+            from ..models.interface import PressureLaw
+
+            if not isinstance(self.distribution, PressureLaw):
+                raise ParameterError(f"preload {self.face}: a distribution must be a "
+                                     "PressureLaw (microslip.models.interface), got "
+                                     f"{type(self.distribution).__name__}")
+        if self.axis not in tuple(DIRECTIONS):
+            raise ParameterError(f"preload {self.face}: the distribution's axis must be one "
+                                 f"of x, y, z, got {self.axis!r}")
+
+    def __repr__(self) -> str:
+        more = ("" if self.distribution is None else
+                f", distribution={self.distribution.name!r}, axis={self.axis!r}")
+        return f"Preload(face={self.face!r}, force={self.force!r}{more})"
+
+    def shares(self, mesh: Any, faces: Any) -> tuple[Any, Any]:
+        """The nodes of ``faces`` (element, face rows of ``mesh``) and their shares of the
+        force (adding up to 1): the consistent shares of a uniform traction
+        (:func:`~microslip.fe.hexmesh.face_load`), or of the distribution along the axis
+        (:func:`~microslip.fe.hexmesh.law_face_load`)."""
+        from .hexmesh import face_load, law_face_load
+
+        if self.distribution is None:
+            nodes, share, _ = face_load(mesh, faces)
+            return nodes, share
+        return law_face_load(mesh, faces, self.distribution.shape, DIRECTIONS.index(self.axis))
 
 
 @dataclass(frozen=True)
@@ -328,7 +362,10 @@ class Assembly:
         return {
             "contacts": [{"face": c.face, "counter": c.counter or "rigid base"}
                          for c in self.contacts],
-            "preloads": [{"face": p.face, "force_N": p.force} for p in self.preloads],
+            "preloads": [{"face": p.face, "force_N": p.force}
+                         | ({} if p.distribution is None else
+                            {"distribution": p.distribution.name, "axis": p.axis})
+                         for p in self.preloads],
             "supports": [{"set": s.set, "directions": s.directions} for s in self.supports],
             "shanks": [{"head": b.head, "nut": b.nut, "diameter_mm": b.diameter,
                         "modulus_MPa": b.modulus or self.modulus} for b in self.shanks],

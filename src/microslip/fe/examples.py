@@ -13,8 +13,9 @@ the repository's ``examples/`` (:func:`write_examples`). Units: mm.
 - :func:`post_on_plate_mesh`: a slightly rectangular post standing on a square foot flange,
   its two lowest bending modes (in x and in y) close, so that a force at 45 degrees puts the
   interface on an ellipse (issue 23, item 6);
-- :func:`box_hexmesh`: the built-in solver's box (the clamped zone of a
-  :class:`~microslip.params.ClampParams`, mesh level or ``"NXxNYxNZ"``), node for node.
+- :func:`box_hexmesh`: the paper's box (the clamped zone of a
+  :class:`~microslip.params.ClampParams`, mesh level or ``"NXxNYxNZ"``), the mesh the
+  built-in solver (:mod:`microslip.fe.builtin.box`) and CalculiX run it on.
 """
 
 from __future__ import annotations
@@ -31,8 +32,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ParameterError
+from ..meshlevels import level_axes, mesh_counts
 from ..params import ClampParams, preset
-from .builtin.mesh import mesh_from_spec
 from .hexmesh import HexMesh
 from .meshcheck import boundary_faces
 from .meshfile import write_inp
@@ -340,26 +341,53 @@ def to_hex20(mesh: HexMesh) -> HexMesh:
                    dict(mesh.surfaces), source=mesh.source + " hex20")
 
 
-def box_hexmesh(params: ClampParams, spec: Any = "coarse") -> HexMesh:
-    """The built-in solver's box (:func:`~microslip.fe.builtin.mesh.mesh_from_spec`) as a
-    :class:`HexMesh`, node for node and element for element.
+#: Upper bound on the nodes of a box mesh (memory guard: about 1e6 dofs).
+MAX_BOX_NODES = 350_000
 
+
+def box_hexmesh(params: ClampParams, spec: Any = "coarse") -> HexMesh:
+    """The paper's clamped zone L x w x t of ``params`` as a :class:`HexMesh`: a mesh level or
+    ``"NXxNYxNZ"`` (:mod:`microslip.meshlevels`: counts and node planes from the geometry,
+    graded on a squat body, the same as CalculiX's) or counts ``(nx, ny, nz)`` (uniform).
+
+    Node ``(i, j, k)`` (along x, y, z) is number ``(i (ny + 1) + j) (nz + 1) + k``: slice by
+    slice along the bar, so the stiffness is a band whose width does not grow with nx.
     Node sets: ``contact`` (bottom, z = 0), ``clamp`` (top, z = t), ``tip`` (end face x = L)
-    and, when nx is even, ``centre`` (the mid-length section x = L/2, inside the body); the
-    first three are also surfaces.
+    and, when nx is even, ``centre`` (the mid-length node plane i = nx / 2, inside the body);
+    the first three are also surfaces.
 
     >>> m = box_hexmesh(preset("table1"), "4x2x1")
     >>> len(m.nodes), sorted(m.node_sets)
     (30, ['centre', 'clamp', 'contact', 'tip'])
     """
-    box = mesh_from_spec(params, spec)
-    faces = {"contact": "bottom", "clamp": "top", "tip": "end"}
-    if box.nx % 2 == 0:
-        faces["centre"] = "mid"
-    sets = {k: box.face_nodes(v) for k, v in faces.items()}
-    mesh = HexMesh(box.nodes, box.elements, sets, source=f"box {box.nx}x{box.ny}x{box.nz}")
+    dims = (params.length, params.width, params.thickness)
+    (nx, ny, nz), graded = mesh_counts(params, spec)
+    count = (nx + 1) * (ny + 1) * (nz + 1)
+    if count > MAX_BOX_NODES:
+        raise ParameterError(f"mesh {nx}x{ny}x{nz} has {count} nodes; at most {MAX_BOX_NODES}")
+    x, y, z = level_axes(*dims, (nx, ny, nz), graded)
+    gx, gy, gz = np.meshgrid(x, y, z, indexing="ij")
+    nodes = np.stack([gx.ravel(), gy.ravel(), gz.ravel()], axis=1)
+    gi, gj, gk = (a.ravel() for a in np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz),
+                                                 indexing="ij"))
+    sj, si = nz + 1, (ny + 1) * (nz + 1)
+    n0 = (gi * (ny + 1) + gj) * (nz + 1) + gk
+    base = np.stack([n0, n0 + si, n0 + si + sj, n0 + sj], axis=1)
+    elements = np.concatenate([base, base + 1], axis=1).astype(np.int64)
+
+    def plane(i: Any, j: Any, k: Any) -> NDArray[np.int64]:
+        a, b, c = np.meshgrid(i, j, k, indexing="ij")
+        return np.asarray(((a * (ny + 1) + b) * (nz + 1) + c).ravel(), dtype=np.int64)
+
+    ii, jj, kk = np.arange(nx + 1), np.arange(ny + 1), np.arange(nz + 1)
+    sets = {"contact": plane(ii, jj, kk[:1]), "clamp": plane(ii, jj, kk[-1:]),
+            "tip": plane(ii[-1:], jj, kk)}
+    if nx % 2 == 0:
+        sets["centre"] = plane(ii[nx // 2: nx // 2 + 1], jj, kk)
+    source = f"box {nx}x{ny}x{nz}"
+    mesh = HexMesh(nodes, elements, sets, source=source)
     surfaces = {k: mesh.faces(k) for k in ("contact", "clamp", "tip")}
-    return HexMesh(box.nodes, box.elements, sets, surfaces, source=mesh.source)
+    return HexMesh(nodes, elements, sets, surfaces, source=source)
 
 
 def box_inp(params: ClampParams, spec: Any, path: str | Path) -> Path:

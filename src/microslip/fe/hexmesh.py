@@ -213,3 +213,49 @@ def face_load(mesh: HexMesh, faces: IntArray) -> tuple[IntArray, FloatArray, flo
     nodes, inverse = np.unique(face_nodes.ravel(), return_inverse=True)
     weights = np.bincount(inverse, weights=share.ravel(), minlength=len(nodes)) / area
     return nodes.astype(np.int64), weights, area
+
+
+#: Gauss-Legendre points per direction on each face for :func:`law_face_load` (8: exact for a
+#: law polynomial up to degree 14 along an axis-parallel face, as the box's 8 points along x).
+LAW_POINTS = 8
+
+
+def law_face_load(mesh: HexMesh, faces: IntArray, shape: Any, axis: int,
+                  points: int = LAW_POINTS) -> tuple[IntArray, FloatArray]:
+    """Consistent nodal forces of a traction p(xi) of total 1 N over element faces, with
+    xi = (x_axis - lo) / (hi - lo) the position along the global ``axis`` (0 x, 1 y, 2 z)
+    across the faces' extent [lo, hi] and ``shape`` the law p (a
+    :attr:`~microslip.models.interface.PressureLaw.shape`, vectorised over xi).
+
+    Each face is integrated by ``points`` x ``points`` Gauss-Legendre points (the shape
+    functions times p times the surface Jacobian) and the shares are scaled to add up to 1
+    (a law whose kinks fall inside faces is otherwise integrated to the quadrature error),
+    as the box's clamping forces were. Returns the nodes and their shares.
+    """
+    quadratic = mesh.nodes_per_element == 20
+    corners = np.asarray(HEX_FACES, dtype=np.int64)[faces[:, 1]]
+    if quadratic:
+        mids = np.asarray(HEX20_FACE_MIDSIDES, dtype=np.int64)[faces[:, 1]]
+        corners = np.concatenate([corners, mids], axis=1)
+    face_nodes = mesh.elements[faces[:, 0][:, None], corners]
+    x = mesh.nodes[face_nodes]  # (k, m, 3)
+    s = x[:, :, axis]
+    lo, hi = float(np.min(s)), float(np.max(s))
+    if not hi > lo:
+        raise ParameterError(f"{mesh.source}: a pressure law along {'xyz'[axis]} needs faces "
+                             f"that extend along {'xyz'[axis]}; these lie across it")
+    g, w = np.polynomial.legendre.leggauss(points)
+    share = np.zeros(face_nodes.shape)
+    for i, xi in enumerate(g):
+        for j, eta in enumerate(g):
+            n, d = _quad_shapes(float(xi), float(eta), quadratic)
+            t = np.einsum("am,kmc->kac", d, x)
+            jac = np.linalg.norm(np.cross(t[:, 0], t[:, 1]), axis=1)
+            p = np.asarray(shape((s @ n - lo) / (hi - lo)), dtype=float)
+            share += (w[i] * w[j] * jac * p)[:, None] * n[None, :]
+    nodes, inverse = np.unique(face_nodes.ravel(), return_inverse=True)
+    weights = np.bincount(inverse, weights=share.ravel(), minlength=len(nodes))
+    total = float(weights.sum())
+    if not (np.isfinite(total) and total > 0):
+        raise ParameterError(f"{mesh.source}: the pressure law gives no force on the faces")
+    return nodes.astype(np.int64), weights / total

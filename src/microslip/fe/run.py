@@ -85,10 +85,8 @@ def _builtin_fields(result: FELoopResult) -> FieldSeries:
     if not isinstance(d, BuiltinDetails) or d.model is None or d.u is None:
         raise ParameterError("the built-in result holds no fields: solve with record=True")
     mesh = d.model.mesh
-    u = np.zeros((d.u.shape[0], mesh.nodes.shape[0] * 3))
-    u[:, d.model.free] = d.u
     return FieldSeries(mesh.nodes, [("hexahedron", mesh.elements)],
-                       u.reshape(d.u.shape[0], -1, 3))
+                       d.model.global_vectors(d.u))
 
 
 def _run_calculix(load: str, params: ClampParams, amplitude: float, mesh: Any, element: str,
@@ -142,8 +140,8 @@ def _calculix_fields(result: FELoopResult) -> FieldSeries:
 
 def _registry() -> Mapping[str, SolverEntry]:
     from ..meshlevels import LEVELS
+    from .builtin.box import ELEMENT as BUILTIN_ELEMENT
     from .builtin.element import ELEMENTS
-    from .builtin.mesh import ELEMENT as BUILTIN_ELEMENT
     from .calculix.case import ELEMENT_TYPES
 
     return MappingProxyType({

@@ -162,10 +162,10 @@ def fe_comparison(params: ClampParams, tip_amplitude: float, centre_amplitude: f
                   elements: int = DEFAULT_ELEMENTS) -> FEComparison:
     """Run the FE's coupled planar study and the first loading across the bar, and drive
     the reduced joints with the FE's orbits."""
-    from ..fe.builtin import build_model, coupling_study, fe_backbone
+    from ..fe.builtin import box_model, coupling_study, fe_backbone
     from .febackbone import backbone_operator
 
-    fem = build_model(params, mesh, stick_slope=stick_slope)
+    fem = box_model(params, mesh, stick_slope=stick_slope)
     study = coupling_study(params, tip_amplitude, centre_amplitude, phase_deg, cycles=cycles,
                            increments_per_cycle=increments_per_cycle, mesh=fem)
     if not study.coupled.converged or not study.tip_only.converged:

@@ -1,14 +1,15 @@
-"""Built-in frictional finite-element solver: an elastic box on a rigid Coulomb base.
+"""Built-in frictional finite-element solver: elastic bodies on a rigid Coulomb base or on
+each other.
 
-A purpose-made solver for the clamped zone of the paper (Section 4's FE model): trilinear
-hexahedra numbered slice by slice along the bar (a band matrix), the bottom face held at
-u_z = 0, nodal Coulomb friction with a circular limit mu N_i and a penalty stick slope
-lambda A_i, normal forces N_i from the clamping step (or a unilateral penalty that follows
-the load: :mod:`.normal`), a clamping pressure law (:mod:`.clamping`), radial return with its
-consistent tangent, semi-smooth Newton with a backtracking line search and LAPACK banded
-Cholesky. Mesh levels take their element counts from the geometry (:func:`level_counts`).
-The same physics on the engineer's own hexahedral mesh: :func:`build_mesh_model` and
-:func:`solve_mesh` (:mod:`.meshmodel`, :mod:`.meshrun`, :mod:`.condense`).
+One solver for the engineer's own hexahedral mesh (:func:`build_mesh_model` and
+:func:`solve_mesh`: :mod:`.meshmodel`, :mod:`.meshrun`, :mod:`.condense`) and for the clamped
+zone of the paper (Section 4's FE model, :mod:`.box`: the box's mesh and its assembly, the
+clamp's pressure law the distribution of its preload): hexahedra numbered for a narrow band,
+nodal Coulomb friction with a circular limit mu N_i and a penalty stick slope lambda A_i,
+normal forces N_i from the clamping step (or a unilateral penalty that follows the load:
+:mod:`.normal`), radial return with its consistent tangent, semi-smooth Newton with a
+backtracking line search and LAPACK banded Cholesky. The box's mesh levels take their
+element counts from the geometry (:func:`level_counts`).
 See ``docs/solver.md`` for the formulation, the verification and the coupled-versus-
 decoupled study. Units: N, mm, MPa, N·mm, s.
 
@@ -21,8 +22,10 @@ decoupled study. Units: N, mm, MPa, N·mm, s.
 
 from __future__ import annotations
 
+from ...meshlevels import LEVELS, MESH_LEVELS, level_counts
 from .backbone import FEBackbone, fe_backbone
-from .clamping import ClampingPressure, clamp_forces, clamping_pressure
+from .box import BoxHistory, BoxLoading, box_assembly, box_model
+from .clamping import ClampingPressure, clamping_pressure
 from .contact import FrictionResponse, friction_dissipation, return_map
 from .details import (
     BuiltinDetails,
@@ -31,22 +34,13 @@ from .details import (
     LoadPathResult,
     SolverStats,
 )
-from .element import ELEMENTS, assemble_stiffness, element_stiffness
+from .element import ELEMENTS, assemble_hex8, element_stiffness
 from .linalg import LINEAR_SOLVERS, available_linear_solvers
-from .mesh import LEVELS, MESH_LEVELS, BoxMesh, box_mesh, level_counts, mesh_from_spec
 from .meshmodel import MeshModel, build_mesh_model
 from .meshrun import LoadFactors, MeshLoadResult, MeshRunResult, SineCycles, solve_mesh
+from .model import CENTRE_DIRECTIONS, NewtonOptions
 from .normal import NORMAL_CONTACTS, PenaltyNormal
 from .pressure import fe_pressure_law
-from .solve import (
-    CENTRE_DIRECTIONS,
-    FrictionModel,
-    History,
-    NewtonOptions,
-    Simulation,
-    build_model,
-    run_history,
-)
 from .study import (
     DEFAULT_MESH,
     CouplingSweep,
@@ -66,16 +60,15 @@ __all__ = [
     "LINEAR_SOLVERS",
     "MESH_LEVELS",
     "NORMAL_CONTACTS",
-    "BoxMesh",
+    "BoxHistory",
+    "BoxLoading",
     "BuiltinDetails",
     "ClampingPressure",
     "CouplingResult",
     "CouplingSweep",
     "CycleWork",
     "FEBackbone",
-    "FrictionModel",
     "FrictionResponse",
-    "History",
     "LoadFactors",
     "LoadPathResult",
     "MeshLoadResult",
@@ -83,17 +76,15 @@ __all__ = [
     "MeshRunResult",
     "NewtonOptions",
     "PenaltyNormal",
-    "Simulation",
     "SineCycles",
     "SolverStats",
     "amplitudes_for_ratio",
     "as_load_path",
-    "assemble_stiffness",
+    "assemble_hex8",
     "available_linear_solvers",
-    "box_mesh",
+    "box_assembly",
+    "box_model",
     "build_mesh_model",
-    "build_model",
-    "clamp_forces",
     "clamping_pressure",
     "coupling_study",
     "coupling_sweep",
@@ -102,9 +93,7 @@ __all__ = [
     "fe_pressure_law",
     "friction_dissipation",
     "level_counts",
-    "mesh_from_spec",
     "return_map",
-    "run_history",
     "solve_load_path",
     "solve_mesh",
     "solve_uniaxial",

@@ -23,7 +23,7 @@ from ...errors import MacroslipError, ParameterError
 from ...named import result
 from ...params import ClampParams
 from ..constants import DEFAULT_STICK_SLOPE
-from .solve import Simulation
+from .box import BoxLoading, box_counts
 from .study import DEFAULT_MESH, check_body, model_for
 
 __all__ = ["BACKBONE_LOADS", "DEFAULT_TOP", "HULL_TOLERANCE", "FEBackbone", "concave_majorant",
@@ -115,7 +115,8 @@ def fe_backbone(params: ClampParams, load: str = "centre", *, mesh: Any = DEFAUL
                 centre_direction: str = "transverse", linear_solver: str = "banded"
                 ) -> FEBackbone:
     """The FE's first loading of ``load`` alone in ``increments`` equal force steps up to
-    ``top`` mu F_N (a :class:`~microslip.fe.builtin.FrictionModel` may be given as ``mesh``).
+    ``top`` mu F_N (a box model, :func:`~microslip.fe.builtin.box.box_model`, may be
+    given as ``mesh``).
 
     Raises
     ------
@@ -135,13 +136,13 @@ def fe_backbone(params: ClampParams, load: str = "centre", *, mesh: Any = DEFAUL
     f_ms = params.macroslip_force
     force = f_ms * float(top) * np.arange(1, increments + 1) / increments
     zero = np.zeros_like(force)
-    sim = Simulation(fem, centre_direction)
+    sim = BoxLoading(params, fem, centre_direction)
     hist = sim.advance(force, zero) if load == "tip" else sim.advance(zero, force)
     if not hist.converged:
         raise MacroslipError(f"the FE first loading of the {load} force did not converge at "
                              f"{force[hist.completed]:.6g} N: {hist.message}")
     d = hist.displacement(load)
-    counts = f"{fem.mesh.nx}x{fem.mesh.ny}x{fem.mesh.nz}"
+    counts = "x".join(str(n) for n in box_counts(fem.mesh))
     return FEBackbone(load=load, centre_direction=centre_direction,
                       force=np.concatenate([[0.0], force]),
                       displacement=np.concatenate([[0.0], d]),

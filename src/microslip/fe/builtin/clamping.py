@@ -1,19 +1,14 @@
-"""The clamping load of the built-in solver and the pressure it produces at the interface.
+"""The pressure the built-in solver's clamping step leaves at the box's interface.
 
-The clamping force F_N is applied on the top face z = t as the traction
-p(x) = F_N / (L w) P(x / L) of a :class:`~microslip.models.interface.PressureLaw` (mean of P
-is 1; uniform, the paper's, by default). Its consistent nodal forces are integrated along x
-by Gauss-Legendre quadrature on every element (8 points: exact for the power laws up to
-degree 15 over an element) and shared across the width by the tributary widths; they are
-scaled to add up to F_N exactly (a table law whose kinks fall inside elements is otherwise
-integrated to the quadrature error).
-
-The z-reactions of the bottom nodes after the clamping step are the normal forces N_i
-(:attr:`~microslip.fe.builtin.solve.FrictionModel.normal_force`). :func:`clamping_pressure`
-sums them over each cross-section and divides by the section's tributary length: the line
-load (N/mm) and mean pressure (MPa) along the clamped length, as a table that
-:func:`~microslip.models.interface.table_law` (or ``--pressure-law table:FILE.csv``) turns
-into the 1-D models' pressure law. Units: N, mm, MPa.
+The clamping force F_N presses the box's top face as the traction p(x) = F_N / (L w) P(x / L)
+of a :class:`~microslip.models.interface.PressureLaw` (mean of P is 1; uniform, the paper's,
+by default): the distribution of the box's preload (:func:`~.box.box_assembly`,
+:meth:`~microslip.fe.assembly.Preload.shares`). The z-reactions of the bottom nodes after the
+clamping step are the normal forces N_i (the model's ``normal_force``).
+:func:`clamping_pressure` sums them over each cross-section and divides by the section's
+tributary length: the line load (N/mm) and mean pressure (MPa) along the clamped length, as a
+table that :func:`~microslip.models.interface.table_law` (or ``--pressure-law
+table:FILE.csv``) turns into the 1-D models' pressure law. Units: N, mm, MPa.
 """
 
 from __future__ import annotations
@@ -28,46 +23,13 @@ from numpy.typing import NDArray
 from ...errors import ParameterError
 from ...models.interface import PressureLaw, table_law
 from ...named import result
-from ...params import ClampParams
-from .mesh import BoxMesh
 
 if TYPE_CHECKING:
-    from .model import FrictionModel
+    from .meshmodel import MeshModel
 
-__all__ = ["ClampingPressure", "clamp_forces", "clamping_pressure"]
+__all__ = ["ClampingPressure", "clamping_pressure"]
 
 FloatArray = NDArray[np.float64]
-
-#: Gauss points per element along x for the consistent clamping forces of a pressure law.
-GAUSS_POINTS = 8
-
-
-def _line_forces(x: FloatArray, law: PressureLaw, length: float) -> FloatArray:
-    """integral of P(x / L) N_i(x) dx for the hat functions N_i on the nodes x (mm)."""
-    g, gw = np.polynomial.legendre.leggauss(GAUSS_POINTS)
-    a, b = x[:-1, None], x[1:, None]
-    h = b - a
-    xq = a + 0.5 * h * (g + 1.0)
-    pw = law.shape(xq / length) * 0.5 * h * gw
-    left = np.sum(pw * (b - xq) / h, axis=1)
-    right = np.sum(pw * (xq - a) / h, axis=1)
-    out = np.zeros(x.size)
-    out[:-1] += left
-    out[1:] += right
-    return out
-
-
-def clamp_forces(mesh: BoxMesh, params: ClampParams, law: PressureLaw | None) -> FloatArray:
-    """Nodal forces (N, > 0 pressing) of the clamping traction on the top face, in the order
-    of ``mesh.face_nodes("top")``; ``law`` None is the uniform pressure F_N / (L w)."""
-    w_top = mesh.face_weights("top")
-    if law is None:
-        return params.normal_force * w_top / (params.length * params.width)
-    x = np.unique(mesh.nodes[:, 0])
-    along = _line_forces(x, law, params.length)
-    across = w_top.reshape(x.size, -1)[0] / (0.5 * (x[1] - x[0]))  # tributary widths, mm
-    forces = np.outer(along, across).ravel()
-    return params.normal_force * forces / forces.sum()
 
 
 @result
@@ -132,13 +94,16 @@ def _write(path: str | Path, header: tuple[str, ...], rows: Any) -> Path:
     return out
 
 
-def clamping_pressure(model: FrictionModel) -> ClampingPressure:
-    """The normal forces of a clamped model as a :class:`ClampingPressure`."""
+def clamping_pressure(model: MeshModel, width: float | None = None) -> ClampingPressure:
+    """The normal forces of a clamped box model (its contact in the plane z = 0, its length
+    along x) as a :class:`ClampingPressure`; ``width`` of the interface (mm; default the
+    contact nodes' extent across, y)."""
     xy = model.mesh.nodes[model.contact_nodes]
     _, which = np.unique(np.round(xy[:, 0], 9), return_inverse=True)
     count = np.bincount(which)
     cols = np.bincount(which, weights=xy[:, 0]) / count
     total = np.bincount(which, weights=model.normal_force)
     edges = np.concatenate([[cols[0]], 0.5 * (cols[1:] + cols[:-1]), [cols[-1]]])
-    return ClampingPressure(cols, total / np.diff(edges), model.params.width, xy[:, 0].copy(),
+    w = float(np.ptp(xy[:, 1])) if width is None else float(width)
+    return ClampingPressure(cols, total / np.diff(edges), w, xy[:, 0].copy(),
                             xy[:, 1].copy(), model.normal_force.copy())

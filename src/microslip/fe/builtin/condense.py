@@ -6,7 +6,7 @@ linear. With the free dofs split into contact dofs c and the rest i,
     S = K_cc - K_ci K_ii^-1 K_ic,     f_r = f_c - K_ci K_ii^-1 f_i,
 
 the tangential loading solves r_c(u_c) = f_r - S u_c - C^T tau(u_c) = 0 with the same
-semi-smooth Newton (:class:`~microslip.fe.builtin.solve._Stepper`) on a dense system of the
+semi-smooth Newton (:class:`~microslip.fe.builtin.stepper._Stepper`) on a dense system of the
 contact dofs only: every factorisation and solve then costs what the contact costs, not the
 body. K_ii is factorised once (banded Cholesky; the contact nodes numbered last, so that
 K_ii^-1 K_ic needs only the trailing rows: S = K_cc - W^T W with W = L^-1 K_ic); SuperLU when

@@ -19,7 +19,7 @@ from ..result import ContactHistory, gross_sliding_message, join_message
 
 if TYPE_CHECKING:
     from .clamping import ClampingPressure
-    from .model import FrictionModel
+    from .meshmodel import MeshModel
 
 __all__ = [
     "BuiltinDetails",
@@ -101,8 +101,9 @@ class BuiltinDetails:
         Energy dissipated by friction over the loop, sum tau . Delta s, N·mm. Exact in time for
         1-D loading (the slipping nodes are at the limit mu N_i); the loop area converges to it
         as the increments are refined.
-    model : FrictionModel or None
-        The assembled model, kept with ``u`` (``record=True``) for the VTU export.
+    model : MeshModel or None
+        The assembled box (:func:`~microslip.fe.builtin.box.box_model`), kept with ``u``
+        (``record=True``) for the VTU export.
     u : ndarray, shape (n + 1, dof) or None
         Free-dof displacements after every increment, mm (``record=True``).
     pressure_law : str
@@ -120,7 +121,7 @@ class BuiltinDetails:
     stats: SolverStats
     centre_direction: str
     friction_dissipation: float
-    model: FrictionModel | None = None
+    model: MeshModel | None = None
     u: FloatArray | None = None
     pressure_law: str = "uniform"
     clamping: ClampingPressure | None = None

@@ -41,8 +41,8 @@ def mass_matrix(nodes: NDArray[np.float64], elements: NDArray[np.int64],
     """Consistent mass (3 n_nodes square, CSR, t) of an 8-node hexahedral mesh; ``density``
     in t/mm^3. Dof order: node-major, x y z (as the stiffness of :mod:`.element`).
 
-    >>> from microslip.fe.builtin.mesh import box_mesh
-    >>> b = box_mesh(10.0, 2.0, 1.0, 4, 2, 1)
+    >>> from microslip.fe.examples import grid_mesh
+    >>> b = grid_mesh(np.linspace(0, 10, 5), np.linspace(0, 2, 3), np.array([0.0, 1.0]))
     >>> m = mass_matrix(b.nodes, b.elements, 2.0)
     >>> round(float(m.sum()) / 3, 9)  # each direction carries the whole mass, rho V
     40.0

@@ -487,10 +487,11 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     area = area[sort]
     master = layout.masters(contact_nodes)
     n_all = 3 * order.size
-    # Preloads: each force along its face's inward normal, consistent shares.
+    # Preloads: each force along its face's inward normal, consistent shares (of a uniform
+    # traction, or of its distribution: Preload.shares).
     full = np.zeros(n_all)
-    for face, force in layout.preloads:
-        k_mesh, k_share, _ = face_load(mesh, face)
+    for (face, force), preload in zip(layout.preloads, assembly.preloads, strict=True):
+        k_mesh, k_share = preload.shares(mesh, face)
         push = -(rotation @ plane(mesh, face, "")[0])
         base = 3 * inv[k_mesh]
         for c in range(3):

@@ -7,7 +7,8 @@ shares, :meth:`~microslip.fe.builtin.meshmodel.MeshModel.unit_load`) is also the
 work-conjugate displacement delta_j = p_j . (u - u_clamped), the force-weighted mean of the
 set's nodal displacements along the direction, so that sum_j F_j d delta_j is the work of the
 loads. Every increment solves r(u) = f_clamp + sum_j F_j p_j - K u - C^T tau(u) = 0 by the box's
-semi-smooth Newton (:func:`~microslip.fe.builtin.solve.load_increment`).
+semi-smooth Newton (:func:`~microslip.fe.builtin.stepper.load_increment`); the paper's box is
+stepped by the same loading state (:class:`~microslip.fe.builtin.box.BoxLoading`).
 
 The dissipated energy of a cycle is the work of all loads around it (Eq. 21 summed over the
 loads), W = sum_j closed-integral F_j d delta_j, trapezoidal over the increments. Under sine
@@ -378,6 +379,7 @@ class _Run:
         self.slips: list[FloatArray] = []
         self.normal: list[FloatArray] = []
         self.its: list[int] = []
+        self.works: list[float] = []
         self.fields: list[FloatArray] = []
         self.wall = 0.0
 
@@ -391,9 +393,10 @@ class _Run:
             f_i = f_i + f * p
         return red.expand(u, f_i)
 
-    def advance(self, forces: FloatArray, first: int) -> None:
+    def advance(self, forces: FloatArray, first: int, *, stop: bool = False) -> str | None:
         """Apply the samples ``forces`` (k, loads), one increment each; raise
-        :class:`~microslip.fe.errors.NonConvergenceError` on a failed increment."""
+        :class:`~microslip.fe.errors.NonConvergenceError` on a failed increment, or with
+        ``stop`` return why it failed (the states before it kept; None: all solved)."""
         model = self.model
         t0 = time.perf_counter()
         with single_threaded_blas():
@@ -412,10 +415,15 @@ class _Run:
                             "(are the loads, or their moment, more than the friction holds?)")
                 if why:
                     loads = ", ".join(f"{f:g}" for f in new)
-                    raise NonConvergenceError(
-                        f"{model.mesh.source}: increment {first + i} (loads {loads} N) {why}")
+                    message = (f"{model.mesh.source}: increment {first + i} (loads {loads} N) "
+                               f"{why}")
+                    if stop:
+                        self.wall += time.perf_counter() - t0
+                        return message
+                    raise NonConvergenceError(message)
                 self.u, self.slip, self.last = step.u, step.slip, new
                 self.its.append(step.iterations)
+                self.works.append(step.work)
                 self.d.append(np.array([float(p @ self.u) - b
                                         for p, b in zip(self.weights, self.base, strict=True)])
                               + self.coupling @ np.array(new))
@@ -431,6 +439,7 @@ class _Run:
                 if self.record:
                     self.fields.append(self.full_field(self.u, new))
         self.wall += time.perf_counter() - t0
+        return None
 
     def displacements(self) -> FloatArray:
         return np.array(self.d).reshape(len(self.d), len(self.vectors))

@@ -32,21 +32,16 @@ from ...models.interface import PressureLaw
 from ...params import ClampParams, check_amplitude, check_positive
 from ...results import HysteresisLoop
 from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
-from ..result import OPEN, SLIP, STICK, ContactHistory
+from ..result import OPEN, ContactHistory
+from .box import BoxHistory, BoxLoading, box_describe, box_model
 from .details import (
     CouplingResult,
     CycleWork,
     LoadPathResult,
     SolverStats,
 )
-from .solve import (
-    CENTRE_DIRECTIONS,
-    FrictionModel,
-    History,
-    NewtonOptions,
-    Simulation,
-    build_model,
-)
+from .meshmodel import MeshModel
+from .model import CENTRE_DIRECTIONS, NewtonOptions
 
 __all__ = [
     "DEFAULT_MESH",
@@ -69,22 +64,21 @@ DEFAULT_MESH = conventions.DEFAULT_MESH
 def model_for(params: ClampParams, mesh: Any, stick_slope: float, element: str,
               linear_solver: str, newton: NewtonOptions | None, *,
               pressure_law: PressureLaw | None = None, normal_contact: str = "fixed",
-              normal_slope: float = DEFAULT_NORMAL_SLOPE) -> FrictionModel:
-    if isinstance(mesh, FrictionModel):
-        if mesh.params != params:
-            raise ParameterError("the given FrictionModel was built for other parameters")
-        return mesh
-    return build_model(params, mesh, stick_slope=stick_slope, element=element,
-                       linear_solver=linear_solver, newton=newton, pressure_law=pressure_law,
-                       normal_contact=normal_contact, normal_slope=normal_slope)
+              normal_slope: float = DEFAULT_NORMAL_SLOPE) -> MeshModel:
+    """The box model of ``params`` on ``mesh`` (:func:`~.box.box_model`; a model given as
+    ``mesh`` is checked and returned)."""
+    return box_model(params, mesh, stick_slope=stick_slope, element=element,
+                     linear_solver=linear_solver, newton=newton, pressure_law=pressure_law,
+                     normal_contact=normal_contact, normal_slope=normal_slope)
 
 
-def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) -> SolverStats:
+def solver_stats(model: MeshModel, hist: Sequence[BoxHistory], setup_s: float
+                 ) -> SolverStats:
     its = np.concatenate([h.iterations for h in hist]) if hist else np.zeros(0, dtype=int)
     return SolverStats(
-        dof=model.dof, total_dof=model.total_dof,
+        dof=model.dof, total_dof=int(model.index.size),
         half_bandwidth=getattr(model.backend, "half_bandwidth", None),
-        mesh=model.mesh.describe(), element=model.element,
+        mesh=box_describe(model.mesh), element=model.element,
         linear_solver=model.backend.name, stick_slope=model.stick_slope,
         increments=int(its.size), iterations=int(its.sum()),
         factorisations=int(sum(h.factorisations for h in hist)),
@@ -93,19 +87,19 @@ def solver_stats(model: FrictionModel, hist: Sequence[History], setup_s: float) 
     )
 
 
-def contact_history(model: FrictionModel, time: FloatArray, slipping: NDArray[np.bool_],
-                    slip: FloatArray | None = None, normal_force: FloatArray | None = None
-                    ) -> ContactHistory:
+def contact_history(params: ClampParams, model: MeshModel, time: FloatArray,
+                    status: NDArray[np.int8], slip: FloatArray | None = None,
+                    normal_force: FloatArray | None = None) -> ContactHistory:
     """The :class:`~microslip.fe.result.ContactHistory` of a run: stick or slip after every
     increment, or open where a penalty normal force is 0 (``normal_force``; the fixed normal
     contact stays closed), each node standing for its tributary area over the width in slip
     lengths."""
     nodes = model.contact_nodes
-    status = np.where(slipping, SLIP, STICK).astype(np.int8)
+    status = np.asarray(status, dtype=np.int8).copy()
     if normal_force is not None:
         status[normal_force <= 0.0] = OPEN
     return ContactHistory(nodes, model.mesh.nodes[nodes].copy(), time, status,
-                          model.contact_area / model.params.width, slip)
+                          model.contact_area / params.width, slip)
 
 
 def check_body(params: Any, centre_direction: str) -> None:
@@ -152,16 +146,17 @@ def _check_cycles(cycles: Any, min_cycles: Any, cycle_tol: Any) -> tuple[int, in
     return n, least, check_positive("cycle_tol", cycle_tol, upper=1.0)
 
 
-def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: int,
-              cycle_tol: float, centre_direction: str, setup_s: float) -> LoadPathResult:
-    if path.peak_resultant >= fem.params.macroslip_force:
+def _run_path(params: ClampParams, fem: MeshModel, path: LoadPath, *, cycles: int,
+              min_cycles: int, cycle_tol: float, centre_direction: str, setup_s: float
+              ) -> LoadPathResult:
+    if path.peak_resultant >= params.macroslip_force:
         raise MacroslipError(
             f"the resultant load reaches {path.peak_resultant:g} N >= mu F_N = "
-            f"{fem.params.macroslip_force:g} N (macroslip)")
-    sim = Simulation(fem, centre_direction)
+            f"{params.macroslip_force:g} N (macroslip)")
+    sim = BoxLoading(params, fem, centre_direction)
     k0, n = path.cycle_start, path.samples_per_cycle
     theta_all, ft_all, fc_all = path.repeated(cycles)
-    hists: list[History] = []
+    hists: list[BoxHistory] = []
     done_cycles = 0
     message = ""
     converged = True
@@ -195,7 +190,7 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
     dt = np.concatenate([x.tip_displacement for x in hists])
     dc = np.concatenate([x.centre_displacement for x in hists])
     fw = np.concatenate([x.friction_work for x in hists])
-    slipping = np.concatenate([x.slipping for x in hists])
+    status = np.concatenate([x.status for x in hists])
     normal = (None if fem.normal is None else
               np.concatenate([x.normal_force for x in hists if x.normal_force is not None]))
     theta = theta_all[:ft.size]
@@ -222,7 +217,7 @@ def _run_path(fem: FrictionModel, path: LoadPath, *, cycles: int, min_cycles: in
         theta=theta, f_tip=ft, f_centre=fc, tip_displacement=dt, centre_displacement=dc,
         cycle_start=k0,
         samples_per_cycle=n, centre_direction=centre_direction, cycle_work=cw, loops=loops,
-        contact=contact_history(fem, theta, slipping, None, normal),
+        contact=contact_history(params, fem, theta, status, None, normal),
         stats=solver_stats(fem, hists, setup_s),
         converged=converged, success=converged and settled, message=message,
         meta=dict(path.meta))
@@ -276,8 +271,8 @@ def solve_load_path(params: ClampParams, times: Any, f_tip: ArrayLike | None = N
     cycles, min_cycles, tol = _check_cycles(cycles, min_cycles, cycle_tol)
     path = as_load_path(times, f_tip, f_centre)
     fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
-    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
-    return _run_path(fem, path, cycles=cycles, min_cycles=min(min_cycles, cycles),
+    setup = fem.setup_s if not isinstance(mesh, MeshModel) else 0.0
+    return _run_path(params, fem, path, cycles=cycles, min_cycles=min(min_cycles, cycles),
                      cycle_tol=tol, centre_direction=centre_direction, setup_s=setup)
 
 
@@ -338,12 +333,12 @@ def coupling_study(params: ClampParams, tip_amplitude: float, centre_amplitude: 
             raise ParameterError("a coupling study needs both a tip and a centre force")
     phase = float(cyc.meta.get("phase_deg", phase_deg))
     fem = model_for(params, mesh, stick_slope, element, linear_solver, newton)
-    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
+    setup = fem.setup_s if not isinstance(mesh, MeshModel) else 0.0
     kw: dict[str, Any] = {"cycles": cycles, "min_cycles": min(2, cycles), "cycle_tol": tol,
                           "centre_direction": centre_direction}
-    coupled = _run_path(fem, cyc, setup_s=setup, **kw)
-    tip_only = _run_path(fem, cyc.only("tip"), setup_s=0.0, **kw)
-    centre_only = _run_path(fem, cyc.only("centre"), setup_s=0.0, **kw)
+    coupled = _run_path(params, fem, cyc, setup_s=setup, **kw)
+    tip_only = _run_path(params, fem, cyc.only("tip"), setup_s=0.0, **kw)
+    centre_only = _run_path(params, fem, cyc.only("centre"), setup_s=0.0, **kw)
     return CouplingResult(tip_amplitude=at, centre_amplitude=ac, phase_deg=phase,
                           coupled=coupled, tip_only=tip_only, centre_only=centre_only)
 

@@ -14,9 +14,11 @@ from ...params import ClampParams
 from ...results import HysteresisLoop
 from ..constants import DEFAULT_NORMAL_SLOPE, DEFAULT_STICK_SLOPE
 from ..result import FELoopResult, gross_sliding_message, join_message, loop_damping
+from .box import BoxLoading, box_describe, box_pressure_law
 from .clamping import clamping_pressure
 from .details import BuiltinDetails
-from .solve import FrictionModel, NewtonOptions, Simulation
+from .meshmodel import MeshModel
+from .model import NewtonOptions
 from .study import DEFAULT_MESH, check_body, contact_history, model_for, solver_stats
 
 __all__ = ["solve_uniaxial"]
@@ -44,9 +46,11 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
         Load case, a name in :data:`microslip.loading.LOAD_CASES`.
     amplitude : float
         F0, N; below mu F_N.
-    mesh : str, (nx, ny, nz), BoxMesh or FrictionModel
-        Mesh level (:mod:`microslip.meshlevels`), element counts, a mesh, or a model
-        already built (then ``stick_slope``, ``element``, ``linear_solver`` are its own).
+    mesh : str, (nx, ny, nz), HexMesh or MeshModel
+        Mesh level (:mod:`microslip.meshlevels`), element counts, a box mesh
+        (:func:`~microslip.fe.examples.box_hexmesh`), or a model already built
+        (:func:`~microslip.fe.builtin.box.box_model`; then ``stick_slope``, ``element``,
+        ``linear_solver`` are its own).
     stick_slope : float
         lambda, N/mm^3.
     increments : int
@@ -92,7 +96,7 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     fem = model_for(params, mesh, stick_slope, element, linear_solver, newton,
                     pressure_law=pressure_law, normal_contact=normal_contact,
                     normal_slope=normal_slope)
-    sim = Simulation(fem, centre_direction)
+    sim = BoxLoading(params, fem, centre_direction)
     forces = {"tip": np.zeros_like(load.force), "centre": np.zeros_like(load.force)}
     forces[case.name] = load.force
     hist = sim.advance(forces["tip"], forces["centre"], record=record)
@@ -102,21 +106,21 @@ def solve_uniaxial(params: ClampParams, model: str, amplitude: float, *,
     loop = HysteresisLoop(
         force=load.force[loop_sl].copy(), displacement=d[loop_sl].copy(), source="builtin",
         meta={"model": case.name, "amplitude_N": load.amplitude, "solver": "builtin",
-              "centre_direction": centre_direction, "mesh": fem.mesh.describe(),
+              "centre_direction": centre_direction, "mesh": box_describe(fem.mesh),
               "element": fem.element, "dof": fem.dof, "stick_slope_N_per_mm3": fem.stick_slope,
               "increments": load.increments,
               "displacement": "force-weighted mean of the loaded section along the load, "
                               "relative to the clamped state"})
-    setup = fem.setup_s if not isinstance(mesh, FrictionModel) else 0.0
+    setup = fem.setup_s if not isinstance(mesh, MeshModel) else 0.0
     stats = solver_stats(fem, [hist], setup)
+    law = box_pressure_law(fem)
     details = BuiltinDetails(
         stats, centre_direction, float(np.sum(hist.friction_work[load.quarter + 1:])),
-        None if hist.u is None else fem, hist.u,
-        "uniform" if fem.pressure_law is None else fem.pressure_law.name,
-        clamping_pressure(fem), fem.normal_contact,
+        None if hist.u is None else fem, hist.u, "uniform" if law is None else law.name,
+        clamping_pressure(fem, params.width), fem.normal_contact,
         None if fem.normal is None else fem.normal.slope, hist.normal_force)
     time = load.time[:done]
-    contact = contact_history(fem, time, hist.slipping, hist.slip, hist.normal_force)
+    contact = contact_history(params, fem, time, hist.status, hist.slip, hist.normal_force)
     damping, idle = loop_damping(loop, contact, strain_energy_kind)
     message = (join_message(hist.message, idle, gross_sliding_message(contact))
                if hist.converged else f"{hist.message}; the loop is incomplete")

@@ -234,6 +234,11 @@ def resolve_assembly(mesh: HexMesh, assembly: object) -> ResolvedAssembly:
                              "between the faces' mean motions needs *COUPLING and *PRE-TENSION "
                              "SECTION); run CalculiX on the assembly without shanks, or the "
                              "built-in solver alone")
+    shaped = [p.face for p in a.preloads if p.distribution is not None]
+    if shaped:
+        raise ParameterError(f"CalculiX: the preload on {shaped[0]!r} has a pressure law "
+                             "(a distribution); the deck writes uniform pressures only: run "
+                             "the built-in solver alone")
     contacts = []
     for k, c in enumerate(a.contacts, start=1):
         faces = _faces(mesh, c.face, "contact face")
