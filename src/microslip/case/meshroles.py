@@ -341,7 +341,13 @@ def _body_errors(mesh: HexMesh, assembly: Assembly, labels: IntArray,
         held |= _set_bodies(mesh, node_body, s.set)
     held.discard(None)
     if not held and links:  # free-free (no support, no base): it must hold together, and
-        held = {links[0][0]}  # the builder checks that its preloads balance
+        held = {links[0][0]}  # its preloads must balance
+        net = _net_preload(mesh, assembly, faces)
+        if net > 1e-6 * sum(p.force for p in assembly.preloads):
+            out.append(f"{mesh.source}: the preloads push the free-free assembly (net force "
+                       f"{net:.4g} N) and nothing holds it: hold it ({say('fixed')}) or "
+                       "balance the preloads (a bolt presses its head and its nut alike)")
+            return out
     grew = True
     while grew:
         grew = False
@@ -418,3 +424,18 @@ def offer(mesh: HexMesh) -> MeshOffer:
                      tuple(sorted(mesh.element_sets)), volumes, faces, inside,
                      tuple(body_name(mesh, labels, b) for b in range(len(inside))),
                      interface_pairs(mesh, labels))
+
+
+def _net_preload(mesh: HexMesh, assembly: Assembly, faces: dict[str, Any]) -> float:
+    """|sum of the preloads' forces| (N): each F along its face's mean inward normal."""
+    total = np.zeros(3)
+    for p in assembly.preloads:
+        f = faces.get(p.face)
+        if f is None or len(f) == 0:
+            continue
+        x = mesh.nodes[mesh.face_corners(np.asarray(f))]
+        inward = 0.5 * np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1]).sum(axis=0)
+        area = float(np.linalg.norm(inward))
+        if area > 0:
+            total += p.force * inward / area
+    return float(np.linalg.norm(total))
