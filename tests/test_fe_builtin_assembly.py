@@ -248,3 +248,18 @@ def test_unbalanced_preloads_on_a_free_free_assembly_are_refused() -> None:
     from dataclasses import replace
 
     _refused(mesh, replace(a, preloads=a.preloads[:1], shanks=()), "push the free-free")
+
+
+def test_a_free_free_assemblys_displacements_carry_no_rigid_motion() -> None:
+    """The soft determinate support fixes no physical frame: the nodal fields of a free-free
+    assembly are reported without their rigid motion, so a rigid motion of the unknowns
+    shows as nothing and a mode's response set moves as the mode (not as seen from the
+    support's three nodes)."""
+    mesh, a = _free_lap()
+    m = build_mesh_model(mesh, a)
+    x = m.mesh.nodes[m.order] @ m.rotation.T  # model frame
+    field = np.array([0.3, -0.1, 0.2]) + np.cross([1e-3, 2e-3, -1e-3], x - x.mean(axis=0))
+    slaves = m.model_nodes(m.contact_nodes[m.contact_master >= 0])
+    field[slaves] = 0.0  # a rigid motion moves the two faces alike: no relative motion
+    u = m.global_vectors(field.ravel()[m.free])
+    assert np.abs(u[m.order]).max() < 1e-9

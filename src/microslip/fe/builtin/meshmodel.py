@@ -289,7 +289,9 @@ class MeshModel:
 
     def global_vectors(self, u: FloatArray) -> FloatArray:
         """Free-dof displacements (..., dof) as mesh-node vectors (..., n_nodes, 3), global
-        frame, mm (held dofs and nodes of no element: 0)."""
+        frame, mm (held dofs and nodes of no element: 0). A free-free assembly's are given
+        without its rigid-body motion (the least-squares rigid motion of its nodes, weighted
+        by their volumes, removed: its soft determinate support fixes no physical frame)."""
         u = np.asarray(u, dtype=float)
         full = np.zeros((*u.shape[:-1], self.index.size))
         full[..., self.free] = u
@@ -299,6 +301,8 @@ class MeshModel:
         # fewer when a run's fields are converted (qsma records 400 states of 50k dofs)
         out[..., self.order, :] = (local if np.array_equal(self.rotation, _IDENTITY)
                                    else local @ self.rotation)
+        if self.free_free:
+            out[..., self.order, :] -= _rigid_part(self, out[..., self.order, :])
         return out
 
     def describe(self) -> dict[str, Any]:
@@ -592,6 +596,34 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
         transform=transform, contact_master=np.where(master >= 0, inv[master], -1),
         ground=None if ground is None else sp.csr_matrix(ground[free][:, free]))
+
+
+#: The last free-free model's rigid fit (the model itself kept, so an id is never reused).
+_RIGID_FITS: dict[int, tuple[Any, FloatArray, FloatArray, FloatArray]] = {}
+
+
+def _rigid_part(model: MeshModel, u: FloatArray) -> FloatArray:
+    """The least-squares rigid motion t + theta x r of nodal fields u (..., n_used, 3), the
+    nodes weighted by their volumes (the row sums of a unit-density consistent mass)."""
+    key = id(model)
+    if key not in _RIGID_FITS or _RIGID_FITS[key][0] is not model:
+        from .mass import mass_matrix
+
+        x = model.mesh.nodes[model.order]
+        inv = np.full(len(model.mesh.nodes), -1, dtype=np.int64)
+        inv[model.order] = np.arange(model.order.size)
+        w = np.asarray(mass_matrix(x, inv[model.mesh.elements][:, :8], 1.0).sum(axis=1)
+                       ).ravel()[0::3] if model.mesh.nodes_per_element == 8 else np.ones(len(x))
+        w = w / w.sum()
+        c = w @ x
+        r = x - c
+        j = (w @ np.einsum("ij,ij->i", r, r)) * np.eye(3) - np.einsum("i,ij,ik->jk", w, r, r)
+        _RIGID_FITS.clear()  # one model at a time
+        _RIGID_FITS[key] = (model, w, r, np.linalg.inv(j))
+    _, w, r, j_inv = _RIGID_FITS[key]
+    t = np.einsum("i,...ic->...c", w, u)
+    theta = np.einsum("jk,...k->...j", j_inv, np.einsum("i,...ic->...c", w, np.cross(r, u)))
+    return np.asarray(t[..., None, :] + np.cross(theta[..., None, :], r))
 
 
 def _check_balanced(mesh: HexMesh, full: FloatArray, nodes: FloatArray, size: float) -> None:
