@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..errors import MacroslipError, ParameterError
@@ -307,6 +308,14 @@ def _point(model: MeshModel, mode: Mode, force: float,
         return _failed(force, str(exc), int(model.contact_nodes.size))
 
 
+def _held_stiffness(model: MeshModel) -> sp.csr_matrix:
+    """The stuck stiffness, with a free-free assembly's determinate soft support kept: the
+    inertial load M phi is self-equilibrated, so the contact's response to it is the same
+    and the factor is not singular."""
+    k = modal_stiffness(model, "stuck")
+    return k if model.ground is None else sp.csr_matrix(k + model.ground)
+
+
 def first_slip_force(model: MeshModel, mode: Mode) -> float:
     """The modal force q from which some contact node slips in every cycle under the stuck
     (linear) response u = q K^-1 M phi about the clamped state: the smallest
@@ -314,7 +323,7 @@ def first_slip_force(model: MeshModel, mode: Mode) -> float:
     b = 0 with ``fixed`` normal contact): the force range 2 q |a_i| of a cycle reaches the
     width 2 mu N_i of the friction limit. The stick forces the clamping step leaves (some
     nodes at their limit) only shake down below it."""
-    k = modal_stiffness(model, "stuck")
+    k = _held_stiffness(model)
     du = shift_inverse(k).matvec(mode.inertia)  # not spsolve: its COLAMD LU is 1.5 GB at 50k DOF
     c = model.contact_dofs
     kc = model.contact_stiffness[:, None]
@@ -343,7 +352,7 @@ def first_closing_force(model: MeshModel, mode: Mode) -> float:
     open_ = ~model.closed
     if normal is None or not np.any(open_):
         return math.inf
-    du = shift_inverse(modal_stiffness(model, "stuck")).matvec(mode.inertia)
+    du = shift_inverse(_held_stiffness(model)).matvec(mode.inertia)
     gap = -model.preload[open_] / normal.stiffness[open_]
     motion = np.abs(du[normal.dofs[open_]])
     moves = motion > 0.0
