@@ -559,6 +559,11 @@ def interface_epmc(model: MeshModel, density_kg_m3: float, mode: Mode, amplitude
     balance with ``fixed`` normal contact (odd node forces), every harmonic with
     ``penalty``. ``rom``: the study's contact-node ROM of ``model`` where one is built already
     (the ROM route then reduces it instead of building another)."""
+    if model.free_free:
+        raise ParameterError(
+            "the interface model of a free-free assembly is not built yet (it reduces the "
+            "contact-node ROM, whose Craig-Bampton basis would need the six rigid-body modes "
+            "set aside): the full FE's QSMA (--solver fe) is the answer here")
     from ..dynamics.modal import epmc
     from ..dynamics.modal_odd import epmc_odd
 
