@@ -16,35 +16,11 @@ from microslip.errors import ParameterError
 from microslip.fe.assembly import Assembly, Contact, Material, Preload, Support, rigid_base
 from microslip.fe.builtin.meshmodel import build_mesh_model
 from microslip.fe.builtin.meshrun import SineCycles, solve_mesh
-from microslip.fe.examples import cantilever_mesh, grid_mesh
+from microslip.fe.examples import cantilever_mesh, on_block
 from microslip.fe.hexmesh import HexMesh
 from microslip.fe.meshload import MeshLoad
 
 E, NU, FN, MU = 70000.0, 0.33, 2000.0, 0.5
-
-
-def on_block(bar: HexMesh, layers: int = 1, thickness: float = 6.35,
-             wide: int = 0) -> HexMesh:
-    """``bar`` standing on a block under its contact face (same in-plane nodes: a conforming
-    interface with coincident, distinct nodes); ``wide`` more elements of the block beyond
-    the bar in +-y (the counter face larger than the face)."""
-    c = bar.node_sets["contact"]
-    xs, ys = np.unique(bar.nodes[c, 0]), np.unique(bar.nodes[c, 1])
-    dy = ys[1] - ys[0]
-    ys = np.concatenate([ys[0] - dy * np.arange(wide, 0, -1), ys,
-                         ys[-1] + dy * np.arange(1, wide + 1)])
-    b = grid_mesh(np.linspace(0.0, float(xs[-1] - xs[0]), xs.size),
-                  np.linspace(0.0, float(ys[-1] - ys[0]), ys.size),
-                  np.linspace(0.0, thickness, layers + 1))
-    nodes_b = b.nodes + np.array([xs[0], ys[0], -thickness])
-    n = len(bar.nodes)
-    top = np.flatnonzero(np.isclose(nodes_b[:, 2], 0.0)) + n
-    bottom = np.flatnonzero(np.isclose(nodes_b[:, 2], -thickness)) + n
-    sets = {**bar.node_sets, "bar_int": c, "base_int": top, "base_fix": bottom}
-    return HexMesh(np.vstack([bar.nodes, nodes_b]), np.vstack([bar.elements, b.elements + n]),
-                   sets, source="cantilever on block",
-                   element_sets={"BAR": np.arange(len(bar.elements)),
-                                 "BASE": len(bar.elements) + np.arange(len(b.elements))})
 
 
 def _assembly(normal: str, base_modulus: float = 1000 * E, **over: object) -> Assembly:

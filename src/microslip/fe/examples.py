@@ -49,6 +49,7 @@ __all__ = [
     "box_inp",
     "cantilever_mesh",
     "grid_mesh",
+    "on_block",
     "post_on_plate_mesh",
     "to_hex20",
     "write_examples",
@@ -188,6 +189,33 @@ class BoltPad:
 
 
 BOLT_PAD = BoltPad()
+
+
+def on_block(bar: HexMesh, layers: int = 1, thickness: float = 6.35,
+             wide: int = 0) -> HexMesh:
+    """An assembly: the cantilever ``bar`` (:func:`cantilever_mesh`) standing on a block
+    ``thickness`` (mm) thick, in ``layers`` element layers, under its contact face, with the
+    same in-plane nodes (a conforming interface: coincident, distinct nodes); ``wide`` more
+    elements of the block beyond the bar in +-y (the counter face larger than the face).
+    Sets: the bar's, ``bar_int`` (its contact face), ``base_int`` (the block's top),
+    ``base_fix`` (its bottom); element sets ``BAR``, ``BASE``."""
+    c = bar.node_sets["contact"]
+    xs, ys = np.unique(bar.nodes[c, 0]), np.unique(bar.nodes[c, 1])
+    dy = ys[1] - ys[0]
+    ys = np.concatenate([ys[0] - dy * np.arange(wide, 0, -1), ys,
+                         ys[-1] + dy * np.arange(1, wide + 1)])
+    b = grid_mesh(np.linspace(0.0, float(xs[-1] - xs[0]), xs.size),
+                  np.linspace(0.0, float(ys[-1] - ys[0]), ys.size),
+                  np.linspace(0.0, thickness, layers + 1))
+    nodes_b = b.nodes + np.array([xs[0], ys[0], -thickness])
+    n = len(bar.nodes)
+    top = np.flatnonzero(np.isclose(nodes_b[:, 2], 0.0)) + n
+    bottom = np.flatnonzero(np.isclose(nodes_b[:, 2], -thickness)) + n
+    sets = {**bar.node_sets, "bar_int": c, "base_int": top, "base_fix": bottom}
+    return HexMesh(np.vstack([bar.nodes, nodes_b]), np.vstack([bar.elements, b.elements + n]),
+                   sets, source="cantilever on block",
+                   element_sets={"BAR": np.arange(len(bar.elements)),
+                                 "BASE": len(bar.elements) + np.arange(len(b.elements))})
 
 
 def bolt_pad_mesh(size: float = 4.0, quadratic: bool = False) -> HexMesh:
