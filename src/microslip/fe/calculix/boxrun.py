@@ -33,7 +33,6 @@ from ...io import write_json
 from ...params import ClampParams
 from ...results import HysteresisLoop
 from ..assembly import Support
-from ..errors import ResultsError
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
 from ..result import FELoopResult, loop_damping
@@ -43,7 +42,12 @@ from .collect import CalculixDetails
 from .mesh import MeshSpec
 from .meshdeck import MESH_ELEMENTS, build_mesh_deck, load_plan
 from .meshhistory import load_history
-from .meshrun import MeshCalculixResult, read_mesh_results, run_mesh_calculix
+from .meshrun import (
+    MeshCalculixResult,
+    contact_values,
+    read_mesh_results,
+    run_mesh_calculix,
+)
 from .readers import read_frd
 from .runner import (
     _RUN_RECORD,
@@ -100,23 +104,6 @@ def box_calculix_setup(case: FECase) -> tuple[HexMesh, Any, list[MeshLoad], dict
     return mesh, a, loads, opts
 
 
-def _tractions(frd: Path, nodes: NDArray[np.int64], n: int) -> tuple[FloatArray, FloatArray]:
-    """Contact pressure (k, m) and shear (k, m, 2) of ``nodes`` (0-based) at the clamped state
-    and every increment, from the ``.frd`` file's CONTACT blocks."""
-    blocks = [b for b in read_frd(frd, names=("CONTACT",)).select("CONTACT")][-(n + 1):]
-    if len(blocks) != n + 1:
-        raise ResultsError(f"{frd.name} holds {len(blocks)} contact blocks, expected {n + 1}",
-                           frd.parent)
-    ids = nodes + 1
-    values = np.zeros((n + 1, ids.size, 6))
-    for k, cb in enumerate(blocks):
-        order = np.argsort(cb.nodes, kind="stable")
-        pos = np.minimum(np.searchsorted(cb.nodes[order], ids), cb.nodes.size - 1)
-        found = cb.nodes[order][pos] == ids
-        values[k, found] = cb.values[order][pos[found]]
-    return values[:, :, 3].copy(), values[:, :, 4:6].copy()
-
-
 def to_loop_result(case: FECase, r: MeshCalculixResult, mesh: HexMesh, *,
                    pressure: FloatArray, shear: FloatArray,
                    strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FELoopResult:
@@ -171,7 +158,8 @@ def _converted(case: FECase, r: MeshCalculixResult, mesh: HexMesh, faces: Any,
                strain_energy_kind: str) -> FELoopResult:
     assert r.job_dir is not None
     nodes = face_load(mesh, faces)[0]
-    pressure, shear = _tractions(r.job_dir / f"{JOBNAME}.frd", nodes, case.substeps)
+    values = contact_values(r.job_dir / f"{JOBNAME}.frd", nodes, case.substeps)
+    pressure, shear = values[:, :, 3].copy(), values[:, :, 4:6].copy()
     return to_loop_result(case, r, mesh, pressure=pressure, shear=shear,
                           strain_energy_kind=strain_energy_kind)
 
