@@ -13,7 +13,6 @@ from microslip.fe import mesh_spec
 from microslip.fe.builtin import box_model, solve_uniaxial
 from microslip.fe.builtin.box import box_counts, box_describe
 from microslip.fe.builtin.meshgeometry import set_faces
-from microslip.fe.calculix.mesh import bar_mesh
 from microslip.fe.examples import box_hexmesh, grid_mesh
 from microslip.fe.hexmesh import face_load
 from microslip.meshlevels import FIXED_COUNTS, LEVELS, MESH_LEVELS, level_axes, level_counts
@@ -44,14 +43,9 @@ def test_a_level_is_the_same_mesh_for_both_solvers(level):
     for params in (preset("table1"), TITANIUM):
         box = box_hexmesh(params, level)
         spec = mesh_spec(level, params)
-        bar = bar_mesh(params, spec)
         assert box_counts(box) == (spec.nx, spec.ny, spec.nz)
         squat = params is TITANIUM and level not in FIXED_COUNTS
         assert spec.graded == box_describe(box)["graded"] == any(_graded(box)) == squat
-        corners = bar.nodes[bar.grid[::2, ::2, ::2].ravel() - 1]
-        for c in (0, 2):
-            np.testing.assert_allclose(np.unique(corners[:, c]), np.unique(box.nodes[:, c]),
-                                       atol=1e-12)
 
 
 def test_explicit_counts_and_unknown_levels():

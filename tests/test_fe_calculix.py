@@ -20,7 +20,10 @@ from microslip import preset
 from microslip.cli.main import main
 from microslip.energy import damping_from_loop
 from microslip.fe import FECase, ResultsError, read_results, run_case
-from microslip.fe.calculix.mesh import bar_mesh
+from microslip.fe.calculix.boxrun import box20_mesh
+from microslip.fe.calculix.mesh import mesh_spec
+from microslip.fe.calculix.meshdeck import load_plan
+from microslip.fe.meshload import MeshLoad
 from microslip.validate import TOLERANCES, ValidationReport, run_validation
 
 pytestmark = [
@@ -142,28 +145,27 @@ def test_vtu_export(results, tmp_path):
         m.point_data)
     status = m.point_data["contact_status"]
     assert set(np.unique(status)) == {-1, 1, 2}
-    mesh = bar_mesh(P, SMALL)
-    ids, w = mesh.load_weights("tip")
-    u = m.point_data["displacement"][ids - 1, 0] @ w
+    plan = load_plan(box20_mesh(P, mesh_spec(SMALL, P)), [MeshLoad("tip", (1.0, 0.0, 0.0), F0)])
+    u = plan.conjugate(m.point_data["displacement"][None, plan.loaded])[0, 0]
     assert u - r.details.clamp_displacement == pytest.approx(
         results["tip"].displacement[10], rel=1e-3)
 
 
 def test_truncated_or_partial_results_are_errors(results, tmp_path):
     src = results["tip"].job_dir
-    case, mesh = results["tip"].details.case, bar_mesh(P, SMALL)
+    case = results["tip"].details.case
     cut = tmp_path / "frd"
     shutil.copytree(src, cut)
     text = (cut / "job.frd").read_text()
     (cut / "job.frd").write_text(text[: len(text) * 2 // 3])
     with pytest.raises(ResultsError, match="truncated"):
-        read_results(case, mesh, cut)
+        read_results(case, cut)
     short = tmp_path / "dat"
     shutil.copytree(src, short)
     text = (short / "job.dat").read_text()
     (short / "job.dat").write_text(text[: text.rindex(" displacements")])
     with pytest.raises(ResultsError, match="stopped early"):
-        read_results(case, mesh, short)
+        read_results(case, short)
 
 
 def test_reuse_reads_a_finished_run_without_the_solver(results, tmp_path, monkeypatch):

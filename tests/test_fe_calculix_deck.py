@@ -11,8 +11,11 @@ from hypothesis import strategies as st
 
 from microslip import preset
 from microslip.errors import MacroslipError, ParameterError
-from microslip.fe import LEVELS, FECase, MeshSpec, bar_mesh, build_deck, mesh_spec
+from microslip.fe import LEVELS, FECase, MeshSpec, mesh_spec, run_case
 from microslip.fe.calculix import deck as d
+from microslip.fe.calculix.boxrun import box20_mesh, box_calculix_setup
+from microslip.fe.calculix.meshdeck import build_mesh_deck, load_plan
+from microslip.fe.meshload import MeshLoad
 
 P = preset("table1")
 
@@ -118,14 +121,14 @@ def test_invalid_card_inputs_raise_parameter_error(call):
 @settings(max_examples=25, deadline=None)
 def test_mesh_counts_volumes_and_load_shares(nx, ny, nz):
     spec = MeshSpec(nx, ny, nz)
-    m = bar_mesh(P, spec)
-    assert m.n_bar_nodes == spec.nodes
+    m = box20_mesh(P, spec)
+    assert len(m.nodes) == spec.nodes
     assert m.elements.shape == (nx * ny * nz, 20)
-    # every bar node is used, ids are 1..n, no element repeats a node
-    assert set(np.unique(m.elements)) == set(range(1, spec.nodes + 1))
+    # every node is used, no element repeats a node
+    assert set(np.unique(m.elements)) == set(range(spec.nodes))
     assert all(len(set(row)) == 20 for row in m.elements)
     # corners span a box of the element size, in the C3D20 orientation (positive volume)
-    xyz = m.nodes[m.elements[:, :8] - 1]
+    xyz = m.nodes[m.elements[:, :8]]
     size = np.array([P.length / nx, P.width / ny, P.thickness / nz])
     np.testing.assert_allclose(xyz[:, 6] - xyz[:, 0], np.broadcast_to(size, (xyz.shape[0], 3)))
     np.testing.assert_allclose(xyz[:, 1, 0] - xyz[:, 0, 0], size[0])
@@ -133,23 +136,25 @@ def test_mesh_counts_volumes_and_load_shares(nx, ny, nz):
     # mid-side nodes halfway between their corners (edges 1-2, ..., 4-8)
     pairs = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
              (0, 4), (1, 5), (2, 6), (3, 7)]
-    mids = m.nodes[m.elements[:, 8:] - 1]
+    mids = m.nodes[m.elements[:, 8:]]
     for e, (a, b) in enumerate(pairs):
         np.testing.assert_allclose(mids[:, e], 0.5 * (xyz[:, a] + xyz[:, b]), atol=1e-12)
     # the dof count subtracts u_y on the symmetry plane
-    assert spec.dof == 3 * spec.nodes - m.symmetry_nodes.size
-    np.testing.assert_allclose(m.nodes[m.symmetry_nodes - 1, 1], P.width / 2)
+    sym = m.node_sets["sym"]
+    assert spec.dof == 3 * spec.nodes - sym.size
+    np.testing.assert_allclose(m.nodes[sym, 1], P.width / 2)
     for model, x in (("tip", P.length), ("centre", P.length / 2)):
-        ids, w = m.load_weights(model)
-        c = m.nodes[ids - 1]
-        np.testing.assert_allclose(c[:, 0], x)
+        plan = load_plan(m, [MeshLoad(model, (1.0, 0.0, 0.0), 1.0)])
+        np.testing.assert_allclose(m.nodes[plan.loaded, 0], x)
         # consistent loads of a uniform traction: total 1, resultant through the centroid
-        assert w.sum() == pytest.approx(1.0, abs=1e-12)
-        assert w @ c[:, 1] == pytest.approx(P.width / 2, rel=1e-12)
-        assert w @ c[:, 2] == pytest.approx(P.thickness / 2, rel=1e-12)
-    # base: fixed slab under the whole bar with a margin
-    base = m.nodes[m.base_nodes - 1]
-    assert base[:, 2].max() == 0.0 and base[:, 0].min() < 0 and base[:, 0].max() > P.length
+        u = np.zeros((3, plan.loaded.size, 3))
+        u[0, :, 0] = 1.0
+        u[1, :, 0] = m.nodes[plan.loaded, 1]
+        u[2, :, 0] = m.nodes[plan.loaded, 2]
+        share = plan.conjugate(u)[:, 0]
+        assert share[0] == pytest.approx(1.0, abs=1e-12)
+        assert share[1] == pytest.approx(P.width / 2, rel=1e-12)
+        assert share[2] == pytest.approx(P.thickness / 2, rel=1e-12)
 
 
 def test_named_meshes_and_their_sizes():
@@ -177,7 +182,8 @@ def test_case_validation():
         FECase("tip", amplitude=356.0)
     for kwargs in ({"model": "side"}, {"model": "tip", "substeps": 52},
                    {"model": "tip", "stick_slope": 0.0}, {"model": "tip", "mesh": "huge"},
-                   {"model": "tip", "element": "C3D8"}, {"model": "tip", "max_iterations": 2}):
+                   {"model": "tip", "element": "C3D8"}, {"model": "tip", "element": "C3D20"},
+                   {"model": "tip", "max_iterations": 2}):
         with pytest.raises(ParameterError):
             FECase(**kwargs)
 
@@ -191,48 +197,24 @@ def test_case_times_and_force():
 
 
 def test_deck_of_the_tip_case():
+    """The box's deck is the mesh deck: the symmetry plane a support (u_y), the clamping
+    pressure F_N / (L w) on the top face, the paper's sine in 50 increments over 1.25 s."""
     case = FECase("tip", mesh=MeshSpec(2, 2, 1))
-    deck = build_deck(case)
-    m = bar_mesh(case.params, case.spec)
-    cards = [ln for ln in deck.splitlines() if ln.startswith("*")]
-    assert cards == [
-        "*HEADING", "*NODE", "*ELEMENT, TYPE=C3D20R, ELSET=BAR",
-        "*ELEMENT, TYPE=C3D8, ELSET=BASE", "*NSET, NSET=NBASE", "*NSET, NSET=NSYM",
-        "*NSET, NSET=NLOAD", "*ELSET, ELSET=ETOP", "*SURFACE, NAME=SBOTTOM, TYPE=ELEMENT",
-        "*SURFACE, NAME=SBASE, TYPE=ELEMENT", "*MATERIAL, NAME=BAR", "*ELASTIC",
-        "*SOLID SECTION, ELSET=BAR, MATERIAL=BAR", "*SOLID SECTION, ELSET=BASE, MATERIAL=BAR",
-        "*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-        "*FRICTION", "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE", "*BOUNDARY",
-        "*AMPLITUDE, NAME=FT",
-        "** step 1: clamping pressure F_N / (L w) on the upper face",
-        "*STEP, INC=100", "*STATIC", "*DLOAD", "*NODE PRINT, NSET=NLOAD", "*NODE FILE",
-        "*CONTACT FILE", "*END STEP",
-        "** step 2: F_T = 267 sin(2 pi t) N, 50 substeps",
-        "*STEP, INC=60", "*STATIC, DIRECT", "*CONTROLS, PARAMETERS=TIME INCREMENTATION",
-        "*CLOAD, AMPLITUDE=FT", "*NODE PRINT, NSET=NLOAD", "*NODE FILE", "*CONTACT FILE",
-        "*END STEP"]
-    assert "\n0.8, 10000\n" in deck and "\n0.025, 1.25\n" in deck
+    mesh, assembly, loads, opts = box_calculix_setup(case)
+    deck = build_mesh_deck(mesh, assembly, loads=loads, **opts)
+    assert "*ELEMENT, TYPE=C3D20R, ELSET=BODY" in deck and "\nNFIX1, 2, 2, 0\n" in deck
+    assert "SCLAMP, P, 0.0689751379503\n" in deck and "\n0.8, 10000\n" in deck
+    assert "*STATIC, DIRECT\n0.025, 1.25\n" in deck
     # the nodal forces of the CLOAD card add up to the amplitude, on the loaded end face
-    lines = deck.split("*CLOAD, AMPLITUDE=FT\n")[1].split("*")[0].splitlines()
+    lines = deck.split("*CLOAD, AMPLITUDE=L1\n")[1].split("*")[0].splitlines()
     nodes = [int(ln.split(",")[0]) for ln in lines]
     forces = [float(ln.split(",")[2]) for ln in lines]
     assert sum(forces) == pytest.approx(267.0, rel=1e-12)
-    np.testing.assert_allclose(m.nodes[np.array(nodes) - 1, 0], P.length)
-    # the amplitude table is exact at the substep ends
-    table = deck.split("*AMPLITUDE, NAME=FT\n")[1].split("*")[0].replace("\n", ", ")
-    values = [float(v) for v in table.split(",") if v.strip()]
-    t, a = np.array(values[0::2]), np.array(values[1::2])
-    np.testing.assert_allclose(a, np.sin(2 * np.pi * t), atol=1e-11)
-    assert t.size == 51
+    np.testing.assert_allclose(mesh.nodes[np.array(nodes) - 1, 0], P.length)
 
 
-def test_deck_of_the_centre_case_loads_the_mid_plane():
-    case = FECase("centre", mesh=MeshSpec(4, 2, 1), stick_slope=3e4, element="C3D20",
-                  nlgeom=True)
-    deck = build_deck(case)
-    assert "*ELEMENT, TYPE=C3D20, ELSET=BAR" in deck and "*STEP, NLGEOM, INC=60" in deck
-    assert "\n0.8, 30000\n" in deck
-    m = bar_mesh(case.params, case.spec)
-    lines = deck.split("*CLOAD, AMPLITUDE=FT\n")[1].split("*")[0].splitlines()
-    nodes = np.array([int(ln.split(",")[0]) for ln in lines])
-    np.testing.assert_allclose(m.nodes[nodes - 1, 0], P.length / 2)
+def test_nlgeom_is_refused_in_one_line(tmp_path):
+    case = FECase("centre", mesh=MeshSpec(4, 2, 1), nlgeom=True)
+    with pytest.raises(ParameterError, match="nlgeom is not available") as err:
+        run_case(case, tmp_path / "never")
+    assert "\n" not in str(err.value) and not (tmp_path / "never").exists()

@@ -15,7 +15,8 @@ from microslip import preset
 from microslip.cli.main import main
 from microslip.energy import damping_from_loop, loop_work
 from microslip.errors import ParameterError
-from microslip.fe import FECase, SolverNotFoundError, bar_mesh
+from microslip.fe import FECase, SolverNotFoundError
+from microslip.fe.calculix.boxrun import box20_mesh
 from microslip.fe.calculix.collect import CalculixDetails
 from microslip.fe.result import ContactHistory, FELoopResult, column_lengths
 from microslip.results import HysteresisLoop
@@ -47,9 +48,9 @@ def exact_result(model: str, scale: float = 1.0) -> FELoopResult:
     d = np.where(t <= 0.25 + 1e-12, g(f),
                  np.where(t <= 0.75 + 1e-12, d0 - 2 * g((F0 - f) / 2), -d0 + 2 * g((F0 + f) / 2)))
     d = scale * d
-    mesh = bar_mesh(P, case.spec)
-    ids, _, _ = mesh.contact_lattice()
-    xyz = mesh.nodes[ids - 1]
+    mesh = box20_mesh(P, case.spec)
+    ids = np.sort(mesh.node_sets["contact"])
+    xyz = mesh.nodes[ids]
     status = np.ones((t.size, ids.size), dtype=np.int8)
     for k, tk in enumerate(t):
         span = _slipping_force(tk, f[k], F0)
@@ -58,7 +59,7 @@ def exact_result(model: str, scale: float = 1.0) -> FELoopResult:
         else:
             slipping = np.abs(xyz[:, 0] - P.length / 2) < span / (2 * Q) - 1e-9
         status[k, slipping] = 2
-    contact = ContactHistory(ids - 1, xyz, t, status, column_lengths(xyz[:, 0]),
+    contact = ContactHistory(ids, xyz, t, status, column_lengths(xyz[:, 0]),
                              np.zeros((*status.shape, 2)))
     loop = HysteresisLoop(f[10:], d[10:], "calculix", {"time_s": t[10:]})
     details = CalculixDetails(case, 0.0, np.full(status.shape, 0.07),

@@ -121,7 +121,7 @@ RUN_OPTIONS: tuple[Option, ...] = (
            default="builtin"),
     Option("substeps", "equal substeps over t = 0..1.25 s, a multiple of 5", "",
            "a multiple of 5", type=int, metavar="N", default=50),
-    Option("element", "calculix: the 20-node brick, reduced (C3D20R) or full (C3D20)", "",
+    Option("element", "calculix: the 20-node brick with reduced integration (C3D20R)", "",
            "an element", type=None),
     Option("clamping_csv", "builtin: write the interface pressure after clamping (x_mm,"
            "pressure in MPa, the mean over the width per section)", "", "a file name",

@@ -71,9 +71,9 @@ def add_parser(sub: Any) -> None:
     # one --element for both modes, each value checked against the mode it belongs to
     add_option(g, "element", choices=[*(e for s in SOLVERS.values() for e in s.elements),
                                       *(OPTIONS["mesh_element"].choices or ())],
-               help="the box: calculix: 20-node brick, reduced (C3D20R, default) or full "
-                    "integration (C3D20); builtin: 8-node brick with incompatible modes "
-                    "(C3D8I, default) or plain (C3D8). --mesh FILE: "
+               help="the box: calculix: 20-node brick, reduced integration (C3D20R); "
+                    "builtin: 8-node brick with incompatible modes (C3D8I, default) or plain "
+                    "(C3D8). --mesh FILE: "
                     + OPTIONS["mesh_element"].help + " (default: as the file)")
     add_option(g, "substeps")
     add_own_mesh_options(p)

@@ -17,8 +17,6 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
-import numpy as np
-
 from ..conventions import DEFAULT_MESH
 from ..energy import DEFAULT_STRAIN_ENERGY
 from ..errors import ParameterError
@@ -92,8 +90,9 @@ def _builtin_fields(result: FELoopResult) -> FieldSeries:
 def _run_calculix(load: str, params: ClampParams, amplitude: float, mesh: Any, element: str,
                   stick_slope: float, substeps: int, strain_energy_kind: str,
                   job_dir: Path | None, record: bool, **options: Any) -> FELoopResult:
+    from .calculix.boxrun import run_case
     from .calculix.case import FECase
-    from .calculix.runner import find_ccx, run_case
+    from .calculix.runner import find_ccx
 
     normal = {k: options.pop(k) for k in ("normal_slope",) if k in options}
     case = FECase(load, params, amplitude, mesh=mesh, stick_slope=stick_slope,
@@ -103,7 +102,7 @@ def _run_calculix(load: str, params: ClampParams, amplitude: float, mesh: Any, e
     if job_dir is None:
         with tempfile.TemporaryDirectory(prefix="microslip-fe-") as tmp:
             r = run_case(case, Path(tmp), strain_energy_kind=strain_energy_kind,
-                         **(options | {"reuse": False}))
+                             **(options | {"reuse": False}))
         return _without_job_dir(r)
     return run_case(case, job_dir, strain_energy_kind=strain_energy_kind, **options)
 
@@ -113,29 +112,10 @@ def _without_job_dir(r: FELoopResult) -> FELoopResult:
 
 
 def _calculix_fields(result: FELoopResult) -> FieldSeries:
-    from .calculix.collect import CalculixDetails
-    from .calculix.mesh import bar_mesh
-    from .calculix.readers import read_frd
-    from .calculix.runner import JOBNAME
+    from .calculix.boxrun import box_fields
 
-    d = result.details
-    if not isinstance(d, CalculixDetails) or result.job_dir is None:
-        raise ParameterError("the CalculiX result has no job directory to read fields from")
-    mesh = bar_mesh(d.case.params, d.case.spec)
-    blocks = read_frd(result.job_dir / f"{JOBNAME}.frd", names=("DISP",)).select("DISP")
-    u = np.zeros((result.time.size, mesh.nodes.shape[0], 3))
-    for k, b in enumerate(blocks[-result.time.size:]):
-        u[k, b.nodes - 1] = b.values[:, :3]
-    n, c = mesh.nodes.shape[0], result.contact
-    pressure = np.zeros((result.time.size, n))
-    pressure[:, c.nodes] = d.pressure
-    shear = np.zeros((result.time.size, n, 3))
-    shear[:, c.nodes, :2] = d.shear
-    part = [np.zeros(mesh.elements.shape[0], dtype=np.int32),
-            np.ones(mesh.base_elements.shape[0], dtype=np.int32)]
-    return FieldSeries(mesh.nodes, [("hexahedron20", mesh.elements - 1),
-                                    ("hexahedron", mesh.base_elements - 1)], u,
-                       {"contact_pressure": pressure, "contact_shear": shear}, {"part": part})
+    fields: FieldSeries = box_fields(result)
+    return fields
 
 
 def _registry() -> Mapping[str, SolverEntry]:

@@ -1,12 +1,15 @@
 """CalculiX (``ccx``) on the clamped bar: deck, run and read-back.
 
-- :mod:`~microslip.fe.calculix.mesh`: structured C3D20 mesh of the bar on a rigid C3D8 base;
-- :mod:`~microslip.fe.calculix.case`: the validated load case (:class:`FECase`);
-- :mod:`~microslip.fe.calculix.deck`: the ``.inp`` deck, one tested function per keyword card;
+- :mod:`~microslip.fe.calculix.mesh`: the box's mesh levels (:class:`MeshSpec`);
+- :mod:`~microslip.fe.calculix.case`: the box's validated load case (:class:`FECase`);
+- :mod:`~microslip.fe.calculix.deck`: the ``.inp`` cards, one tested function per keyword card;
 - :mod:`~microslip.fe.calculix.runner`: ``ccx`` with a time-out and typed failures;
 - :mod:`~microslip.fe.calculix.readers`: ``.dat``, ``.sta`` and ``.frd`` readers;
-- :mod:`~microslip.fe.calculix.collect`: a CalculiX run read into an
-  :class:`~microslip.fe.result.FELoopResult`;
+- :mod:`~microslip.fe.calculix.collect`: the contact status rule and the box's
+  :class:`CalculixDetails`;
+- :mod:`~microslip.fe.calculix.boxrun`: the box of an :class:`FECase` on the mesh deck
+  (20-node ``box_hexmesh``, the symmetry plane a support), read into an
+  :class:`~microslip.fe.result.FELoopResult` (``run_case``, ``read_results``);
 - :mod:`~microslip.fe.calculix.meshdeck`: the deck of the user's own
   :class:`~microslip.fe.hexmesh.HexMesh` with named sets and
   :class:`~microslip.fe.meshload.MeshLoad` loads (issue 22), and

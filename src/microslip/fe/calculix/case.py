@@ -30,8 +30,9 @@ __all__ = [
     "FECase",
 ]
 
-#: Quadratic hexahedra, the counterparts of ANSYS SOLID186 (full or reduced integration).
-ELEMENT_TYPES = ("C3D20R", "C3D20")
+#: The quadratic hexahedron of the box on CalculiX, the counterpart of ANSYS SOLID186 with
+#: reduced integration (the mesh deck writes C3D20R for 20-node meshes).
+ELEMENT_TYPES = ("C3D20R",)
 
 
 @dataclass(frozen=True)
@@ -57,12 +58,13 @@ class FECase:
         Equal load increments over t = 0 .. 1.25 s; a multiple of 5, so that the quarter
         periods (t = 0.25, 0.5, ...) are substep ends (paper: 50).
     element : str
-        ``"C3D20R"`` or ``"C3D20"``.
+        ``"C3D20R"``.
     max_iterations : int
         Equilibrium iterations allowed per substep before ccx gives up (paper: 26).
     nlgeom : bool
         Geometrically nonlinear analysis (the paper's ANSYS runs used it; here the rotations
-        are of order 1e-5 and the loop does not change).
+        are of order 1e-5 and the loop does not change). The mesh deck has no NLGEOM step:
+        :func:`~microslip.fe.calculix.boxrun.run_case` refuses True in one line.
 
     Examples
     --------

@@ -26,38 +26,24 @@ Conventions (docs/validation.md):
 
 from __future__ import annotations
 
-import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ...energy import DEFAULT_STRAIN_ENERGY
 from ...named import result
-from ...results import HysteresisLoop
-from ..errors import ResultsError
 from ..result import (
     OPEN,
     SLIP,
     STATUS,
     STICK,
-    ContactHistory,
-    FELoopResult,
-    column_lengths,
-    gross_sliding_message,
-    join_message,
-    loop_damping,
 )
 from .case import FECase
-from .mesh import BarMesh
-from .readers import read_dat, read_frd, read_sta
 
 __all__ = [
     "STATUS",
     "CalculixDetails",
     "contact_status",
-    "read_results",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -153,84 +139,3 @@ class CalculixDetails:
 
     def summary(self) -> dict[str, Any]:
         return {"clamp_displacement_mm": self.clamp_displacement}
-
-
-def read_results(case: FECase, mesh: BarMesh, job_dir: str | Path, jobname: str = "job", *,
-                 wall_s: float = math.nan,
-                 strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FELoopResult:
-    """Assemble the :class:`FELoopResult` of a finished run from its ``.dat``, ``.sta``, ``.frd``.
-
-    Raises
-    ------
-    ResultsError
-        A file is missing or truncated, or it does not hold the clamped state and every
-        substep of the load step (a partial loop is never returned).
-    """
-    job_dir = Path(job_dir)
-    n = case.substeps
-    clamp_time = 1.0  # step 1 has period 1 s
-    load_ids, weights = mesh.load_weights(case.model)
-
-    blocks = read_dat(job_dir / f"{jobname}.dat", "displacements", expected_rows=load_ids.size)
-    if len(blocks) != n + 1:
-        raise ResultsError(f"{jobname}.dat holds {len(blocks)} displacement blocks, expected "
-                           f"{n + 1} (clamped state and {n} substeps): the run stopped early",
-                           job_dir)
-    expected = clamp_time + case.times
-    got = np.array([b.time for b in blocks])
-    if not np.allclose(got, expected, rtol=0.0, atol=2e-6 * (1.0 + expected)):
-        raise ResultsError(f"{jobname}.dat: increment times do not match the {n} equal "
-                           "substeps (cut-back?)", job_dir)
-    u = np.empty((n + 1, load_ids.size))
-    for k, b in enumerate(blocks):
-        if not np.array_equal(b.nodes, load_ids):
-            raise ResultsError(f"{jobname}.dat: the printed node set is not the loaded "
-                               "section", job_dir)
-        u[k] = b.values[:, 0]
-    absolute = u @ weights
-    displacement = absolute - absolute[0]
-
-    sta = read_sta(job_dir / f"{jobname}.sta").in_step(2)
-    if sta.iterations.size != n:
-        raise ResultsError(f"{jobname}.sta lists {sta.iterations.size} converged substeps of "
-                           f"the load step, expected {n}", job_dir)
-    converged = bool(np.all(sta.attempts == 1))
-
-    frd = read_frd(job_dir / f"{jobname}.frd", names=("CONTACT",))
-    cblocks = frd.select("CONTACT")
-    if len(cblocks) != n + 1:
-        raise ResultsError(f"{jobname}.frd holds {len(cblocks)} contact blocks, expected "
-                           f"{n + 1}", job_dir)
-    ids, _, _ = mesh.contact_lattice()
-    values = np.empty((n + 1, ids.size, 6))
-    for k, cb in enumerate(cblocks):
-        order = np.argsort(cb.nodes, kind="stable")
-        pos = np.minimum(np.searchsorted(cb.nodes[order], ids), cb.nodes.size - 1)
-        if not np.array_equal(cb.nodes[order][pos], ids):
-            raise ResultsError(f"{jobname}.frd: contact block at time {cb.time:g} misses "
-                               "contact nodes", job_dir)
-        values[k] = cb.values[order][pos]
-    pressure = values[:, :, 3]
-    shear = values[:, :, 4:6]
-    slip = values[:, :, 1:3]
-    status = contact_status(pressure, shear, slip, case.params.friction, case.stick_slope)
-    coords = mesh.nodes[ids - 1]
-    contact = ContactHistory(ids - 1, coords, case.times.copy(), status,
-                             column_lengths(coords[:, 0]), slip)
-    force = case.force(case.times)
-    q = case.quarter
-    loop = HysteresisLoop(
-        force=force[q:].copy(), displacement=displacement[q:].copy(), source="calculix",
-        meta={"model": case.model, "amplitude_N": case.amplitude, "mesh": case.spec.label(),
-              "stick_slope": case.stick_slope, "dof": case.spec.dof,
-              "time_s": case.times[q:].copy()})
-    details = CalculixDetails(case, float(absolute[0]), pressure, shear)
-    damping, idle = loop_damping(loop, contact, strain_energy_kind)
-    message = (join_message("converged", idle, gross_sliding_message(contact)) if converged
-               else "cut back")
-    return FELoopResult(
-        solver="calculix", load_case=case.model, params=case.params, amplitude=case.amplitude,
-        time=case.times.copy(), force=force, displacement=displacement, loop=loop,
-        damping=damping, contact=contact, dof=case.spec.dof, iterations=sta.iterations.copy(),
-        wall_s=float(wall_s), converged=converged, message=message, details=details,
-        job_dir=job_dir)

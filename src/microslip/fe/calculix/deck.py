@@ -1,22 +1,10 @@
-"""CalculiX input deck of the clamped bar, one keyword card per function.
+"""CalculiX input deck cards, one keyword card per function.
 
-Every card is generated from validated inputs and is tested as an exact string. The deck of a
-load case (:func:`build_deck`) is:
+Every card is generated from validated inputs and is tested as an exact string; the decks
+are :func:`~microslip.fe.calculix.meshdeck.build_mesh_deck`'s (the user's mesh, an assembly
+and the paper's box alike).
 
-1. the mesh (:mod:`microslip.fe.calculix.mesh`): bar of C3D20R/C3D20 bricks, base of C3D8 bricks;
-2. linear elastic material of the bar (and of the base, whose nodes are all held fixed);
-3. face-to-face penalty contact (``TYPE=SURFACE TO SURFACE``) between the bar's lower face
-   (slave) and the base's upper face (master): linear pressure-overclosure law and Coulomb
-   friction mu with stick slope lambda;
-4. u_y = 0 on the mid-width plane (symmetry of the load about y = w/2; removes the lateral
-   rigid-body mode the friction alone would have to hold);
-5. step 1: clamping pressure F_N / (L w) on the upper face;
-6. step 2: F_T = F0 sin(2 pi t), t = 0 .. 1.25 s, ``DIRECT`` substeps of equal length, as
-   consistent nodal forces of a uniform traction on the loaded section (x = L or x = L/2);
-   displacements of the loaded section to the ``.dat`` file and nodal displacements, contact
-   slips and tractions (``CDIS``, ``CSTR``) to the ``.frd`` file at every substep.
-
-Units: N, mm, MPa; time in s.
+Units: N, mm, MPa.
 """
 
 from __future__ import annotations
@@ -29,8 +17,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...errors import ParameterError
-from .case import FECase
-from .mesh import BarMesh, bar_mesh
 
 __all__ = [
     "CONTACT_PAIR_TYPES",
@@ -38,7 +24,6 @@ __all__ = [
     "LOAD_NSET",
     "amplitude_card",
     "boundary_card",
-    "build_deck",
     "cload_card",
     "contact_file_card",
     "contact_pair_card",
@@ -409,63 +394,3 @@ def end_step_card() -> str:
     '*END STEP\\n'
     """
     return "*END STEP\n"
-
-
-def build_deck(case: FECase, mesh: BarMesh | None = None) -> str:
-    """The complete ``.inp`` deck of a load case.
-
-    Parameters
-    ----------
-    case : FECase
-        Validated load case.
-    mesh : BarMesh, optional
-        The mesh of ``case`` (built from ``case`` if not given).
-
-    Returns
-    -------
-    str
-        The deck text, ending with a newline.
-    """
-    if mesh is None:
-        mesh = bar_mesh(case.params, case.spec)
-    p = case.params
-    load_nodes, weights = mesh.load_weights(case.model)
-    t = case.times
-    parts = [
-        heading_card(f"microslip {case.label()}: bar {p.length:g} x {p.width:g} x "
-                     f"{p.thickness:g} mm on a rigid base, F0 = {case.amplitude:g} N"),
-        nodes_card(mesh.nodes),
-        elements_card(case.element, "BAR", mesh.elements, first=1),
-        elements_card("C3D8", "BASE", mesh.base_elements, first=int(mesh.base_element_ids[0])),
-        nset_card("NBASE", mesh.base_nodes),
-        nset_card("NSYM", mesh.symmetry_nodes),
-        nset_card(LOAD_NSET, load_nodes),
-        elset_card("ETOP", mesh.top_elements),
-        surface_card("SBOTTOM", mesh.bottom_elements, "S1"),
-        surface_card("SBASE", mesh.base_element_ids, "S2"),
-        material_card("BAR", p.modulus, p.poisson_ratio),
-        solid_section_card("BAR", "BAR"),
-        solid_section_card("BASE", "BAR"),
-        surface_interaction_card("SI", case.normal_slope, p.friction, case.stick_slope),
-        contact_pair_card("SI", "SBOTTOM", "SBASE"),
-        boundary_card([("NBASE", 1, 3), ("NSYM", 2, 2)]),
-        amplitude_card(LOAD_AMPLITUDE, t, case.force(t) / case.amplitude),
-        "** step 1: clamping pressure F_N / (L w) on the upper face\n",
-        step_card(100, case.nlgeom),
-        static_card(1.0, 1.0, direct=False),
-        dload_card("ETOP", "S2", case.pressure),
-        node_print_card(LOAD_NSET),
-        node_file_card(),
-        contact_file_card(),
-        end_step_card(),
-        f"** step 2: F_T = {case.amplitude:g} sin(2 pi t) N, {case.substeps} substeps\n",
-        step_card(case.substeps + 10, case.nlgeom),
-        static_card(case.dt, case.duration, direct=True),
-        controls_card(case.max_iterations),
-        cload_card(load_nodes, 1, case.amplitude * weights, amplitude=LOAD_AMPLITUDE),
-        node_print_card(LOAD_NSET),
-        node_file_card(),
-        contact_file_card(),
-        end_step_card(),
-    ]
-    return "".join(parts)

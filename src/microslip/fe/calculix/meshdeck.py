@@ -1,17 +1,17 @@
 """CalculiX input deck of the user's own mesh and its assembly (issues 22 and 32), one card
 per function.
 
-The deck of :func:`build_mesh_deck` is the box deck of :mod:`~microslip.fe.calculix.deck`
-(docs/validation.md) on any :class:`~microslip.fe.hexmesh.HexMesh` of one or more bodies,
-with the roles given by an :class:`~microslip.fe.assembly.Assembly` naming the mesh's sets
-(its cards: :mod:`.assemblydeck`):
+The deck of :func:`build_mesh_deck` (its cards from :mod:`~microslip.fe.calculix.deck`;
+the paper's box too, :mod:`~microslip.fe.calculix.boxrun`) is written for any
+:class:`~microslip.fe.hexmesh.HexMesh` of one or more bodies, with the roles given by an
+:class:`~microslip.fe.assembly.Assembly` naming the mesh's sets (its cards:
+:mod:`.assemblydeck`):
 
 1. the user's mesh: C3D8I for 8-node hexahedra (the built-in solver's element), C3D20R for
    20-node ones; node and element ids are the mesh's rows + 1; a material per element set;
 2. under each contact face on the rigid base (``Contact(face)``) a rigid base
    (:func:`base_slab`): a flat slab of fixed C3D8 bricks below the contact plane, larger than
-   the contact faces by one grid spacing all round, as the box deck's base (on the box it is
-   that base, node for node);
+   the contact faces by one grid spacing all round;
 3. each contact a penalty ``*CONTACT PAIR``: slave the contact face, master the base's upper
    face or the counter face of another body (``Contact(face, counter)``), face-to-face
    (``TYPE=SURFACE TO SURFACE``, default) or, with ``formulation="node-to-surface"``
@@ -184,8 +184,7 @@ def base_slab(mesh: HexMesh, contact_faces: ArrayLike, set_name: str = "contact"
     whose grid lines, in the plane, pass through the contact faces' corner nodes plus one
     line each side (at most :data:`MAX_BASE_LINES` per axis, else a uniform grid of about the
     faces' size); its thickness is the body's extent normal to the plane. For a plane normal to
-    a coordinate axis the in-plane axes are the other two, so on the box it is the box deck's
-    base (:func:`~microslip.fe.calculix.mesh.bar_mesh`) node for node.
+    a coordinate axis the in-plane axes are the other two.
     """
     faces = np.asarray(contact_faces, dtype=np.int64).reshape(-1, 2)
     corners = mesh.face_corners(faces)

@@ -67,8 +67,9 @@ from .meshhistory import LoadHistory, load_history
 from .readers import read_dat, read_frd, read_sta
 from .runner import JOBNAME, find_ccx, run_ccx
 
-__all__ = ["MeshCalculixResult", "mesh_timeout", "read_contact", "read_frequencies",
-           "read_mesh_results", "run_frequency_calculix", "run_mesh_calculix"]
+__all__ = ["MeshCalculixResult", "contact_values", "mesh_timeout", "read_contact",
+           "read_frequencies", "read_mesh_results", "run_frequency_calculix",
+           "run_mesh_calculix"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -200,13 +201,12 @@ def _states(blocks: list[Any], n: int, what: str, job_dir: Path) -> list[Any]:
     return kept
 
 
-def read_contact(frd: str | Path, nodes: IntArray, coords: FloatArray, times: FloatArray,
-                 friction: float, stick_slope: float) -> ContactHistory:
-    """The contact status and slip of ``nodes`` (0-based) at every state, from the ``.frd``
-    file's CONTACT blocks (CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2); a node missing from a
-    block has no contact element there (open)."""
+def contact_values(frd: str | Path, nodes: IntArray, n: int) -> FloatArray:
+    """The ``.frd`` file's CONTACT values (CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2 in columns
+    1..5) of ``nodes`` (0-based) at the clamped state and the ``n`` increments of the load
+    step, shape (n + 1, nodes, 6); a node missing from a block has no contact element there
+    (zeros: open)."""
     frd = Path(frd)
-    n = int(times.size - 1)
     blocks = _states(read_frd(frd, names=("CONTACT",)).select("CONTACT"), n, frd.name,
                      frd.parent)
     ids = np.asarray(nodes, dtype=np.int64) + 1
@@ -219,6 +219,15 @@ def read_contact(frd: str | Path, nodes: IntArray, coords: FloatArray, times: Fl
         pos = np.minimum(np.searchsorted(sorted_ids, ids), sorted_ids.size - 1)
         found = sorted_ids[pos] == ids
         values[k, found] = cb.values[order][pos[found]]
+    return values
+
+
+def read_contact(frd: str | Path, nodes: IntArray, coords: FloatArray, times: FloatArray,
+                 friction: float, stick_slope: float) -> ContactHistory:
+    """The contact status and slip of ``nodes`` (0-based) at every state, from the ``.frd``
+    file's CONTACT blocks (CSLIP1, CSLIP2, CPRESS, CSHEAR1, CSHEAR2); a node missing from a
+    block has no contact element there (open)."""
+    values = contact_values(frd, nodes, int(times.size - 1))
     status = contact_status(values[:, :, 3], values[:, :, 4:6], values[:, :, 1:3], friction,
                             stick_slope)
     return ContactHistory(np.asarray(nodes, dtype=np.int64), np.asarray(coords, dtype=float),

@@ -21,23 +21,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from ...energy import DEFAULT_STRAIN_ENERGY
 from ...errors import ParameterError
-from ...io import atomic_write, write_json
 from ..errors import (
     INSTALL_HINT,
     NonConvergenceError,
-    ResultsError,
     SolverError,
     SolverKilledError,
     SolverNotFoundError,
     SolverTimeoutError,
 )
-from ..result import FELoopResult
 from .case import FECase
-from .collect import read_results
-from .deck import build_deck
-from .mesh import bar_mesh
 
 __all__ = [
     "CCX",
@@ -47,7 +40,6 @@ __all__ = [
     "ccx_version",
     "default_timeout",
     "find_ccx",
-    "run_case",
     "run_ccx",
 ]
 
@@ -264,68 +256,3 @@ def _reusable(job_dir: Path, jobname: str, digest: str) -> float | None:
         return None
     wall = data.get("wall_s")
     return float(wall) if isinstance(wall, (int, float)) else math.nan
-
-
-def run_case(case: FECase, job_dir: str | Path, *, timeout: float | None = None,
-             threads: int = 1, executable: str | None = None, reuse: bool = False,
-             strain_energy_kind: str = DEFAULT_STRAIN_ENERGY) -> FELoopResult:
-    """Write the deck of ``case`` into ``job_dir``, run ccx, and read the results.
-
-    Parameters
-    ----------
-    case : FECase
-    job_dir : path
-        Created if needed; holds ``job.inp``, the solver's files, ``ccx.log`` and ``run.json``.
-    timeout : float, optional
-        Seconds (default :func:`default_timeout`).
-    threads : int
-        ``OMP_NUM_THREADS`` of the solver.
-    executable : str, optional
-        Solver name or path (default ``ccx``).
-    reuse : bool
-        If ``job_dir`` already holds a successful run of the identical deck (same SHA-256),
-        read its results instead of running the solver again.
-    strain_energy_kind : str
-        Definition of U for the loss factor (:data:`microslip.energy.STRAIN_ENERGY`).
-
-    Returns
-    -------
-    FELoopResult
-
-    Raises
-    ------
-    SolverError
-        Any failure (solver missing, time-out, killed, not converged, results missing or
-        truncated); nothing partial is returned.
-    """
-    if not isinstance(case, FECase):
-        raise ParameterError("run_case needs an FECase")
-    mesh = bar_mesh(case.params, case.spec)
-    deck = build_deck(case, mesh)
-    digest = _sha256(deck)
-    job_dir = Path(job_dir)
-    wall = _reusable(job_dir, JOBNAME, digest) if reuse else None
-    if wall is None:
-        exe = find_ccx(executable)  # fail before touching the directory
-        job_dir.mkdir(parents=True, exist_ok=True)
-        for suffix in _RESULT_SUFFIXES:
-            (job_dir / f"{JOBNAME}{suffix}").unlink(missing_ok=True)
-        (job_dir / _RUN_RECORD).unlink(missing_ok=True)
-        with atomic_write(job_dir / f"{JOBNAME}.inp") as fh:
-            fh.write(deck)
-        run = run_ccx(job_dir, JOBNAME, timeout=timeout or default_timeout(case),
-                      threads=threads, executable=exe)
-        wall = run.wall_s
-        try:
-            result = read_results(case, mesh, job_dir, JOBNAME, wall_s=wall,
-                                  strain_energy_kind=strain_energy_kind)
-        except ResultsError as exc:
-            raise type(exc)(exc.message, job_dir, run.log_tail) from None
-        write_json(job_dir / _RUN_RECORD, {
-            "deck_sha256": digest, "returncode": run.returncode, "wall_s": wall,
-            "threads": threads, "ccx_version": ccx_version(exe), "case": case.label(),
-            "dof": case.spec.dof, "iterations": result.total_iterations,
-        })
-        return result
-    return read_results(case, mesh, job_dir, JOBNAME, wall_s=wall,
-                        strain_energy_kind=strain_energy_kind)
