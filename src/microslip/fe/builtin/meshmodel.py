@@ -475,6 +475,13 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
     if gap is not None and not penalty:
         released = gap > FLAT_TOL * size
+    if (gap is not None and released is not None and transform is None
+            and condensed is not False and n_all >= CONDENSE_MIN_DOF):
+        # a curved face pressed under fixed contact: the active set on the condensed
+        # candidates, the tangential loading on the pressing nodes (:mod:`.curved`)
+        return _curved_model(mesh, assembly, element, k_all, contact, contact_nodes, area,
+                             np.where(released, gap, 0.0), supports, full, newton, rotation,
+                             order, size, t0, inv, master, linear_solver)
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
@@ -542,6 +549,39 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         u0=u, slip0=resp.slip, size=size, clamp_iterations=iters, backend=backend,
         setup_s=time.perf_counter() - t0, newton=newton, reduced=reduced,
         transform=transform, contact_master=np.where(master >= 0, inv[master], -1))
+
+
+def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr_matrix,
+                  contact: IntArray, contact_nodes: IntArray, area: FloatArray,
+                  gap: FloatArray, supports: IntArray | None, full: FloatArray,
+                  newton: NewtonOptions, rotation: FloatArray, order: IntArray, size: float,
+                  t0: float, inv: IntArray, master: IntArray, linear_solver: str
+                  ) -> MeshModel:
+    """:func:`build_mesh_model` of a curved face under ``fixed`` normal contact
+    (:func:`~.curved.curved_clamping`)."""
+    from .curved import curved_clamping
+
+    try:
+        c = curved_clamping(k_all, contact, area, gap, supports, full, assembly.stick_slope,
+                            assembly.normal_slope, assembly.friction, assembly.clamp_force,
+                            newton, AUTO_BAND_LIMIT, mesh.source, MAX_ACTIVE_SET)
+    except (np.linalg.LinAlgError, RuntimeError) as err:
+        raise ParameterError(
+            f"{mesh.source}: the body is not held after clamping (its stiffness is singular: "
+            f"{err}); the contact set {assembly.contact_set!r} must be the face on the base "
+            f"and the clamp set {assembly.clamp_set!r} must press the body onto it") from None
+    name = "banded" if c.reduced.solver.band is not None else "splu"
+    if linear_solver not in ("auto", name):
+        name = linear_solver
+    return MeshModel(
+        mesh=mesh, assembly=assembly, element=element, normal=None, rotation=rotation,
+        order=order, index=c.index, free=c.free, stiffness=c.stiffness,
+        contact_nodes=contact_nodes, contact_dofs=c.contact_dofs, contact_area=area,
+        contact_stiffness=c.contact_stiffness, normal_force=c.normal,
+        friction_limit=c.limit, clamp_load=c.clamp_load, u0=c.u, slip0=c.slip, size=size,
+        clamp_iterations=c.iterations, backend=SpentBackend(name), setup_s=time.perf_counter()
+        - t0, newton=newton, reduced=c.reduced, transform=None,
+        contact_master=np.where(master >= 0, inv[master], -1))
 
 
 @dataclass(frozen=True)

@@ -366,11 +366,15 @@ class _Run:
             k, backend, cdofs, normal = red.stiffness, red.backend, red.contact_dofs, red.normal
             clamp, u0 = red.clamp_load, red.u0
         self.clamp = clamp
-        self.stepper = _Stepper(k, backend, cdofs, model.contact_stiffness,
-                                model.friction_limit, model.newton, model.force_scale, normal,
-                                None if normal is None else model.friction)
+        #: contact nodes the stepper sees (None: all); the others are open (:mod:`.curved`)
+        self.active = None if red is None else red.active
+        kc, limit, slip0 = model.contact_stiffness, model.friction_limit, model.slip0
+        if self.active is not None:
+            kc, limit, slip0 = kc[self.active], limit[self.active], slip0[self.active]
+        self.stepper = _Stepper(k, backend, cdofs, kc, limit, model.newton, model.force_scale,
+                                normal, None if normal is None else model.friction)
         self.normal_springs = normal
-        self.u, self.slip = u0.copy(), model.slip0.copy()
+        self.u, self.slip = u0.copy(), slip0.copy()
         self.base = [float(p @ self.u) for p in self.weights]
         self.last = tuple(0.0 for _ in full)
         self.d: list[FloatArray] = []
@@ -420,6 +424,12 @@ class _Run:
                                         for p, b in zip(self.weights, self.base, strict=True)])
                               + self.coupling @ np.array(new))
                 status = np.where(step.response.slipping, SLIP, STICK).astype(np.int8)
+                slip = self.slip
+                if self.active is not None:  # the open nodes: no force, slip not followed
+                    status = np.full(model.contact_nodes.size, OPEN, dtype=np.int8)
+                    status[self.active] = np.where(step.response.slipping, SLIP, STICK)
+                    slip = model.slip0.copy()
+                    slip[self.active] = self.slip
                 if self.normal_springs is not None:
                     n = self.normal_springs.forces(self.u)
                     status[n <= 0.0] = OPEN
@@ -427,7 +437,7 @@ class _Run:
                 else:  # fixed: the nodes the clamping step released stay open
                     status[~model.closed] = OPEN
                 self.status.append(status)
-                self.slips.append(self.slip.copy())
+                self.slips.append(slip.copy())
                 if self.record:
                     self.fields.append(self.full_field(self.u, new))
         self.wall += time.perf_counter() - t0
