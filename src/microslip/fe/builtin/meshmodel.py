@@ -559,12 +559,15 @@ def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr
                   ) -> MeshModel:
     """:func:`build_mesh_model` of a curved face under ``fixed`` normal contact
     (:func:`~.curved.curved_clamping`)."""
-    from .curved import curved_clamping
+    from .curved import curved_clamping, likely_contact
 
+    xy = (mesh.nodes[contact_nodes] @ rotation.T)[:, :2]
+    soft = min(m.modulus / (1.0 - m.poisson_ratio**2) for m in assembly.materials)
+    guess = likely_contact(xy, gap, soft, assembly.clamp_force)
     try:
         c = curved_clamping(k_all, contact, area, gap, supports, full, assembly.stick_slope,
                             assembly.normal_slope, assembly.friction, assembly.clamp_force,
-                            newton, AUTO_BAND_LIMIT, mesh.source, MAX_ACTIVE_SET)
+                            newton, AUTO_BAND_LIMIT, mesh.source, MAX_ACTIVE_SET, guess)
     except (np.linalg.LinAlgError, RuntimeError) as err:
         raise ParameterError(
             f"{mesh.source}: the body is not held after clamping (its stiffness is singular: "

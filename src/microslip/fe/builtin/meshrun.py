@@ -19,6 +19,7 @@ load step of the box, for one). Units: N, mm, N·mm; time in cycles.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -324,6 +325,26 @@ class MeshRunResult:
         return int(self.work_per_cycle.size)
 
     @property
+    def pressed(self) -> dict[str, Any]:
+        """The contact patch at the first state (the clamped one when the loads start at 0):
+        its pressing nodes (N_i > 0), their area (mm^2), the pressure's centre (mm, global)
+        and the radius of the Hertz pressure p0 sqrt(1 - r^2/a^2) of the same second moment
+        about that centre, a = sqrt(5/2 sum N_i r_i^2 / sum N_i) (mm; a patch's size, Hertz's
+        contact radius where the contact is Hertz's: issue 33)."""
+        n = np.asarray(self.normal_force[0], dtype=float)
+        on = n > 0.0
+        if not np.any(on):
+            return {"nodes": 0, "area_mm2": 0.0, "centre_mm": None, "hertz_radius_mm": 0.0}
+        x = self.contact.coords[on]
+        w = n[on] / n[on].sum()
+        centre = w @ x
+        d = (x - centre) @ np.asarray(self.tangent_axes, dtype=float).T
+        r2 = float(w @ np.sum(d * d, axis=1))
+        area = float(np.sum(n[on] / self.pressure[0][on]))
+        return {"nodes": int(on.sum()), "area_mm2": area, "centre_mm": centre.tolist(),
+                "hertz_radius_mm": math.sqrt(2.5 * r2)}
+
+    @property
     def peak_displacement(self) -> float:
         """The first load's half peak-to-peak work-conjugate displacement, mm."""
         return self.loads[0].peak_displacement
@@ -336,7 +357,7 @@ class MeshRunResult:
                 "cycles": self.cycles, "work_per_cycle_Nmm": self.work_per_cycle.tolist(),
                 "settled": self.settled, "gross_sliding": self.gross_sliding,
                 "dof": self.dof, "wall_s": self.wall_s, "warnings": list(self.warnings),
-                "message": self.message}
+                "message": self.message, "pressed": self.pressed}
 
 
 class _Run:
