@@ -475,13 +475,13 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
     if gap is not None and not penalty:
         released = gap > FLAT_TOL * size
-    if (gap is not None and released is not None and transform is None
+    if (gap is not None and released is not None and assembly.rigid_base_only
             and condensed is not False and n_all >= CONDENSE_MIN_DOF):
         # a curved face pressed under fixed contact: the active set on the condensed
         # candidates, the tangential loading on the pressing nodes (:mod:`.curved`)
         return _curved_model(mesh, assembly, element, k_all, contact, contact_nodes, area,
                              np.where(released, gap, 0.0), supports, full, newton, rotation,
-                             order, size, t0, inv, master, linear_solver)
+                             order, size, t0, inv, master, linear_solver, transform)
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
@@ -555,10 +555,12 @@ def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr
                   contact: IntArray, contact_nodes: IntArray, area: FloatArray,
                   gap: FloatArray, supports: IntArray | None, full: FloatArray,
                   newton: NewtonOptions, rotation: FloatArray, order: IntArray, size: float,
-                  t0: float, inv: IntArray, master: IntArray, linear_solver: str
-                  ) -> MeshModel:
-    """:func:`build_mesh_model` of a curved face under ``fixed`` normal contact
-    (:func:`~.curved.curved_clamping`)."""
+                  t0: float, inv: IntArray, master: IntArray, linear_solver: str,
+                  transform: sp.csr_matrix | None) -> MeshModel:
+    """:func:`build_mesh_model` of a curved face on the rigid base under ``fixed`` normal
+    contact (:func:`~.curved.curved_clamping`); ``k_all`` and ``full`` are already in the
+    model's unknowns (T^T K T, T^T f, with ``transform`` T, if any: constraints that keep
+    the contact nodes on the rigid base, as a refined mesh's hanging nodes)."""
     from .curved import curved_clamping, likely_contact
 
     xy = (mesh.nodes[contact_nodes] @ rotation.T)[:, :2]
@@ -583,7 +585,7 @@ def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr
         contact_stiffness=c.contact_stiffness, normal_force=c.normal,
         friction_limit=c.limit, clamp_load=c.clamp_load, u0=c.u, slip0=c.slip, size=size,
         clamp_iterations=c.iterations, backend=SpentBackend(name), setup_s=time.perf_counter()
-        - t0, newton=newton, reduced=c.reduced, transform=None,
+        - t0, newton=newton, reduced=c.reduced, transform=transform,
         contact_master=np.where(master >= 0, inv[master], -1))
 
 
