@@ -113,21 +113,32 @@ def test_a_linear_field_is_reproduced_exactly() -> None:
     assert np.allclose(np.asarray(r.prolongation.sum(axis=1)).ravel(), 1.0, atol=1e-15)
 
 
-@pytest.mark.parametrize("kind", ["C3D8", "C3D8I"])
-def test_patch_test_on_the_refined_distorted_mesh(kind: str) -> None:
-    """Linear displacement on the boundary: the interior nodes take it exactly."""
-    r = refine(_distorted(), 2).mesh
+def _patch_error(kind: str, n: int) -> float:
+    """Linear displacement on the boundary of the distorted mesh refined n times: the
+    interior nodes' largest error, relative."""
+    r = refine(_distorted(), n).mesh
     k = assemble_hex8(r.nodes, r.elements, 1000.0, 0.3, kind).tocsc()
     b = np.array([[1e-3, 2e-3, 0.0], [0.0, -1e-3, 5e-4], [3e-4, 0.0, 1e-3]])
     exact = (r.nodes @ b.T).ravel()
     # the nodes inside the body: on no outer face (the two parents' interiors and shared face)
     inner = np.flatnonzero(np.isin(np.arange(len(r.nodes)), _inner_nodes(r)))
-    assert len(inner) == 3  # 1 per parent interior + the shared face's centre
+    if n == 2:
+        assert len(inner) == 3  # 1 per parent interior + the shared face's centre
     free = np.concatenate([3 * inner + d for d in range(3)])
     fixed = np.setdiff1d(np.arange(3 * len(r.nodes)), free)
     u = exact.copy()
     u[free] = spla.spsolve(k[free][:, free], -k[free][:, fixed] @ exact[fixed])
-    assert np.allclose(u, exact, rtol=0, atol=1e-15)
+    return float(np.max(np.abs(u - exact)) / np.max(np.abs(exact)))
+
+
+def test_patch_test_on_the_refined_distorted_mesh() -> None:
+    """C3D8 takes a linear field exactly. C3D8I is CalculiX's (its incompatible modes' x-
+    derivatives with the centre Jacobian and no det J0 / det J factor, issue 33), which
+    passes the patch test on parallelepipeds only: on the distorted mesh its error falls
+    as h^2 under refinement (measured 1.2e-3, 2.5e-4, 5.6e-5 at n = 2, 4, 8)."""
+    assert _patch_error("C3D8", 2) < 1e-12
+    e2, e4 = _patch_error("C3D8I", 2), _patch_error("C3D8I", 4)
+    assert e2 < 2e-3 and e4 < 3.5e-4 and e2 / e4 > 3.5
 
 
 def _inner_nodes(mesh: HexMesh) -> np.ndarray:

@@ -26,6 +26,14 @@ Sets (node sets and element-face surfaces):
 ===============  =================================================================
 
 Element set ``BLOCK``: every element. Units: mm.
+
+``hertz_polar.inp`` (:func:`hertz_polar`, the Hertz-Mindlin test of issue 33): a 6 x 6 x 3 mm
+block with the same paraboloid, meshed for Mindlin's slip annulus: the plan is an O-grid
+whose rings are *circles* from r = 0.57 to 0.9 mm (the contact edge a = 0.753 mm of E = 70000,
+nu = 0.45, 500 N lies on them), 0.045 mm apart from the 0.3 mm central square (12 x 12
+elements) to r = 0.9 mm, then growing by 1.6 to the square outline; 48 elements around. The
+layers grow from 0.045 mm at the paraboloid by 1.6 to the top. Same sets (``bottom``,
+``top``, ``top_left``, ``top_right``) and element set ``BLOCK``. 10161 nodes.
 """
 
 from __future__ import annotations
@@ -120,10 +128,120 @@ def hertz_block() -> HexMesh:
                    element_sets={"BLOCK": np.arange(len(elements))})
 
 
+#: hertz_polar: plan half-width and height (mm), the central square's half-width (mm) and its
+#: elements across, where the fine circular rings end (mm), their spacing (mm), the growth of
+#: the rings beyond and of the layers, the rings over which the square turns into a circle.
+POLAR = {"half": 3.0, "height": 3.0, "core": 0.3, "core_elements": 12, "fine_to": 0.9,
+         "step": 0.045, "growth": 1.6, "layer_growth": 1.6, "blend": 6}
+
+
+def polar_stations(core: float, fine_to: float, step: float, half: float, growth: float
+                   ) -> np.ndarray:
+    """Ring radii: ``step`` apart from ``core`` to ``fine_to``, then growing by ``growth``;
+    the last is ``half``."""
+    r = [core]
+    while r[-1] < fine_to - 1e-9:
+        r.append(r[-1] + step)
+    h = step
+    while True:
+        h *= growth
+        if r[-1] + h >= half - 0.3 * h:
+            break
+        r.append(r[-1] + h)
+    r.append(half)
+    return np.array(r)
+
+
+def polar_plan(p: dict[str, float]) -> tuple[np.ndarray, np.ndarray]:
+    """The plan of :func:`hertz_polar`: nodes (m, 2) and counter-clockwise quadrilaterals. A
+    ring's node on the ray through the square's perimeter point u is r ((1 - w) u + w u/|u|):
+    w goes from 0 (a square, at the core) to 1 (a circle) over ``blend`` rings, and back to 0
+    (the square outline) beyond ``fine_to``."""
+    n = int(p["core_elements"])
+    s = np.linspace(-1.0, 1.0, n + 1)
+    s[n // 2] = 0.0
+    gx, gy = np.meshgrid(s, s, indexing="ij")
+    unit = np.stack([gx.ravel(), gy.ravel()], axis=1)
+    ids = np.arange((n + 1) ** 2).reshape(n + 1, n + 1)
+    quads = [np.stack([ids[:-1, :-1].ravel(), ids[1:, :-1].ravel(), ids[1:, 1:].ravel(),
+                       ids[:-1, 1:].ravel()], axis=1)]
+    ring = np.concatenate([ids[:-1, 0], ids[n, :-1], ids[:0:-1, n], ids[0, :0:-1]])
+    square = unit[ring]
+    circle = square / np.linalg.norm(square, axis=1)[:, None]
+    r = polar_stations(p["core"], p["fine_to"], p["step"], p["half"], p["growth"])
+    w = np.minimum(1.0, np.arange(r.size) / p["blend"])
+    beyond = r > p["fine_to"]
+    t = (r - p["fine_to"]) / (p["half"] - p["fine_to"])
+    w = np.where(beyond, np.clip(1.0 - t, 0.0, 1.0) ** 2, w)
+    nodes = [p["core"] * unit]
+    levels = [ring]
+    count = len(unit)
+    for j in range(1, r.size):
+        nodes.append(np.round(r[j] * (square * (1.0 - w[j]) + circle * w[j]), 12))
+        levels.append(count + np.arange(len(ring)))
+        count += len(ring)
+    lv = np.stack(levels)
+    nxt = np.roll(np.arange(len(ring)), -1)
+    for j in range(r.size - 1):
+        quads.append(np.stack([lv[j], lv[j + 1], lv[j + 1][nxt], lv[j][nxt]], axis=1))
+    xy = np.vstack(nodes)
+    q = np.vstack(quads)
+    pt = xy[q]
+    area = 0.5 * np.sum(pt[:, :, 0] * np.roll(pt[:, :, 1], -1, axis=1)
+                        - np.roll(pt[:, :, 0], -1, axis=1) * pt[:, :, 1], axis=1)
+    q[area < 0] = q[area < 0][:, ::-1]
+    return xy, q
+
+
+def _block(xy: np.ndarray, q: np.ndarray, t: np.ndarray, height: float, source: str
+           ) -> HexMesh:
+    """Columns of hexahedra over the plan (xy, q) from the paraboloid to the top z = height,
+    at the stations t (0 .. 1) of each column; the sets of the module docstring."""
+    m = len(xy)
+    layers = t.size - 1
+    bottom = (xy[:, 0] ** 2 + xy[:, 1] ** 2) / (2 * RADIUS)
+    z = bottom[None, :] + (height - bottom[None, :]) * t[:, None]
+    z[-1] = height
+    nodes = np.column_stack([np.tile(xy, (layers + 1, 1)), z.ravel()])
+    elements = np.vstack([np.hstack([q + k * m, q + (k + 1) * m]) for k in range(layers)])
+    layer = np.repeat(np.arange(layers + 1), m)
+    x = nodes[:, 0]
+    sets = {"bottom": np.flatnonzero(layer == 0), "top": np.flatnonzero(layer == layers),
+            "top_left": np.flatnonzero((layer == layers) & (x <= 0.0)),
+            "top_right": np.flatnonzero((layer == layers) & (x >= 0.0))}
+    mesh = HexMesh(nodes, elements, sets, source=source)
+    faces = {}
+    for name in sets:
+        f = mesh.faces(name)
+        faces[name] = f[boundary_faces(mesh, f)]
+    return HexMesh(nodes, elements, sets, faces, source=source,
+                   element_sets={"BLOCK": np.arange(len(elements))})
+
+
+def hertz_polar(p: dict[str, float] | None = None) -> HexMesh:
+    """The block of ``hertz_polar.inp`` (module docstring; ``p`` overrides :data:`POLAR`)."""
+    p = {**POLAR, **(p or {})}
+    xy, q = polar_plan(p)
+    z = [0.0]
+    h = p["step"]
+    while z[-1] + h < p["height"] - 0.3 * h:
+        z.append(z[-1] + h)
+        h *= p["layer_growth"]
+    z.append(p["height"])
+    return _block(xy, q, np.array(z) / p["height"], p["height"], "hertz_polar.inp")
+
+
 def write(directory: Path = HERE) -> Path:
     """Write ``hertz_block.inp`` into ``directory``; returns its path."""
     return write_inp(hertz_block(), Path(directory) / "hertz_block.inp")
 
 
+def write_polar(directory: Path = HERE) -> Path:
+    """Write ``hertz_polar.inp`` into ``directory``; returns its path."""
+    return write_inp(hertz_polar(), Path(directory) / "hertz_polar.inp")
+
+
 if __name__ == "__main__":
-    print(write(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE))
+    where = Path(sys.argv[1]) if len(sys.argv) > 1 else HERE
+    print(write(where))
+    print(write_polar(where))

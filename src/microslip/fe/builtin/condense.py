@@ -69,7 +69,9 @@ class DenseBackend:
 
 
 class _Interior:
-    """K_ii factorised once: banded Cholesky when the band is narrow, SuperLU otherwise."""
+    """K_ii factorised once: banded Cholesky when the band is narrow, SuperLU otherwise (with
+    the minimum-degree ordering of K + K^T and SuperLU's symmetric mode, about twice as fast
+    as its default COLAMD on a 40k-DOF hexahedral body)."""
 
     def __init__(self, k_ii: sp.csr_matrix, band_limit: int) -> None:
         coo = sp.tril(k_ii, format="coo")
@@ -131,6 +133,10 @@ class Reduced:
         Reduced clamping forces, N.
     u0 : ndarray, shape (m,)
         Reduced displacements after clamping, mm.
+    active : ndarray of int or None
+        The contact nodes (rows of the model's contact arrays) whose dofs are kept, in the
+        order of ``contact_dofs``; None: every contact node. The others carry no force (open
+        under ``fixed`` normal contact, :mod:`.curved`): they are part of the interior.
     """
 
     keep: IntArray = field(repr=False)
@@ -145,6 +151,7 @@ class Reduced:
     k_ci: sp.csr_matrix = field(repr=False)
     solver: _Interior = field(repr=False)
     clamp_interior: FloatArray = field(repr=False)
+    active: IntArray | None = field(default=None, repr=False)
 
     def load(self, p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """For a free-dof load vector p: the reduced load p_c - K_ci K_ii^-1 p_i, and (a, b)

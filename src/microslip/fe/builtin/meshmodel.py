@@ -8,10 +8,11 @@ of 8-node hexahedra:
   node-to-face areas and, under ``fixed`` normal contact, N_i from the recovered pressure);
 * a flat *contact* set on a rigid base: its nodes carry the circular Coulomb friction of
   :mod:`.contact` with the stick stiffness k_i = lambda A_i, A_i the node's share of the
-  contact faces' area (the consistent nodal shares of a uniform traction, as the box's
-  tributary areas); the normal contact is ``fixed`` (u_n = 0 held, N_i the normal reactions
-  of the clamping step) or ``penalty`` (N_i = k_n A_i max(0, -u_n), lift-off allowed),
-  exactly as :mod:`.normal`;
+  contact faces' area (CalculiX's node-to-surface share, a quarter of each face at each of
+  its corners: on a parallelogram the consistent share of a uniform traction, as the box's
+  tributary areas; :data:`LINEAR_CONTACT_WEIGHTS`); the normal contact is ``fixed``
+  (u_n = 0 held, N_i the normal reactions of the clamping step) or ``penalty``
+  (N_i = k_n A_i max(0, -u_n), lift-off allowed), exactly as :mod:`.normal`;
 * the *clamping step* first: a uniform pressure F_N / A_clamp on the clamp set's faces
   (consistent nodal forces, :func:`~microslip.fe.hexmesh.face_load`), with the friction
   active from zero slip (:func:`~microslip.fe.builtin.solve.clamping_step`).
@@ -62,6 +63,7 @@ from .solve import clamping_step, contact_partition
 __all__ = [
     "AUTO_BAND_LIMIT",
     "CONDENSE_MIN_DOF",
+    "LINEAR_CONTACT_WEIGHTS",
     "MESH_ELEMENTS",
     "MESH_LINEAR_SOLVERS",
     "MeshModel",
@@ -416,9 +418,10 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         small part of the body). Default: when the model has at least
         :data:`CONDENSE_MIN_DOF` free dofs and the contact at most a quarter of them.
     contact_weights : str
-        20-node meshes: the nodal areas of the quadratic contact faces, a name of
+        The nodal areas of the contact faces: on 20-node meshes a name of
         :data:`~microslip.fe.builtin.hex20.CONTACT_WEIGHTS` (default CalculiX's node-to-face
-        1/100 and 24/100 of each face's area).
+        1/100 and 24/100 of each face's area), on 8-node ones of
+        :data:`LINEAR_CONTACT_WEIGHTS` (default CalculiX's node-to-surface quarters).
 
     Returns
     -------
@@ -520,6 +523,13 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     released = None if penalty or quad is not None else np.zeros(contact.size, dtype=bool)
     if gap is not None and not penalty:
         released = gap > FLAT_TOL * size
+    if (gap is not None and released is not None and assembly.rigid_base_only
+            and condensed is not False and n_all >= CONDENSE_MIN_DOF):
+        # a curved face pressed under fixed contact: the active set on the condensed
+        # candidates, the tangential loading on the pressing nodes (:mod:`.curved`)
+        return _curved_model(mesh, assembly, element, k_all, contact, contact_nodes, area,
+                             np.where(released, gap, 0.0), supports, full, newton, rotation,
+                             order, size, t0, inv, master, linear_solver, transform)
     try:
         for _ in range(MAX_ACTIVE_SET):
             free, index, k_ff, k_rf, cdofs, kc, springs = contact_partition(
@@ -664,6 +674,44 @@ def _shanks(mesh: HexMesh, assembly: Assembly, nodes: FloatArray, inv: IntArray,
     return sp.csr_matrix(total)
 
 
+def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr_matrix,
+                  contact: IntArray, contact_nodes: IntArray, area: FloatArray,
+                  gap: FloatArray, supports: IntArray | None, full: FloatArray,
+                  newton: NewtonOptions, rotation: FloatArray, order: IntArray, size: float,
+                  t0: float, inv: IntArray, master: IntArray, linear_solver: str,
+                  transform: sp.csr_matrix | None) -> MeshModel:
+    """:func:`build_mesh_model` of a curved face on the rigid base under ``fixed`` normal
+    contact (:func:`~.curved.curved_clamping`); ``k_all`` and ``full`` are already in the
+    model's unknowns (T^T K T, T^T f, with ``transform`` T, if any: constraints that keep
+    the contact nodes on the rigid base, as a refined mesh's hanging nodes)."""
+    from .curved import curved_clamping, likely_contact
+
+    xy = (mesh.nodes[contact_nodes] @ rotation.T)[:, :2]
+    soft = min(m.modulus / (1.0 - m.poisson_ratio**2) for m in assembly.materials)
+    guess = likely_contact(xy, gap, soft, assembly.clamp_force)
+    try:
+        c = curved_clamping(k_all, contact, area, gap, supports, full, assembly.stick_slope,
+                            assembly.normal_slope, assembly.friction, assembly.clamp_force,
+                            newton, AUTO_BAND_LIMIT, mesh.source, MAX_ACTIVE_SET, guess)
+    except (np.linalg.LinAlgError, RuntimeError) as err:
+        raise ParameterError(
+            f"{mesh.source}: the body is not held after clamping (its stiffness is singular: "
+            f"{err}); the contact set {assembly.contact_set!r} must be the face on the base "
+            f"and the clamp set {assembly.clamp_set!r} must press the body onto it") from None
+    name = "banded" if c.reduced.solver.band is not None else "splu"
+    if linear_solver not in ("auto", name):
+        name = linear_solver
+    return MeshModel(
+        mesh=mesh, assembly=assembly, element=element, normal=None, rotation=rotation,
+        order=order, index=c.index, free=c.free, stiffness=c.stiffness,
+        contact_nodes=contact_nodes, contact_dofs=c.contact_dofs, contact_area=area,
+        contact_stiffness=c.contact_stiffness, normal_force=c.normal,
+        friction_limit=c.limit, clamp_load=c.clamp_load, u0=c.u, slip0=c.slip, size=size,
+        clamp_iterations=c.iterations, backend=SpentBackend(name), setup_s=time.perf_counter()
+        - t0, newton=newton, reduced=c.reduced, transform=transform,
+        contact_master=np.where(master >= 0, inv[master], -1))
+
+
 @dataclass(frozen=True)
 class MeshElements:
     """The elements of a mesh of n-node hexahedra: their names (the first the default), the
@@ -683,12 +731,48 @@ MESH_ELEMENTS = {8: MeshElements(("C3D8I", "C3D8"), hex8_b_matrices, assemble_he
                  20: MeshElements(tuple(HEX20_ELEMENTS), hex20_b_matrices, assemble_hex20)}
 
 
+def _quarters(mesh: HexMesh, faces: IntArray) -> tuple[IntArray, FloatArray]:
+    """CalculiX's node-to-surface areas of 4-node faces: a quarter of each face's area
+    (2 x 2 Gauss points) at each of its corners, summed over a node's faces."""
+    corners = mesh.face_corners(faces)
+    nodes = np.unique(corners).astype(np.int64)
+    x = mesh.nodes[corners]  # (k, 4, 3)
+    g = np.array([-1.0, 1.0]) / np.sqrt(3.0)
+    area = np.zeros(len(faces))
+    for xi in g:
+        for eta in g:
+            dxi = 0.25 * np.array([-(1 - eta), 1 - eta, 1 + eta, -(1 + eta)])
+            deta = 0.25 * np.array([-(1 - xi), -(1 + xi), 1 + xi, 1 - xi])
+            t1 = np.einsum("m,kmc->kc", dxi, x)
+            t2 = np.einsum("m,kmc->kc", deta, x)
+            area += np.linalg.norm(np.cross(t1, t2), axis=1)
+    at = np.searchsorted(nodes, corners.ravel())
+    quarter = np.bincount(at, weights=np.repeat(area / 4.0, 4), minlength=nodes.size)
+    return nodes, np.asarray(quarter, dtype=float)
+
+
+#: Nodal areas A_i of the contact nodes of 4-node faces: name -> description. They differ
+#: where a face is not a parallelogram (an unstructured or graded mesh; issue 33: on a gmsh
+#: plate up to 18 % at a node and 5 % in W).
+LINEAR_CONTACT_WEIGHTS = {
+    "calculix": "CalculiX node-to-surface: a quarter of each face's area at each corner "
+                "(the built-in solver's nodal law is CalculiX's, node for node)",
+    "consistent": "the consistent shares of a uniform traction, integral of N_i dA",
+}
+
+
 def _contact_areas(mesh: HexMesh, faces: IntArray, weights: str
                    ) -> tuple[IntArray, FloatArray, QuadContact | None]:
     """The contact nodes, their areas A_i (mm^2) and (20-node faces) what recovers their
-    normal forces (:class:`~.hex20.QuadContact`); None for 4-node faces, whose consistent
-    shares are the areas (:func:`~microslip.fe.hexmesh.face_load`)."""
+    normal forces (:class:`~.hex20.QuadContact`); None for 4-node faces, whose areas are
+    named by :data:`LINEAR_CONTACT_WEIGHTS`."""
     if mesh.nodes_per_element == 8:
+        if weights not in LINEAR_CONTACT_WEIGHTS:
+            raise ParameterError(f"unknown contact weights {weights!r} for 4-node faces; "
+                                 f"choose one of {', '.join(LINEAR_CONTACT_WEIGHTS)}")
+        if weights == "calculix":
+            nodes, area = _quarters(mesh, faces)
+            return nodes, area, None
         nodes, share, total = face_load(mesh, faces)
         return nodes, share * total, None
     fn = face_nodes20(mesh.elements, faces)

@@ -20,6 +20,7 @@ load step of the box, for one). Units: N, mm, N·mm; time in cycles.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -325,6 +326,26 @@ class MeshRunResult:
         return int(self.work_per_cycle.size)
 
     @property
+    def pressed(self) -> dict[str, Any]:
+        """The contact patch at the first state (the clamped one when the loads start at 0):
+        its pressing nodes (N_i > 0), their area (mm^2), the pressure's centre (mm, global)
+        and the radius of the Hertz pressure p0 sqrt(1 - r^2/a^2) of the same second moment
+        about that centre, a = sqrt(5/2 sum N_i r_i^2 / sum N_i) (mm; a patch's size, Hertz's
+        contact radius where the contact is Hertz's: issue 33)."""
+        n = np.asarray(self.normal_force[0], dtype=float)
+        on = n > 0.0
+        if not np.any(on):
+            return {"nodes": 0, "area_mm2": 0.0, "centre_mm": None, "hertz_radius_mm": 0.0}
+        x = self.contact.coords[on]
+        w = n[on] / n[on].sum()
+        centre = w @ x
+        d = (x - centre) @ np.asarray(self.tangent_axes, dtype=float).T
+        r2 = float(w @ np.sum(d * d, axis=1))
+        area = float(np.sum(n[on] / self.pressure[0][on]))
+        return {"nodes": int(on.sum()), "area_mm2": area, "centre_mm": centre.tolist(),
+                "hertz_radius_mm": math.sqrt(2.5 * r2)}
+
+    @property
     def peak_displacement(self) -> float:
         """The first load's half peak-to-peak work-conjugate displacement, mm."""
         return self.loads[0].peak_displacement
@@ -337,7 +358,7 @@ class MeshRunResult:
                 "cycles": self.cycles, "work_per_cycle_Nmm": self.work_per_cycle.tolist(),
                 "settled": self.settled, "gross_sliding": self.gross_sliding,
                 "dof": self.dof, "wall_s": self.wall_s, "warnings": list(self.warnings),
-                "message": self.message}
+                "message": self.message, "pressed": self.pressed}
 
 
 class _Run:
@@ -367,11 +388,15 @@ class _Run:
             k, backend, cdofs, normal = red.stiffness, red.backend, red.contact_dofs, red.normal
             clamp, u0 = red.clamp_load, red.u0
         self.clamp = clamp
-        self.stepper = _Stepper(k, backend, cdofs, model.contact_stiffness,
-                                model.friction_limit, model.newton, model.force_scale, normal,
-                                None if normal is None else model.friction)
+        #: contact nodes the stepper sees (None: all); the others are open (:mod:`.curved`)
+        self.active = None if red is None else red.active
+        kc, limit, slip0 = model.contact_stiffness, model.friction_limit, model.slip0
+        if self.active is not None:
+            kc, limit, slip0 = kc[self.active], limit[self.active], slip0[self.active]
+        self.stepper = _Stepper(k, backend, cdofs, kc, limit, model.newton, model.force_scale,
+                                normal, None if normal is None else model.friction)
         self.normal_springs = normal
-        self.u, self.slip = u0.copy(), model.slip0.copy()
+        self.u, self.slip = u0.copy(), slip0.copy()
         self.base = [float(p @ self.u) for p in self.weights]
         self.last = tuple(0.0 for _ in full)
         self.d: list[FloatArray] = []
@@ -428,6 +453,12 @@ class _Run:
                                         for p, b in zip(self.weights, self.base, strict=True)])
                               + self.coupling @ np.array(new))
                 status = np.where(step.response.slipping, SLIP, STICK).astype(np.int8)
+                slip = self.slip
+                if self.active is not None:  # the open nodes: no force, slip not followed
+                    status = np.full(model.contact_nodes.size, OPEN, dtype=np.int8)
+                    status[self.active] = np.where(step.response.slipping, SLIP, STICK)
+                    slip = model.slip0.copy()
+                    slip[self.active] = self.slip
                 if self.normal_springs is not None:
                     n = self.normal_springs.forces(self.u)
                     status[n <= 0.0] = OPEN
@@ -435,7 +466,7 @@ class _Run:
                 else:  # fixed: the nodes the clamping step released stay open
                     status[~model.closed] = OPEN
                 self.status.append(status)
-                self.slips.append(self.slip.copy())
+                self.slips.append(slip.copy())
                 if self.record:
                     self.fields.append(self.full_field(self.u, new))
         self.wall += time.perf_counter() - t0
