@@ -12,7 +12,9 @@ pressure: the rigid flat's normal-tangential coupling is (1 - 2 nu), 0.1 here.
 
 The mesh: ``tests/data/meshes/hertz_polar.inp`` (make_hertz.py's :func:`hertz_polar`:
 circular rings 0.045 mm apart through the contact edge, a / 17). Measured there (docs and
-benchmarks/hertz_mindlin.py): a -0.17 %, W +1.2 % at Q/(mu P) = 0.5 and -1.7 % at 0.8.
+benchmarks/hertz_mindlin.py): a -0.16 %, W +1.3 % at Q/(mu P) = 0.5 and -1.7 % at 0.8. With
+nu = 0.3 the same mesh gives a -3.4 %, W +12.6 % and +5.0 %: the frictional normal loading and
+the rigid flat's (1 - 2 nu) coupling, which Mindlin leaves out (docs/interpretation.md §25).
 """
 
 from __future__ import annotations

@@ -110,8 +110,8 @@ def test_c3d8i_is_calculix_on_the_unstructured_plate(tmp_path: Path) -> None:
 
 @pytest.mark.slow
 @pytest.mark.ccx
-def test_validate_mesh_passes_on_the_unstructured_plate(capsys: pytest.CaptureFixture[str]
-                                                        ) -> None:
+def test_validate_mesh_passes_on_the_unstructured_plate(capsys: pytest.CaptureFixture[str],
+                                                        tmp_path: Path) -> None:
     """The issue's check on the unstructured plate: node to surface, penalty 1e5, the paper's
     history (a quarter-cycle rise, one cycle): W and d within validate's tolerances
     (measured before the fix: W +2.5 %)."""
@@ -119,7 +119,7 @@ def test_validate_mesh_passes_on_the_unstructured_plate(capsys: pytest.CaptureFi
                    "--clamp-set", "washer", "--normal-force", 8000, "--load", "end:1,0,0:400",
                    "--modulus", 210000, "--poisson-ratio", 0.3, "--friction", 0.5,
                    "--normal-contact", "penalty", "--normal-slope", 1e5, "--history", "paper",
-                   "--no-progress")
+                   "--no-progress", "--out", tmp_path)
     rel = out["relative_difference"]
     assert abs(rel["dissipated_energy_Nmm"]) < 0.01, rel
     assert abs(rel["peak_displacement_mm"]) < 1e-3, rel
