@@ -25,6 +25,7 @@ from ..fe.clamp import MeshClamp
 
 if TYPE_CHECKING:
     from ..fe.builtin.meshmodel import MeshModel
+    from .limits import GridLimit
     from ..fe.hexmesh import HexMesh
     from .modes import Mode, Modes
     from .reduce import Rom
@@ -38,6 +39,7 @@ __all__ = [
     "PreparedStructure",
     "StructureCase",
     "amplitude_grid",
+    "limited_grid",
     "prepare_structure",
     "structure_rom",
 ]
@@ -76,6 +78,9 @@ class StructureCase:
         ``hex20`` runs an 8-node mesh as 20-node hexahedra
         (:func:`~microslip.fe.promote.as_element`), ``hex8`` refuses a 20-node mesh; None:
         as the file.
+    yield_strength : float, optional
+        MPa (> 0): the automatic amplitude grid stops where the studied stuck mode's
+        largest von Mises stress reaches it (:mod:`.limits`); None: at the size limit only.
     """
 
     mesh: Any
@@ -87,9 +92,13 @@ class StructureCase:
     backbone: str = "fe"
     interface_modes: int = DEFAULT_INTERFACE_MODES
     element: str | None = None
+    yield_strength: float | None = None
 
     def __post_init__(self) -> None:
         from ..fe.assembly import as_assembly
+        from .limits import check_yield_strength
+
+        object.__setattr__(self, "yield_strength", check_yield_strength(self.yield_strength))
 
         object.__setattr__(self, "clamp", as_assembly(self.clamp))
         try:
@@ -215,9 +224,21 @@ def amplitude_grid(prepared: PreparedStructure, count: int,
     """The modal forces q and the amplitudes (mm) of the one grid of a modal study.
 
     From first slip to near gross sliding (:func:`~microslip.meshdynamics.qsma.
-    qsma_amplitudes`), or log-uniform over ``amplitude_range`` (mm). Linear through the stuck
-    mode, the response set's amplitude is a = q r / omega^2 at modal force q (r its motion
-    per unit modal coordinate)."""
+    qsma_amplitudes`) but no further than the physical limits of :func:`~.limits.grid_limit`
+    (:func:`limited_grid`), or log-uniform over ``amplitude_range`` (mm). Linear through the
+    stuck mode, the response set's amplitude is a = q r / omega^2 at modal force q (r its
+    motion per unit modal coordinate)."""
+    forces, amplitudes, _, _ = limited_grid(prepared, count, amplitude_range)
+    return forces, amplitudes
+
+
+def limited_grid(prepared: PreparedStructure, count: int,
+                 amplitude_range: tuple[float, float] | None = None
+                 ) -> tuple[np.ndarray, np.ndarray, GridLimit, tuple[str, ...]]:
+    """:func:`amplitude_grid` with its limits (:class:`~.limits.GridLimit`) and what the
+    limits did to it, in words: the automatic grid's top lowered to the limit (issue 34
+    item 2), or a first slip already past it (the grid then kept, and said)."""
+    from .limits import grid_limit
     from .qsma import qsma_amplitudes
 
     if isinstance(count, bool) or not isinstance(count, int | np.integer) or not (
@@ -230,13 +251,25 @@ def amplitude_grid(prepared: PreparedStructure, count: int,
         2 * math.pi * mode.frequency_Hz) ** 2
     if amplitude_range is None:
         forces = qsma_amplitudes(prepared.model, mode, count)
-        return forces, forces * scale
+        limit = grid_limit(prepared)
+        cap = limit.limit_mm / scale
+        notes: tuple[str, ...] = ()
+        if forces[-1] > cap and forces[0] < cap:
+            notes = (f"the automatic grid stops at a = {limit.limit_mm:.4g} mm "
+                     f"({limit.reason}), not at {forces[-1] * scale:.4g} mm near gross "
+                     "sliding",)
+            forces = np.geomspace(forces[0], cap, count) if count > 1 else forces
+        elif forces[-1] > cap:
+            notes = (f"first slip, at a = {forces[0] * scale:.4g} mm, is already past the "
+                     f"limit of {limit.limit_mm:.4g} mm ({limit.reason}): the whole "
+                     "microslip range of this mode is outside the linear model",)
+        return forces, forces * scale, limit, notes
     lo, hi = amplitude_range
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
         raise ParameterError(f"amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
                              f"{lo:g} {hi:g}")
     amplitudes = np.geomspace(lo, hi, count)
-    return amplitudes / scale, amplitudes
+    return amplitudes / scale, amplitudes, grid_limit(prepared), ()
 
 
 def structure_rom(prepared: PreparedStructure, output_sets: Sequence[str] = ()) -> Rom:

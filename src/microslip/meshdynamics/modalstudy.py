@@ -28,13 +28,14 @@ from .case import (
     OnStructure,
     PreparedStructure,
     StructureCase,
-    amplitude_grid,
+    limited_grid,
     prepare_structure,
     structure_rom,
 )
 from .verdict_modal import modal_verdict
 
 if TYPE_CHECKING:
+    from .limits import GridLimit
     from .studyresult import StudyResult
 
 __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "TRUTH", "MeshCurve",
@@ -43,7 +44,8 @@ __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "TRUTH", 
 
 #: Keys of a solver's JSON that the study gives, the same for every solver: written once.
 SHARED = ("mesh", "mode", "label", "density_kg_m3", "amplitude_coordinate",
-          "linear_frequencies_Hz", "free_frequencies_Hz", "modes")
+          "linear_frequencies_Hz", "free_frequencies_Hz", "modes", "amplitude_limit",
+          "model")
 #: The solver every other is judged against.
 TRUTH = "fe"
 #: Progress of the full FE's amplitudes: (done, total, seconds left).
@@ -88,12 +90,16 @@ class ModalStudy(OnStructure):
 
     ``forces`` are the QSMA's modal forces q; ``amplitudes`` (mm) are the same levels mapped
     through the stuck mode (a = q r / omega^2, r the response set's motion per unit modal
-    coordinate), or the settings' ``amplitude_range`` itself."""
+    coordinate), or the settings' ``amplitude_range`` itself. ``limit`` is the grid's
+    physical limit (:class:`~.limits.GridLimit`: small rotations, the elastic limit) and
+    ``notes`` what it did to the automatic grid (issue 34 item 2)."""
 
     prepared: PreparedStructure
     settings: ModalSettings
     forces: np.ndarray = field(repr=False)
     amplitudes: np.ndarray = field(repr=False)
+    limit: GridLimit | None = None
+    notes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -340,10 +346,10 @@ def prepare_modal(case: StructureCase, settings: ModalSettings | None = None) ->
     everything the solvers share."""
     settings = ModalSettings() if settings is None else settings
     prepared = prepare_structure(case)
-    forces, amplitudes = amplitude_grid(prepared, settings.amplitudes,
-                                        settings.amplitude_range)
+    forces, amplitudes, limit, notes = limited_grid(prepared, settings.amplitudes,
+                                                    settings.amplitude_range)
     return ModalStudy(prepared=prepared, settings=settings, forces=forces,
-                      amplitudes=amplitudes)
+                      amplitudes=amplitudes, limit=limit, notes=notes)
 
 
 def run_solvers(study: ModalStudy, solvers: Sequence[str] = tuple(MESH_SOLVERS),
@@ -384,16 +390,29 @@ def _failed(study: ModalStudy, why: str) -> MeshCurve:
                      warnings=[why], failures=(why,))
 
 
-def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, Any]:
-    """The JSON of one solver's curve on the study."""
+def study_output(study: ModalStudy, solver: str, curve: MeshCurve,
+                 notes: bool = True) -> dict[str, Any]:
+    """The JSON of one solver's curve on the study: its warnings with the validity ones
+    (:func:`~.limits.result_warnings`) and, with ``notes``, what the grid's limit did."""
+    from .limits import result_warnings
+
     prepared = study.prepared
+    warnings = list(curve.warnings)
+    if study.limit is not None:
+        warnings += result_warnings(study.limit, curve.values["amplitude_mm"],
+                                    curve.values["damping_ratio"],
+                                    len(study.case.clamp.shanks))
     return {"mesh": study.case.mesh_name, "solver": solver, "mode": study.number,
             "label": study.mode.label, "density_kg_m3": study.case.density,
             "amplitude_coordinate": RESPONSE_SET_COORDINATE,
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
-            "modes": prepared.stuck.summary(), **curve.values, **curve.extra,
-            "cost_s": curve.cost_s, "warnings": curve.warnings}
+            "modes": prepared.stuck.summary(),
+            "amplitude_limit": None if study.limit is None else study.limit.summary(),
+            "model": prepared.model.describe(),
+            **curve.values, **curve.extra,
+            "cost_s": curve.cost_s,
+            "warnings": [*(study.notes if notes else ()), *warnings]}
 
 
 def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str, Any]:
@@ -401,7 +420,8 @@ def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str,
     (name -> that solver's own keys, as one solver's JSON has them), ``verdicts`` (name ->
     :meth:`~microslip.meshdynamics.verdict_modal.ModalVerdict.summary`, every solver but the
     full FE) and ``warnings`` (every solver's, each line led by its name)."""
-    outputs = {name: study_output(study, name, curve) for name, curve in curves.items()}
+    outputs = {name: study_output(study, name, curve, notes=False)
+               for name, curve in curves.items()}
     first = next(iter(outputs.values()))
     out: dict[str, Any] = {k: first[k] for k in SHARED}
     out["solvers"] = {name: {k: v for k, v in o.items() if k not in (*SHARED, "solver")}
@@ -410,8 +430,8 @@ def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str,
     out["verdicts"] = ({} if truth is None else
                        {name: _verdict(name, truth, o, curves[name].failures)
                         for name, o in out["solvers"].items() if name != TRUTH})
-    out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
-                       for w in o["warnings"]]
+    out["warnings"] = [*study.notes, *(f"{name}: {w}" for name, o in out["solvers"].items()
+                                       for w in o["warnings"])]
     return out
 
 
