@@ -306,14 +306,17 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
 
 
 def curve_json(c: Any, study: FrfStudy) -> dict[str, Any]:
-    """One force level's curve as JSON, with its peak's equivalent damping ratio (None when
-    the largest amplitude is at an end of the range)."""
-    inside = bool(c.frequency[0] < c.peak_frequency < c.frequency[-1])
+    """One force level's curve as JSON, with its peak's equivalent damping ratio (None, and
+    ``peak_in_range`` False, when the largest amplitude is at an end of the range: no peak,
+    its ``peak_*`` then the largest point's)."""
+    inside = bool(c.frequency.size > 2 and c.frequency[0] < c.peak_frequency
+                  < c.frequency[-1])
     zeta = (equivalent_damping(c.force, study.modal_force, study.response_motion,
                                c.peak_frequency, c.peak_amplitude) if inside else None)
     return {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
             "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
-            "damping_ratio": zeta, "points": int(c.frequency.size), "success": c.success,
+            "peak_in_range": inside, "damping_ratio": zeta,
+            "points": int(c.frequency.size), "success": c.success,
             "message": c.message}
 
 
@@ -323,7 +326,8 @@ def curve_warnings(curves: list[Any]) -> list[str]:
     for c in curves:
         if not c.success:
             out.append(f"curve at {c.force:g} N stopped early: {c.message}")
-        if not c.frequency[0] < c.peak_frequency < c.frequency[-1]:
+        if not (c.frequency.size > 2 and c.frequency[0] < c.peak_frequency
+                < c.frequency[-1]):
             out.append(f"curve at {c.force:g} N: the largest amplitude is at an end of the "
                        "frequency range, not a peak (no damping ratio); widen "
                        "--frequency-range")
@@ -350,7 +354,8 @@ def _head(study: FrfStudy) -> dict[str, Any]:
             "density_kg_m3": study.case.density,
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
-            "response_set": study.case.response_set}
+            "response_set": study.case.response_set,
+            "model": prepared.model.describe()}
 
 
 def _load(study: FrfStudy) -> dict[str, Any]:
