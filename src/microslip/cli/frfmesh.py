@@ -129,7 +129,7 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     harmonics, samples = balance_from_args(args)
     frange = None if args.frequency_range is None else check_range(*args.frequency_range)
     settings = FrfSettings(harmonics=harmonics, samples=samples, frequency_range=frange,
-                           step=args.step)
+                           step=args.step, damping_ratio=args.damping_ratio or 0.0)
     with flagged():
         study = prepare_frf(case, args.load_set, direction)
     solver = args.solver or "rom"

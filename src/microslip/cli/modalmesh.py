@@ -89,7 +89,8 @@ def modal_settings(args: argparse.Namespace) -> ModalSettings:
                              amplitude_range=(None if args.amplitude_range is None
                                               else tuple(args.amplitude_range)),
                              harmonics=harmonics, samples=samples,
-                             workers=args.workers or 1, scheduler=args.scheduler)
+                             workers=args.workers or 1, scheduler=args.scheduler,
+                             damping_ratio=args.damping_ratio or 0.0)
 
 
 def mesh_study(args: argparse.Namespace) -> ModalStudy:

@@ -40,6 +40,7 @@ __all__ = [
     "StructureCase",
     "amplitude_grid",
     "limited_grid",
+    "modal_damping",
     "prepare_structure",
     "structure_rom",
 ]
@@ -289,3 +290,36 @@ def set_rows(rom: Rom, name: str, response_set: str | None) -> np.ndarray:
         assert rom.output is not None
         return np.asarray(rom.output)
     return np.asarray(rom.outputs[name])
+
+
+def check_damping_ratio(value: Any) -> float:
+    """A structural (modal) damping ratio in [0, 1), dimensionless."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        x = math.nan
+    if isinstance(value, bool) or not (math.isfinite(x) and 0.0 <= x < 1.0):
+        raise ParameterError(f"damping ratio must be in [0, 1), got {value!r}")
+    return x
+
+
+def modal_damping(structure: Any, zeta: float) -> Any:
+    """``structure`` (:class:`~microslip.dynamics.structure.Structure`) with the structural
+    damping that gives each of its stuck linear modes the ratio ``zeta``: C = M Phi diag(2
+    zeta omega_i) Phi^T M over the modes of K + the joints' stuck stiffness (mass-normalised
+    Phi), added to its own C. In the stuck limit a mode's EPMC damping ratio is then its own
+    plus ``zeta`` exactly; with slip, approximately (the slipping shape mixes modes, each
+    damped at its own omega_i)."""
+    from dataclasses import replace
+
+    from scipy.linalg import eigh
+
+    zeta = check_damping_ratio(zeta)
+    if zeta == 0.0:
+        return structure
+    m = np.asarray(structure.mass, dtype=float)
+    lam, phi = eigh(structure.stuck_stiffness(), m)
+    omega = np.sqrt(np.maximum(lam, 0.0))
+    mp = m @ phi
+    c = (mp * (2.0 * zeta * omega)) @ mp.T
+    return replace(structure, damping=np.asarray(structure.damping) + 0.5 * (c + c.T))

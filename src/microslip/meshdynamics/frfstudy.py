@@ -73,14 +73,20 @@ REFERENCE = "rom"
 class FrfSettings:
     """The forced response's settings: the balance (``harmonics``, ``samples`` per period),
     the sweep (``frequency_range`` in Hz, default :data:`MESH_RANGE` times the mode's stuck
-    frequency) and the continuation ``step`` (None: the continuation's default)."""
+    frequency), the continuation ``step`` (None: the continuation's default) and a structural
+    (modal) ``damping_ratio`` in [0, 1) given to every stuck mode of the solver's model
+    (:func:`~.case.modal_damping`)."""
 
     harmonics: int = DEFAULT_MESH_HARMONICS
     samples: int = DEFAULT_HB_SAMPLES
     frequency_range: tuple[float, float] | None = None
     step: float | None = None
+    damping_ratio: float = 0.0
 
     def __post_init__(self) -> None:
+        from .case import check_damping_ratio
+
+        object.__setattr__(self, "damping_ratio", check_damping_ratio(self.damping_ratio))
         check_balance(self.harmonics, self.samples)
         if self.frequency_range is not None:
             lo, hi = self.frequency_range
@@ -297,6 +303,15 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
     runs = {}
     for name in solvers:
         forced = FRF_MESH_SOLVERS[name].build(study, rom)
+        if settings.damping_ratio:
+            from dataclasses import replace
+
+            from .case import modal_damping
+
+            forced = replace(forced, structure=modal_damping(forced.structure,
+                                                             settings.damping_ratio),
+                             label=f"{forced.label} + structural damping ratio "
+                                   f"{settings.damping_ratio:g} on every mode")
         levels = forces if each is None else each(name, forces)
         runs[name] = (forced, [
             frequency_response(forced.structure, f, forced.load, frange, settings.harmonics,
@@ -376,7 +391,8 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
                 **{k: v for k, v in head.items() if k != "mesh"},
                 "response_direction": [float(v) for v in study.mode.direction],
                 "load": _load(study), "harmonics": harmonics, "samples": samples,
-                "frequency_range_Hz": frange, **forced.extra,
+                "frequency_range_Hz": frange,
+                "structural_damping_ratio": settings.damping_ratio, **forced.extra,
                 "curves": [curve_json(c, study) for c in curves],
                 "damping_ratio_definition": DAMPING_DEFINITION,
                 "warnings": curve_warnings(curves)}
@@ -391,7 +407,9 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
     return {"mesh": head["mesh"], "solver": "all",
             **{k: v for k, v in head.items() if k != "mesh"},
             "load": _load(study), "harmonics": harmonics, "samples": samples,
-            "frequency_range_Hz": frange, "solvers": solvers, "reference": REFERENCE,
+            "frequency_range_Hz": frange,
+            "structural_damping_ratio": settings.damping_ratio, "solvers": solvers,
+            "reference": REFERENCE,
             "comparison": comparison, "damping_ratio_definition": DAMPING_DEFINITION,
             "warnings": [f"{n}: {w}" for n, s in solvers.items() for w in s["warnings"]]}
 

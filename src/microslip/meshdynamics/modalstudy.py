@@ -45,7 +45,7 @@ __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "TRUTH", 
 #: Keys of a solver's JSON that the study gives, the same for every solver: written once.
 SHARED = ("mesh", "mode", "label", "density_kg_m3", "amplitude_coordinate",
           "linear_frequencies_Hz", "free_frequencies_Hz", "modes", "amplitude_limit",
-          "model")
+          "model", "structural_damping_ratio")
 #: The solver every other is judged against.
 TRUTH = "fe"
 #: Progress of the full FE's amplitudes: (done, total, seconds left).
@@ -56,9 +56,11 @@ Progress = Callable[[int, int, float], None]
 class ModalSettings:
     """The solvers' settings of a modal study: the amplitude grid (``amplitudes`` of them,
     first slip to near gross sliding, or log-uniform over ``amplitude_range``, mm), the
-    harmonic balance of the ROM and the whole joint (``harmonics``, ``samples`` per period)
-    and where the full FE's independent amplitudes run (``workers`` local processes, or a
-    Dask ``scheduler`` address)."""
+    harmonic balance of the ROM and the whole joint (``harmonics``, ``samples`` per period),
+    where the full FE's independent amplitudes run (``workers`` local processes, or a
+    Dask ``scheduler`` address) and a structural (modal) ``damping_ratio`` in [0, 1) added to
+    every model (:func:`~.case.modal_damping`; the full FE's QSMA adds it to its friction's
+    ratio, energy for energy)."""
 
     amplitudes: int = 8
     amplitude_range: tuple[float, float] | None = None
@@ -66,8 +68,12 @@ class ModalSettings:
     samples: int = DEFAULT_HB_SAMPLES
     workers: int = 1
     scheduler: str | None = None
+    damping_ratio: float = 0.0
 
     def __post_init__(self) -> None:
+        from .case import check_damping_ratio
+
+        object.__setattr__(self, "damping_ratio", check_damping_ratio(self.damping_ratio))
         n = self.amplitudes
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or not (
                 1 <= n <= MAX_AMPLITUDES):
@@ -157,6 +163,9 @@ def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     curve = qsma(model, study.mode, cast(Any, study.forces), workers=study.settings.workers,
                  scheduler=study.settings.scheduler, progress=progress)
     s = curve.summary()
+    zeta0 = study.settings.damping_ratio  # structural damping: W_s = 4 pi zeta0 U, added
+    s["damping_ratio"] = [z + zeta0 if z is not None and math.isfinite(z) else z
+                          for z in s["damping_ratio"]]
     columns = {"amplitude_mm": BASE_COLUMNS["amplitude_mm"],
                "frequency_Hz": BASE_COLUMNS["frequency_Hz"],
                "secant_frequency_Hz": ("f_sec (Hz)", "{:12.7g}"),
@@ -166,8 +175,11 @@ def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     # the slip pattern: the contact nodes in the contact plane (mm), slipped or not per amplitude
     xy = model.mesh.nodes[model.contact_nodes] @ model.rotation.T
     pattern = {"x_mm": xy[:, 0].tolist(), "y_mm": xy[:, 1].tolist(),
-               "slipped": [p.node_slipped.tolist() for p in curve.points]}
-    return MeshCurve(label="quasi-static modal analysis of the full FE", columns=columns,
+               "slipped": [p.node_slipped.tolist() for p in curve.points],
+               "open": [(p.node_open if p.node_open.size else
+                         np.zeros(xy.shape[0], dtype=bool)).tolist() for p in curve.points]}
+    return MeshCurve(label="quasi-static modal analysis of the full FE" + _damped(study),
+                     columns=columns,
                      values=values, extra={"modal_force": s["force"], "slip_pattern": pattern},
                      warnings=list(s["warnings"]))
 
@@ -178,15 +190,19 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from ..dynamics.modal_odd import epmc_odd
     from .reduce import rom_structure
 
+    from .case import modal_damping
+
     mode, s = study.mode, study.settings
-    structure = rom_structure(rom, mode.direction @ _output(rom))
+    structure = modal_damping(rom_structure(rom, mode.direction @ _output(rom)),
+                              s.damping_ratio)
     method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
     failures: list[str] = []  # an amplitude not reached is NaN, its reason a warning
     curve = method(structure, np.asarray(study.amplitudes), s.harmonics, s.samples,
                    study.number - 1, failures=failures)
     count = len(study.prepared.stuck.frequencies_Hz)
     return MeshCurve(
-        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
+        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)"
+              + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
                                                curve.amplitude)),
@@ -197,6 +213,12 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
                        "contact_nodes": len(rom.slip_force), "harmonics": curve.harmonics,
                        "samples": curve.samples}},
         warnings=failures, failures=tuple(failures))
+
+
+def _damped(study: ModalStudy) -> str:
+    """The label's note of a structural damping ratio (none: nothing)."""
+    zeta = study.settings.damping_ratio
+    return f" + structural damping ratio {zeta:g} on every mode" if zeta else ""
 
 
 def _output(rom: Any) -> Any:
@@ -217,12 +239,12 @@ def _interface(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCu
     model, curve = interface_epmc(
         study.prepared.model, case.density, study.mode, study.amplitudes, s.harmonics,
         s.samples, response_set=case.response_set, rom_modes=case.rom_modes,
-        interface_modes=case.interface_modes, rom=rom)
+        interface_modes=case.interface_modes, rom=rom, damping_ratio=s.damping_ratio)
     count = len(study.prepared.stuck.frequencies_Hz)
     return MeshCurve(
         label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
               f"{model.interface_modes} interface modes for {model.contact_nodes} "
-              f"contact nodes, {curve.harmonics} harmonics)",
+              f"contact nodes, {curve.harmonics} harmonics)" + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": [float(a) for a in curve.amplitude],
                 "frequency_Hz": [float(f) for f in curve.frequency],
@@ -244,8 +266,11 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from .wholejoint import build_whole_joint, whole_joint_epmc
 
     mode, s = study.mode, study.settings
+    from .case import modal_damping
+
     joint = build_whole_joint(rom, study.prepared.model, mode, mode.direction @ _output(rom),
                               backbone=study.case.backbone)
+    joint = replace(joint, structure=modal_damping(joint.structure, s.damping_ratio))
     curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), s.harmonics,
                                      s.samples, mode.frequency_Hz)
     stuck = float(joint.stuck_frequencies()[joint.mode_index(mode.frequency_Hz)])
@@ -262,7 +287,8 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     return MeshCurve(
         label=f"EPMC on the whole-joint (pull-test) model ({joint.structure.dofs} DOF, "
               f"{curve.harmonics} harmonics; stuck {stuck:.6g} Hz, "
-              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)",
+              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)"
+              + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
                                                curve.amplitude)),
@@ -410,6 +436,7 @@ def study_output(study: ModalStudy, solver: str, curve: MeshCurve,
             "modes": prepared.stuck.summary(),
             "amplitude_limit": None if study.limit is None else study.limit.summary(),
             "model": prepared.model.describe(),
+            "structural_damping_ratio": study.settings.damping_ratio,
             **curve.values, **curve.extra,
             "cost_s": curve.cost_s,
             "warnings": [*(study.notes if notes else ()), *warnings]}
