@@ -13,7 +13,7 @@ import numpy as np
 from ..meshdynamics.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
 from .core import COLOURS, displacement_scale, log_ticks, new_figure, pyplot, save_figure
 
-__all__ = ["compare_figure", "node_states", "plot_compare", "plot_mesh_loops", "plot_qsma",
+__all__ = ["compare_figure", "mesh_loops_figure", "node_states", "plot_compare", "plot_mesh_loops", "plot_qsma",
            "slip_snapshots"]
 
 #: Slip-pattern panels of the side-by-side figure (at the FE's first, middle and last
@@ -25,6 +25,12 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
                     path: str | os.PathLike[str], title: str = "") -> None:
     """``loops``: (set name, force N, displacement mm) per load; ``works``: each load's work
     over the cycle, N·mm (in the legend)."""
+    save_figure(mesh_loops_figure(loops, works, title), path)
+
+
+def mesh_loops_figure(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float],
+                      title: str = "") -> Any:
+    """The figure of :func:`plot_mesh_loops`, unsaved."""
     fig, axes = new_figure(ncols=len(loops), width_mm=75.0)
     for k, ((name, force, disp), work) in enumerate(zip(loops, works, strict=True)):
         ax = axes[0][k]
@@ -36,7 +42,7 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
         ax.legend(loc="upper left", fontsize="small")
     if title:
         fig.suptitle(title)
-    save_figure(fig, path)
+    return fig
 
 
 def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
