@@ -17,12 +17,12 @@ import pytest
 from scipy import sparse as sp
 
 from microslip.cli.main import main
+from microslip.errors import ParameterError
 from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.builtin.meshrun import solve_mesh
 from microslip.fe.builtin.solve import contact_partition
 from microslip.fe.meshfile import read_mesh
-from microslip.errors import ParameterError
 from microslip.fe.meshload import MeshLoad
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     from ..fe import SOLVERS
     from ..io import check_writable
     from ..models import check_increments
-    from ..report import ReportSettings, compute_report, report_json, write_report
+    from ..report import MeshReport, ReportSettings, compute_report, report_json, write_report
     from .common import print_json
 
     if args.out is None and not args.json:
@@ -86,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(report_json(data) | {"case_file": args.report_case, "page": args.out})
         return 0
-    if mesh_case:
+    if isinstance(data, MeshReport):
         return _print_mesh(args, data)
     print(f"report of case {args.report_case}: {data.model} model, F0 = {data.amplitude:.6g} N "
           f"(macroslip {data.macroslip:.6g} N), "

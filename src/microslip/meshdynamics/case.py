@@ -25,8 +25,8 @@ from ..fe.clamp import MeshClamp
 
 if TYPE_CHECKING:
     from ..fe.builtin.meshmodel import MeshModel
-    from .limits import GridLimit
     from ..fe.hexmesh import HexMesh
+    from .limits import GridLimit
     from .modes import Mode, Modes
     from .reduce import Rom
 

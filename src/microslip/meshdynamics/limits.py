@@ -32,7 +32,8 @@ if TYPE_CHECKING:
     from ..fe.builtin.meshmodel import MeshModel
     from .case import PreparedStructure
 
-__all__ = ["RESULT_MARGIN", "SIZE_FRACTION", "VALIDITY_DAMPING", "GridLimit", "check_yield_strength",
+__all__ = ["RESULT_MARGIN", "SIZE_FRACTION", "VALIDITY_DAMPING", "GridLimit",
+           "check_yield_strength",
            "grid_limit", "mode_stress", "result_warnings"]
 
 #: The automatic grid's top at most this fraction of the part's largest extent (mm / mm).
@@ -148,8 +149,8 @@ def grid_limit(prepared: PreparedStructure) -> GridLimit:
 def result_warnings(limit: GridLimit, amplitude: Sequence[float | None],
                     damping_ratio: Sequence[float | None], shanks: int = 0) -> list[str]:
     """The validity warnings of one curve: amplitudes past ``limit`` (by more than
-    :data:`RESULT_MARGIN`: small rotations, the elastic limit), damping ratios above :data:`VALIDITY_DAMPING` (``shanks``: the
-    assembly's bolt shanks)."""
+    :data:`RESULT_MARGIN`: small rotations, the elastic limit), damping ratios above
+    :data:`VALIDITY_DAMPING` (``shanks``: the assembly's bolt shanks)."""
     out: list[str] = []
     a = np.array([np.nan if x is None else x for x in amplitude], dtype=float)
     z = np.array([np.nan if x is None else x for x in damping_ratio], dtype=float)

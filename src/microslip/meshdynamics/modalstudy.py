@@ -188,9 +188,8 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     """EPMC on the contact-node ROM at the grid's amplitudes."""
     from ..dynamics.modal import epmc
     from ..dynamics.modal_odd import epmc_odd
-    from .reduce import rom_structure
-
     from .case import modal_damping
+    from .reduce import rom_structure
 
     mode, s = study.mode, study.settings
     structure = modal_damping(rom_structure(rom, mode.direction @ _output(rom)),
@@ -427,7 +426,7 @@ def study_output(study: ModalStudy, solver: str, curve: MeshCurve,
     if study.limit is not None:
         warnings += result_warnings(study.limit, curve.values["amplitude_mm"],
                                     curve.values["damping_ratio"],
-                                    len(study.case.clamp.shanks))
+                                    len(getattr(study.case.clamp, "shanks", ())))
     return {"mesh": study.case.mesh_name, "solver": solver, "mode": study.number,
             "label": study.mode.label, "density_kg_m3": study.case.density,
             "amplitude_coordinate": RESPONSE_SET_COORDINATE,

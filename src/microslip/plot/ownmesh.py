@@ -13,7 +13,8 @@ import numpy as np
 from ..meshdynamics.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
 from .core import COLOURS, displacement_scale, log_ticks, new_figure, pyplot, save_figure
 
-__all__ = ["compare_figure", "mesh_loops_figure", "node_states", "plot_compare", "plot_mesh_loops", "plot_qsma",
+__all__ = ["compare_figure", "mesh_loops_figure", "node_states", "plot_compare",
+           "plot_mesh_loops", "plot_qsma",
            "slip_snapshots"]
 
 #: Slip-pattern panels of the side-by-side figure (at the FE's first, middle and last

@@ -6,7 +6,8 @@ loads, the checks, the structure's modes; the page :mod:`~microslip.report.meshh
 bar (:mod:`~microslip.report.compute`: 1-D loops, damping against amplitude, the 1-D versus
 FE comparison, the validity indicators of :mod:`microslip.models.validity`, the planar
 coupling where the case gives a ratio), drawn by :mod:`~microslip.report.figures` (SVG) on
-the page of :mod:`~microslip.report.html`. The page has no script and nothing from the network: it reads the same offline.
+the page of :mod:`~microslip.report.html`. The page has no script and nothing from the
+network: it reads the same offline.
 Distinct from :mod:`microslip.reproduce`, which reproduces the paper's figures.
 """
 

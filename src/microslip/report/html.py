@@ -136,9 +136,11 @@ def _planar(data: ReportData) -> str:
                       "resultant models; load path in the force plane (N)."))
 
 
-def _structure(data: ReportData) -> str:
+def _structure(data: Any) -> str:
     """The damping of the structure's mode on the case's mesh: every solver side by side, the
-    verdicts, the figure; or what the case lacks for it."""
+    verdicts, the figure; or what the case lacks for it (``data``: a bar's
+    :class:`ReportData` or a mesh case's :class:`~.mesh.MeshReport`, their ``structure``
+    and ``case``)."""
     out = data.structure
     if out is None and "mesh.file" in data.case.values:
         return (f'<p class="note">The case\'s mesh {_e(str(data.case.values["mesh.file"]))} '

@@ -57,5 +57,7 @@ def case_density(case: Case, assembly: Assembly) -> float | None:
     every one gives it; None: no structure to study."""
     if "mesh.density" in case.values:
         return float(case.values["mesh.density"])
-    own = [m.density for m in assembly.materials]
-    return float(own[0]) if own and all(d is not None for d in own) else None
+    own = [m.density for m in assembly.materials if m.density is not None]
+    if not own or len(own) < len(assembly.materials):
+        return None
+    return float(own[0])

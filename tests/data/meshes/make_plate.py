@@ -35,7 +35,7 @@ def plate(out: str) -> None:
     e = 1e-6
     groups: dict[str, list[int]] = {"contact": [], "washer": [], "tip": []}
     for _, s in gmsh.model.getEntities(2):
-        x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(2, s)
+        x0, _, z0, x1, _, z1 = gmsh.model.getBoundingBox(2, s)
         if abs(z0) < e and abs(z1) < e and x1 <= 25 + e:
             groups["contact"].append(s)
         if abs(z0 - 4) < e and abs(z1 - 4) < e and x0 >= 6.5 - e and x1 <= 18.5 + e:
