@@ -140,3 +140,28 @@ def test_the_fe_curve_carries_the_validity_warnings() -> None:
     assert out["amplitude_limit"]["size_mm"] == pytest.approx(100.0)
     assert max(z for z in out["damping_ratio"] if z is not None) < 0.10
     assert not any("above 10 %" in w for w in out["warnings"])
+
+
+def test_a_forced_peak_damped_above_10_percent_is_warned() -> None:
+    """frf's peak equivalent damping ratio zeta = F m_f r / (2 omega^2 a) above 10 %: the
+    same validity warning as the modal curves'."""
+    from types import SimpleNamespace
+
+    from microslip.meshdynamics.frfstudy import curve_warnings, equivalent_damping
+
+    f = np.array([90.0, 100.0, 110.0])
+    study = SimpleNamespace(modal_force=1.0, response_motion=1.0,
+                            case=SimpleNamespace(clamp=SimpleNamespace(shanks=())))
+    omega = 2 * np.pi * 100.0
+
+    def curve(zeta: float) -> SimpleNamespace:
+        a = 1.0 / (2 * omega**2 * zeta)  # the peak that zeta gives at F = 1 N
+        return SimpleNamespace(force=1.0, frequency=f, amplitude=0.5 * a + 0 * f,
+                               peak_frequency=100.0,
+                               peak_amplitude=a, success=True, message="")
+
+    assert equivalent_damping(1.0, 1.0, 1.0, 100.0, curve(0.2).peak_amplitude) == (
+        pytest.approx(0.2))
+    assert curve_warnings([curve(0.05)], study) == []  # type: ignore[arg-type]
+    (w,) = curve_warnings([curve(0.2)], study)  # type: ignore[arg-type]
+    assert w.startswith("curve at 1 N: damping ratio up to 20 %") and "gross sliding" in w

@@ -335,10 +335,20 @@ def curve_json(c: Any, study: FrfStudy) -> dict[str, Any]:
             "message": c.message}
 
 
-def curve_warnings(curves: list[Any]) -> list[str]:
-    """A curve that stopped early, or whose largest amplitude is not a peak."""
+def curve_warnings(curves: list[Any], study: FrfStudy | None = None) -> list[str]:
+    """A curve that stopped early, or whose largest amplitude is not a peak; with the
+    ``study``, a peak's equivalent damping ratio above 10 % (:func:`~.limits.damping_warning`:
+    near gross sliding, outside the model's validity)."""
+    from .limits import VALIDITY_DAMPING, damping_warning
+
     out = []
     for c in curves:
+        if study is not None:
+            zeta = curve_json(c, study)["damping_ratio"]
+            if zeta is not None and zeta > VALIDITY_DAMPING:
+                out.append(f"curve at {c.force:g} N: " + damping_warning(
+                    zeta, f"the peak at {c.peak_amplitude:.4g} mm",
+                    len(getattr(study.case.clamp, "shanks", ()))))
         if not c.success:
             out.append(f"curve at {c.force:g} N stopped early: {c.message}")
         if not (c.frequency.size > 2 and c.frequency[0] < c.peak_frequency
@@ -395,10 +405,10 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
                 "structural_damping_ratio": settings.damping_ratio, **forced.extra,
                 "curves": [curve_json(c, study) for c in curves],
                 "damping_ratio_definition": DAMPING_DEFINITION,
-                "warnings": curve_warnings(curves)}
+                "warnings": curve_warnings(curves, study)}
     solvers = {name: {**forced.extra, "label": forced.label,
                       "curves": [curve_json(c, study) for c in curves],
-                      "warnings": curve_warnings(curves)}
+                      "warnings": curve_warnings(curves, study)}
                for name, (forced, curves) in runs.items()}
     ref = solvers[REFERENCE]["curves"]
     comparison = {name: [peak_comparison(r, o) for r, o in zip(ref, s["curves"], strict=True)]

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from .case import PreparedStructure
 
 __all__ = ["RESULT_MARGIN", "SIZE_FRACTION", "VALIDITY_DAMPING", "GridLimit",
-           "check_yield_strength",
+           "check_yield_strength", "damping_warning",
            "grid_limit", "mode_stress", "result_warnings"]
 
 #: The automatic grid's top at most this fraction of the part's largest extent (mm / mm).
@@ -162,11 +162,17 @@ def result_warnings(limit: GridLimit, amplitude: Sequence[float | None],
     high = np.isfinite(z) & (z > VALIDITY_DAMPING)
     if np.any(high):
         k = int(np.nanargmax(np.where(high, z, np.nan)))
-        held = ("the assembly's bolt shank(s) hold the part in the plane" if shanks else
-                "no bolt shank holds the part (the preload is a pressure on faces): it "
-                "turns on friction alone")
-        out.append(f"damping ratio up to {100 * z[k]:.3g} % (a = {a[k]:.4g} mm) is above "
-                   f"{100 * VALIDITY_DAMPING:g} %: the interface is near gross sliding and "
-                   f"{held}; outside the model's validity, the real joint's damping there "
-                   "depends on what holds the part")
+        out.append(damping_warning(float(z[k]), f"a = {a[k]:.4g} mm", shanks))
     return out
+
+
+def damping_warning(zeta: float, where: str, shanks: int = 0) -> str:
+    """The warning on a damping ratio ``zeta`` above :data:`VALIDITY_DAMPING` (``where``:
+    the amplitude or force it was found at)."""
+    held = ("the assembly's bolt shank(s) hold the part in the plane" if shanks else
+            "no bolt shank holds the part (the preload is a pressure on faces): it turns on "
+            "friction alone")
+    return (f"damping ratio up to {100 * zeta:.3g} % ({where}) is above "
+            f"{100 * VALIDITY_DAMPING:g} %: the interface is near gross sliding and {held}; "
+            "outside the model's validity, the real joint's damping there depends on what "
+            "holds the part")
