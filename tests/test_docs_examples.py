@@ -177,6 +177,38 @@ def test_ownmesh_python_example_runs(tmp_path, monkeypatch, capsys):
     assert "(response_set)" in out and "F 1 N: peak" in out
 
 
+#: The part of the "From Python" example: its first statements up to the structure's
+#: preparation; the rest is the same for any part.
+OWNMESH_PART = re.compile(r"^mesh = ms\.read_mesh.*?(?=^s = ms\.prepare_structure)", re.M | re.S)
+#: A new user's part in its place (issue 34 item 7): the steel plate on a washer of
+#: tests/data/meshes/plate.msh, its in-plane mode, a force (20 N) whose peak the friction
+#: softens below the default range (its damping ratio None: the example crashed with a
+#: TypeError on it).
+PLATE_PART = """mesh = ms.read_mesh("tests/data/meshes/plate.msh")
+clamp = ms.MeshClamp("contact", "washer", normal_force=8000.0, modulus=210000.0,
+                     poisson_ratio=0.3, friction=0.5, stick_slope=1e4)
+case = ms.StructureCase(mesh, clamp, density=7850.0, mode=2, response_set="response",
+                        rom_modes=20)
+forces = [1.0, 20.0]
+"""
+
+
+@pytest.mark.slow
+def test_ownmesh_python_example_runs_on_another_part(monkeypatch, capsys):
+    """The same example, its part replaced by the plate: every statement after the part runs
+    on it as written, the level without a peak is said, not a TypeError."""
+    (code,) = [b for b in _python_blocks("ownmesh.md") if "StructureCase" in b]
+    assert len(OWNMESH_PART.findall(code)) == 1
+    code = OWNMESH_PART.sub(PLATE_PART, code)
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "ownmesh.md python block on the plate", "exec"), {})
+    out = capsys.readouterr().out
+    assert "mode 2: bending in the contact plane" in out
+    assert "contact: 63 nodes" in out and "washer 101.8 mm^2" in out
+    assert "F 1 N: peak" in out and "zeta" in out
+    assert "F 20 N: no peak in" in out
+
+
 @pytest.mark.slow
 def test_ownmesh_assembly_example_runs(tmp_path, monkeypatch, capsys):
     """docs/ownmesh.md's assembly example (the bolted lap with a shank, 150 N lateral: past

@@ -17,6 +17,7 @@ import pytest
 from scipy import sparse as sp
 
 from microslip.cli.main import main
+from microslip.errors import ParameterError
 from microslip.fe.assembly import rigid_base
 from microslip.fe.builtin.meshmodel import MeshModel, build_mesh_model
 from microslip.fe.builtin.meshrun import solve_mesh
@@ -146,3 +147,24 @@ def test_fixed_bracket_qsma_is_stuck_below_first_slip_and_counts_open_nodes_apar
     assert p.open_fraction == pytest.approx(area[~m.closed].sum() / area.sum(), rel=1e-12)
     assert not np.any(p.node_slipped[~m.closed])
     assert 0.0 < p.slip_fraction < 0.2
+
+
+def test_hex20_fixed_on_a_lifting_part_is_refused_in_one_line_naming_why_and_the_way_out(
+        ) -> None:
+    """Issue 34 item 6: hex8's active set does not carry to 20-node faces (their N_i are the
+    face's recovered pressure, shared among its nodes: releasing node by node on them cycles
+    on the lap and the bracket), so hex20 with fixed contact on a part that lifts off is one
+    line that says why and names the two runs that work; both of them do run."""
+    from microslip.fe.promote import as_element
+
+    mesh = as_element(read_mesh(EXAMPLES / "bracket.inp"), "hex20")
+    with pytest.raises(ParameterError, match=r"non-positive normal force at \d+ of 253 .*"
+                       r"20-node faces cannot release them.*--element hex8.*penalty"):
+        build_mesh_model(mesh, rigid_base(**CLAMP))
+    code, out, err = _cli(["fe", "--mesh", str(EXAMPLES / "bracket.inp"), *CLI,
+                           "--element", "hex20", "--load", "top:1,0,0:100"])
+    assert code == 1 and out == "" and len(err.strip().splitlines()) == 1
+    assert "20-node faces cannot release them" in err
+    penalty = build_mesh_model(mesh, rigid_base(**CLAMP, normal_contact="penalty"))
+    assert not np.all(penalty.closed)
+    assert int(np.count_nonzero(~fixed("bracket.inp").closed)) == 49

@@ -40,12 +40,19 @@ response_set = "response"
 
 
 def test_the_case_gives_the_structure_of_modal_mesh() -> None:
-    """The case file's [mesh] as the library's typed case (no command line forged)."""
+    """The case file's [mesh] as the library's typed case (no command line forged): the
+    assembly ``modal --case`` builds, the material carrying [mesh] density as there."""
+    from dataclasses import replace
+
+    from microslip.fe.assembly import as_assembly
+
     case = case_structure(parse_case(_toml(CASE), "dir/case.toml"))
     assert case is not None and case.mesh.endswith("dir/cantilever.inp")
-    assert case == StructureCase(case.mesh, MeshClamp(
-        "contact", "clamp", normal_force=2000.0, modulus=70000.0, poisson_ratio=0.33,
-        friction=0.5, stick_slope=1e4), density=2700.0, mode=2, response_set="response")
+    clamp = as_assembly(MeshClamp("contact", "clamp", normal_force=2000.0, modulus=70000.0,
+                                  poisson_ratio=0.33, friction=0.5, stick_slope=1e4))
+    clamp = replace(clamp, materials=(replace(clamp.materials[0], density=2700.0),))
+    assert case == StructureCase(case.mesh, clamp, density=2700.0, mode=2,
+                                 response_set="response")
     # no density: no structure section
     assert case_structure(parse_case(_toml(CASE.replace("density = 2700\n", "")))) is None
 

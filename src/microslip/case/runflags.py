@@ -214,4 +214,7 @@ RUN_OPTIONS: tuple[Option, ...] = (
            "its mesh: full FE, contact-node ROM and whole joint side by side", "", "",
            type=None, action=argparse.BooleanOptionalAction),
     _flag("no_fe", "leave the FE runs out (faster)"),
+    _flag("bar", "a case of your own mesh: add the 1-D bar report of the case's preset or "
+          "[geometry] beside the part's (its loops, damping, the 1-D model against the box "
+          "FE); without it the page is about the mesh alone"),
 )

@@ -214,6 +214,12 @@ _OPTIONS: tuple[Option, ...] = (
            f"[{DENSITY_RANGE[0]:g}, {DENSITY_RANGE[1]:g}]", metavar="KG/M3",
            key="mesh.density", check=density,
            scope="mesh", case_note="with it, report adds the damping of the structure's mode"),
+    Option("yield_strength", "yield strength of the part's material: the automatic "
+           "amplitude grid of modal --mesh stops where the studied stuck mode's largest von "
+           "Mises stress reaches it (without it, at a hundredth of the part's largest "
+           "extent)", "MPa", "> 0",
+           metavar="MPA", key="material.yield_strength", check=positive("MPa"),
+           scope="mesh"),
     Option("mode", "the structure's mode followed, 1-based by stuck frequency (1: the lowest "
            "stuck mode)", "", f"[1, {MAX_MODE}]", type=int, metavar="N", key="mesh.mode",
            check=whole(1, MAX_MODE), scope="mesh", case_default=1),

@@ -252,6 +252,8 @@ def mesh_template(mesh_file: str, offer: MeshOffer) -> MeshTemplate:
             elif key.dotted in CLAMP_KEYS:
                 value = base[CLAMP_KEYS[key.dotted]]
                 note = f"no default: set to {TEMPLATE_PRESET}'s {value:g} as an example, edit it"
+            elif key.default is None:  # optional, nothing assumed (yield_strength)
+                value, active, note = None, False, "default: none"
             else:
                 value, note = key.default, f"default: {key.default:g}"
             lines.append(_mesh_line(key, value, active, note))

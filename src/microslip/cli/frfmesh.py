@@ -35,7 +35,7 @@ from .meshstructure import (
     check_mesh_structure,
     structure_case,
 )
-from .ownmesh import given, verb
+from .ownmesh import given, print_model, verb
 
 __all__ = ["MESH_RANGE", "add_frf_mesh_options", "check_range", "refuse_frf_mesh_options",
            "run_frf_mesh"]
@@ -129,7 +129,7 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
     harmonics, samples = balance_from_args(args)
     frange = None if args.frequency_range is None else check_range(*args.frequency_range)
     settings = FrfSettings(harmonics=harmonics, samples=samples, frequency_range=frange,
-                           step=args.step)
+                           step=args.step, damping_ratio=args.damping_ratio or 0.0)
     with flagged():
         study = prepare_frf(case, args.load_set, direction)
     solver = args.solver or "rom"
@@ -162,6 +162,7 @@ def run_frf_mesh(args: argparse.Namespace, levels: list[float]) -> int:
           f"free {out['free_frequencies_Hz'][study.number - 1]:.6g} Hz; {forced.label}, "
           f"{harmonics} harmonic(s); load on {study.load_set!r}, "
           f"{lo:.6g} to {hi:.6g} Hz")
+    print_model(out["model"])
     print(f"{'force (N)':>12} {'peak a (mm)':>14} {'peak f (Hz)':>14} {'zeta (-)':>12} "
           f"{'points':>7}")
     for c in out["curves"]:
@@ -180,6 +181,7 @@ def _print_all(args: argparse.Namespace, study: Any, out: dict[str, Any]) -> int
     lo, hi = out["frequency_range_Hz"]
     print(f"mesh {args.mesh}: mode {study.number} ({out['label']}); load on "
           f"{study.load_set!r}, {lo:.6g} to {hi:.6g} Hz, {out['harmonics']} harmonic(s)")
+    print_model(out["model"])
     print(f"{'solver':>8} {'force (N)':>10} {'peak a (mm)':>13} {'peak f (Hz)':>13} "
           f"{'zeta (-)':>10}")
     for name, s in out["solvers"].items():

@@ -131,7 +131,8 @@ def structure_case(args: argparse.Namespace) -> StructureCase:
         ("mode", getattr(args, "mode", None)), ("rom_modes", getattr(args, "rom_modes", None)),
         ("backbone", getattr(args, "backbone", None)),
         ("interface_modes", getattr(args, "interface_modes", None)),
-        ("element", getattr(args, "mesh_element", None))) if v is not None}
+        ("element", getattr(args, "mesh_element", None)),
+        ("yield_strength", getattr(args, "yield_strength", None))) if v is not None}
     with flagged():
         return StructureCase(args.mesh, assembly, density=density,
                              response_set=args.response_set, **optional)

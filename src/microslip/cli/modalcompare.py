@@ -16,7 +16,7 @@ from ..meshdynamics.modalstudy import ModalStudy, compare_all
 from ..meshdynamics.verdict_modal import DAMPING_CEILING, DAMPING_FLOOR
 from .common import print_json
 from .convergence import frequency_convergence
-from .modalmesh import curve_table, headline, progress_printer
+from .modalmesh import curve_table, headline, print_study_model, progress_printer
 
 __all__ = ["run_modal_all"]
 
@@ -40,6 +40,7 @@ def run_modal_all(study: ModalStudy, args: Any) -> int:
         print_json(out)
         return 0
     print(headline(study, out, "every solver on the same amplitude grid"))
+    print_study_model(out)
     for name, curve in curves.items():
         print(f"\n{name}: {curve.label}")
         print("\n".join(curve_table(out["solvers"][name], curve)))

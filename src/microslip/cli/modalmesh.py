@@ -46,6 +46,7 @@ def add_modal_mesh_options(p: argparse.ArgumentParser) -> None:
     add_reduced_model_options(g)
     add_option(g, "interface_modes", mode=MODE_MESH,
                note=f"interface; default {DEFAULT_INTERFACE_MODES}")
+    add_option(g, "yield_strength", mode=MODE_MESH)
     add_option(g, "workers", note="default 1", mode=MODE_MESH)
     add_option(g, "scheduler", help="a Dask scheduler (tcp://HOST:8786) to run the amplitudes "
                                     "on", mode=MODE_MESH)
@@ -88,7 +89,8 @@ def modal_settings(args: argparse.Namespace) -> ModalSettings:
                              amplitude_range=(None if args.amplitude_range is None
                                               else tuple(args.amplitude_range)),
                              harmonics=harmonics, samples=samples,
-                             workers=args.workers or 1, scheduler=args.scheduler)
+                             workers=args.workers or 1, scheduler=args.scheduler,
+                             damping_ratio=args.damping_ratio or 0.0)
 
 
 def mesh_study(args: argparse.Namespace) -> ModalStudy:
@@ -143,8 +145,19 @@ def run_modal_mesh(args: argparse.Namespace) -> int:
         print_json(out)
         return 0
     print(headline(study, out, curve.label))
+    print_study_model(out)
     print("\n".join(curve_table(out, curve) + table))
     return 0
+
+
+def print_study_model(out: dict[str, Any]) -> None:
+    """What the study built (:func:`.ownmesh.print_model`) and where its amplitudes stop."""
+    from .ownmesh import print_model
+
+    print_model(out["model"])
+    lim = out.get("amplitude_limit")
+    if lim is not None:
+        print(f"  amplitude limit        {lim['limit_mm']:.4g} mm ({lim['reason']})")
 
 
 def headline(study: ModalStudy, out: dict[str, Any], what: str) -> str:

@@ -87,7 +87,9 @@ def add_structure_options(parser: argparse.ArgumentParser) -> None:
     add_option(given, "frequency", mode=NOT_MESH)
     add_option(given, "stuck_frequency", mode=NOT_MESH)
     add_option(g, "modal_mass", mode=NOT_MESH)
-    add_option(g, "damping_ratio", note="default 0", mode=NOT_MESH)
+    add_option(g, "damping_ratio", note="default 0; with --mesh FILE: a structural (modal) "
+               "damping ratio given to every stuck mode of every model (the full FE's QSMA "
+               "adds it to the friction's)")
     add_option(g, "participation", note="default 1", mode=NOT_MESH)
     f = parser.add_argument_group("structure: matrices from a file (SI: kg, N/m, N s/m)")
     add_option(f, "structure", note="see docs/dynamics.md", mode=NOT_MESH)

@@ -106,11 +106,26 @@ def _run_mesh(args: argparse.Namespace) -> int:
     result = compare_on_mesh(case, args.out,
                              formulation=args.contact_formulation or DEFAULT_FORMULATION,
                              progress=not args.no_progress)
+    model = _case_model(result)
+    if model is not None:
+        result = {"mesh": result["mesh"], "model": model,
+                  **{k: v for k, v in result.items() if k not in ("mesh", "model")}}
     if args.json:
         print_json(result)
     else:
         _print_mesh(result, args.out)
     return mesh_status(args, result)
+
+
+def _case_model(result: dict[str, Any]) -> dict[str, Any] | None:
+    """What the built-in solver built for the case as given (issue 34 item 5): its run of
+    the case's own normal contact (``fixed``: the run beside the hard contact), else the
+    compared run's."""
+    normal = result.get("normal_contact") or {}
+    for run in (normal.get("fixed_builtin"), result.get("builtin")):
+        if isinstance(run, dict) and "model" in run:
+            return dict(run["model"])
+    return None
 
 
 def mesh_status(args: argparse.Namespace, result: dict[str, Any]) -> int:
@@ -134,6 +149,10 @@ def _print_mesh(result: dict[str, Any], out: str) -> None:
           f"{result['increments_per_cycle']} increments, normal slope "
           f"{result['normal_slope_N_per_mm3']:g} N/mm^3, stick slope "
           f"{result['stick_slope_N_per_mm3']:g} N/mm^3 on both")
+    if "model" in result:
+        from .ownmesh import print_model
+
+        print_model(result["model"])
     normal = result.get("normal_contact") or {}
     if normal.get("reason"):
         print(f"  normal contact: the case's {normal['case']}; {normal['reason']}")

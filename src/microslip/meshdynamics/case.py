@@ -26,6 +26,7 @@ from ..fe.clamp import MeshClamp
 if TYPE_CHECKING:
     from ..fe.builtin.meshmodel import MeshModel
     from ..fe.hexmesh import HexMesh
+    from .limits import GridLimit
     from .modes import Mode, Modes
     from .reduce import Rom
 
@@ -38,6 +39,8 @@ __all__ = [
     "PreparedStructure",
     "StructureCase",
     "amplitude_grid",
+    "limited_grid",
+    "modal_damping",
     "prepare_structure",
     "structure_rom",
 ]
@@ -76,6 +79,9 @@ class StructureCase:
         ``hex20`` runs an 8-node mesh as 20-node hexahedra
         (:func:`~microslip.fe.promote.as_element`), ``hex8`` refuses a 20-node mesh; None:
         as the file.
+    yield_strength : float, optional
+        MPa (> 0): the automatic amplitude grid stops where the studied stuck mode's
+        largest von Mises stress reaches it (:mod:`.limits`); None: at the size limit only.
     """
 
     mesh: Any
@@ -87,9 +93,13 @@ class StructureCase:
     backbone: str = "fe"
     interface_modes: int = DEFAULT_INTERFACE_MODES
     element: str | None = None
+    yield_strength: float | None = None
 
     def __post_init__(self) -> None:
         from ..fe.assembly import as_assembly
+        from .limits import check_yield_strength
+
+        object.__setattr__(self, "yield_strength", check_yield_strength(self.yield_strength))
 
         object.__setattr__(self, "clamp", as_assembly(self.clamp))
         try:
@@ -215,9 +225,21 @@ def amplitude_grid(prepared: PreparedStructure, count: int,
     """The modal forces q and the amplitudes (mm) of the one grid of a modal study.
 
     From first slip to near gross sliding (:func:`~microslip.meshdynamics.qsma.
-    qsma_amplitudes`), or log-uniform over ``amplitude_range`` (mm). Linear through the stuck
-    mode, the response set's amplitude is a = q r / omega^2 at modal force q (r its motion
-    per unit modal coordinate)."""
+    qsma_amplitudes`) but no further than the physical limits of :func:`~.limits.grid_limit`
+    (:func:`limited_grid`), or log-uniform over ``amplitude_range`` (mm). Linear through the
+    stuck mode, the response set's amplitude is a = q r / omega^2 at modal force q (r its
+    motion per unit modal coordinate)."""
+    forces, amplitudes, _, _ = limited_grid(prepared, count, amplitude_range)
+    return forces, amplitudes
+
+
+def limited_grid(prepared: PreparedStructure, count: int,
+                 amplitude_range: tuple[float, float] | None = None
+                 ) -> tuple[np.ndarray, np.ndarray, GridLimit, tuple[str, ...]]:
+    """:func:`amplitude_grid` with its limits (:class:`~.limits.GridLimit`) and what the
+    limits did to it, in words: the automatic grid's top lowered to the limit (issue 34
+    item 2), or a first slip already past it (the grid then kept, and said)."""
+    from .limits import grid_limit
     from .qsma import qsma_amplitudes
 
     if isinstance(count, bool) or not isinstance(count, int | np.integer) or not (
@@ -230,13 +252,25 @@ def amplitude_grid(prepared: PreparedStructure, count: int,
         2 * math.pi * mode.frequency_Hz) ** 2
     if amplitude_range is None:
         forces = qsma_amplitudes(prepared.model, mode, count)
-        return forces, forces * scale
+        limit = grid_limit(prepared)
+        cap = limit.limit_mm / scale
+        notes: tuple[str, ...] = ()
+        if forces[-1] > cap and forces[0] < cap:
+            notes = (f"the automatic grid stops at a = {limit.limit_mm:.4g} mm "
+                     f"({limit.reason}), not at {forces[-1] * scale:.4g} mm near gross "
+                     "sliding",)
+            forces = np.geomspace(forces[0], cap, count) if count > 1 else forces
+        elif forces[-1] > cap:
+            notes = (f"first slip, at a = {forces[0] * scale:.4g} mm, is already past the "
+                     f"limit of {limit.limit_mm:.4g} mm ({limit.reason}): the whole "
+                     "microslip range of this mode is outside the linear model",)
+        return forces, forces * scale, limit, notes
     lo, hi = amplitude_range
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
         raise ParameterError(f"amplitude-range must satisfy 0 < MIN <= MAX (mm), got "
                              f"{lo:g} {hi:g}")
     amplitudes = np.geomspace(lo, hi, count)
-    return amplitudes / scale, amplitudes
+    return amplitudes / scale, amplitudes, grid_limit(prepared), ()
 
 
 def structure_rom(prepared: PreparedStructure, output_sets: Sequence[str] = ()) -> Rom:
@@ -256,3 +290,36 @@ def set_rows(rom: Rom, name: str, response_set: str | None) -> np.ndarray:
         assert rom.output is not None
         return np.asarray(rom.output)
     return np.asarray(rom.outputs[name])
+
+
+def check_damping_ratio(value: Any) -> float:
+    """A structural (modal) damping ratio in [0, 1), dimensionless."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        x = math.nan
+    if isinstance(value, bool) or not (math.isfinite(x) and 0.0 <= x < 1.0):
+        raise ParameterError(f"damping ratio must be in [0, 1), got {value!r}")
+    return x
+
+
+def modal_damping(structure: Any, zeta: float) -> Any:
+    """``structure`` (:class:`~microslip.dynamics.structure.Structure`) with the structural
+    damping that gives each of its stuck linear modes the ratio ``zeta``: C = M Phi diag(2
+    zeta omega_i) Phi^T M over the modes of K + the joints' stuck stiffness (mass-normalised
+    Phi), added to its own C. In the stuck limit a mode's EPMC damping ratio is then its own
+    plus ``zeta`` exactly; with slip, approximately (the slipping shape mixes modes, each
+    damped at its own omega_i)."""
+    from dataclasses import replace
+
+    from scipy.linalg import eigh
+
+    zeta = check_damping_ratio(zeta)
+    if zeta == 0.0:
+        return structure
+    m = np.asarray(structure.mass, dtype=float)
+    lam, phi = eigh(structure.stuck_stiffness(), m)
+    omega = np.sqrt(np.maximum(lam, 0.0))
+    mp = m @ phi
+    c = (mp * (2.0 * zeta * omega)) @ mp.T
+    return replace(structure, damping=np.asarray(structure.damping) + 0.5 * (c + c.T))

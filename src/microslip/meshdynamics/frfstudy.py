@@ -73,14 +73,20 @@ REFERENCE = "rom"
 class FrfSettings:
     """The forced response's settings: the balance (``harmonics``, ``samples`` per period),
     the sweep (``frequency_range`` in Hz, default :data:`MESH_RANGE` times the mode's stuck
-    frequency) and the continuation ``step`` (None: the continuation's default)."""
+    frequency), the continuation ``step`` (None: the continuation's default) and a structural
+    (modal) ``damping_ratio`` in [0, 1) given to every stuck mode of the solver's model
+    (:func:`~.case.modal_damping`)."""
 
     harmonics: int = DEFAULT_MESH_HARMONICS
     samples: int = DEFAULT_HB_SAMPLES
     frequency_range: tuple[float, float] | None = None
     step: float | None = None
+    damping_ratio: float = 0.0
 
     def __post_init__(self) -> None:
+        from .case import check_damping_ratio
+
+        object.__setattr__(self, "damping_ratio", check_damping_ratio(self.damping_ratio))
         check_balance(self.harmonics, self.samples)
         if self.frequency_range is not None:
             lo, hi = self.frequency_range
@@ -297,6 +303,15 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
     runs = {}
     for name in solvers:
         forced = FRF_MESH_SOLVERS[name].build(study, rom)
+        if settings.damping_ratio:
+            from dataclasses import replace
+
+            from .case import modal_damping
+
+            forced = replace(forced, structure=modal_damping(forced.structure,
+                                                             settings.damping_ratio),
+                             label=f"{forced.label} + structural damping ratio "
+                                   f"{settings.damping_ratio:g} on every mode")
         levels = forces if each is None else each(name, forces)
         runs[name] = (forced, [
             frequency_response(forced.structure, f, forced.load, frange, settings.harmonics,
@@ -306,24 +321,38 @@ def run_forced(study: FrfStudy, forces: Sequence[float], settings: FrfSettings,
 
 
 def curve_json(c: Any, study: FrfStudy) -> dict[str, Any]:
-    """One force level's curve as JSON, with its peak's equivalent damping ratio (None when
-    the largest amplitude is at an end of the range)."""
-    inside = bool(c.frequency[0] < c.peak_frequency < c.frequency[-1])
+    """One force level's curve as JSON, with its peak's equivalent damping ratio (None, and
+    ``peak_in_range`` False, when the largest amplitude is at an end of the range: no peak,
+    its ``peak_*`` then the largest point's)."""
+    inside = bool(c.frequency.size > 2 and c.frequency[0] < c.peak_frequency
+                  < c.frequency[-1])
     zeta = (equivalent_damping(c.force, study.modal_force, study.response_motion,
                                c.peak_frequency, c.peak_amplitude) if inside else None)
     return {"force_N": c.force, "frequency_Hz": c.frequency, "amplitude_mm": c.amplitude,
             "peak_amplitude_mm": c.peak_amplitude, "peak_frequency_Hz": c.peak_frequency,
-            "damping_ratio": zeta, "points": int(c.frequency.size), "success": c.success,
+            "peak_in_range": inside, "damping_ratio": zeta,
+            "points": int(c.frequency.size), "success": c.success,
             "message": c.message}
 
 
-def curve_warnings(curves: list[Any]) -> list[str]:
-    """A curve that stopped early, or whose largest amplitude is not a peak."""
+def curve_warnings(curves: list[Any], study: FrfStudy | None = None) -> list[str]:
+    """A curve that stopped early, or whose largest amplitude is not a peak; with the
+    ``study``, a peak's equivalent damping ratio above 10 % (:func:`~.limits.damping_warning`:
+    near gross sliding, outside the model's validity)."""
+    from .limits import VALIDITY_DAMPING, damping_warning
+
     out = []
     for c in curves:
+        if study is not None:
+            zeta = curve_json(c, study)["damping_ratio"]
+            if zeta is not None and zeta > VALIDITY_DAMPING:
+                out.append(f"curve at {c.force:g} N: " + damping_warning(
+                    zeta, f"the peak at {c.peak_amplitude:.4g} mm",
+                    len(getattr(study.case.clamp, "shanks", ()))))
         if not c.success:
             out.append(f"curve at {c.force:g} N stopped early: {c.message}")
-        if not c.frequency[0] < c.peak_frequency < c.frequency[-1]:
+        if not (c.frequency.size > 2 and c.frequency[0] < c.peak_frequency
+                < c.frequency[-1]):
             out.append(f"curve at {c.force:g} N: the largest amplitude is at an end of the "
                        "frequency range, not a peak (no damping ratio); widen "
                        "--frequency-range")
@@ -350,7 +379,8 @@ def _head(study: FrfStudy) -> dict[str, Any]:
             "density_kg_m3": study.case.density,
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
-            "response_set": study.case.response_set}
+            "response_set": study.case.response_set,
+            "model": prepared.model.describe()}
 
 
 def _load(study: FrfStudy) -> dict[str, Any]:
@@ -371,13 +401,14 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
                 **{k: v for k, v in head.items() if k != "mesh"},
                 "response_direction": [float(v) for v in study.mode.direction],
                 "load": _load(study), "harmonics": harmonics, "samples": samples,
-                "frequency_range_Hz": frange, **forced.extra,
+                "frequency_range_Hz": frange,
+                "structural_damping_ratio": settings.damping_ratio, **forced.extra,
                 "curves": [curve_json(c, study) for c in curves],
                 "damping_ratio_definition": DAMPING_DEFINITION,
-                "warnings": curve_warnings(curves)}
+                "warnings": curve_warnings(curves, study)}
     solvers = {name: {**forced.extra, "label": forced.label,
                       "curves": [curve_json(c, study) for c in curves],
-                      "warnings": curve_warnings(curves)}
+                      "warnings": curve_warnings(curves, study)}
                for name, (forced, curves) in runs.items()}
     ref = solvers[REFERENCE]["curves"]
     comparison = {name: [peak_comparison(r, o) for r, o in zip(ref, s["curves"], strict=True)]
@@ -386,7 +417,9 @@ def frf_output(study: FrfStudy, runs: dict[str, tuple[ForcedModel, list[Any]]],
     return {"mesh": head["mesh"], "solver": "all",
             **{k: v for k, v in head.items() if k != "mesh"},
             "load": _load(study), "harmonics": harmonics, "samples": samples,
-            "frequency_range_Hz": frange, "solvers": solvers, "reference": REFERENCE,
+            "frequency_range_Hz": frange,
+            "structural_damping_ratio": settings.damping_ratio, "solvers": solvers,
+            "reference": REFERENCE,
             "comparison": comparison, "damping_ratio_definition": DAMPING_DEFINITION,
             "warnings": [f"{n}: {w}" for n, s in solvers.items() for w in s["warnings"]]}
 

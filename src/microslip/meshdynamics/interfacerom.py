@@ -548,7 +548,7 @@ def _count(count: int, nb: int) -> int:
 
 def interface_epmc(model: MeshModel, density_kg_m3: float, mode: Mode, amplitudes: ArrayLike,
                    harmonics: int, samples: int, *, response_set: str | None, rom_modes: int,
-                   interface_modes: int, rom: Rom | None = None
+                   interface_modes: int, rom: Rom | None = None, damping_ratio: float = 0.0
                    ) -> tuple[InterfaceRom, ModalCurve]:
     """The interface-reduced model of ``model`` for its stuck mode ``mode`` and its EPMC
     curve at ``amplitudes`` (mm, of the response set's mean motion along the mode's
@@ -558,7 +558,8 @@ def interface_epmc(model: MeshModel, density_kg_m3: float, mode: Mode, amplitude
     else through the contact-node ROM (:func:`build_interface_rom`); the odd-harmonic
     balance with ``fixed`` normal contact (odd node forces), every harmonic with
     ``penalty``. ``rom``: the study's contact-node ROM of ``model`` where one is built already
-    (the ROM route then reduces it instead of building another)."""
+    (the ROM route then reduces it instead of building another). ``damping_ratio``: a
+    structural damping ratio on every stuck mode (:func:`~.case.modal_damping`)."""
     if model.free_free:
         raise ParameterError(
             "the interface model of a free-free assembly is not built yet (it reduces the "
@@ -576,6 +577,10 @@ def interface_epmc(model: MeshModel, density_kg_m3: float, mode: Mode, amplitude
         reduced = build_interface_rom(rom, interface_modes, mode.number - 1)
     out = reduced.output
     structure = reduced.structure(None if out is None else np.asarray(mode.direction) @ out)
+    if damping_ratio:
+        from .case import modal_damping
+
+        structure = modal_damping(structure, damping_ratio)
     method = epmc_odd if reduced.per_node == 2 else epmc
     return reduced, method(structure, np.asarray(amplitudes), harmonics, samples,
                            mode.number - 1)

@@ -28,13 +28,14 @@ from .case import (
     OnStructure,
     PreparedStructure,
     StructureCase,
-    amplitude_grid,
+    limited_grid,
     prepare_structure,
     structure_rom,
 )
 from .verdict_modal import modal_verdict
 
 if TYPE_CHECKING:
+    from .limits import GridLimit
     from .studyresult import StudyResult
 
 __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "STUCK_TOLERANCE",
@@ -44,7 +45,8 @@ __all__ = ["BASE_COLUMNS", "MESH_SOLVERS", "ROM_NODE_LIMIT", "SHARED", "STUCK_TO
 
 #: Keys of a solver's JSON that the study gives, the same for every solver: written once.
 SHARED = ("mesh", "mode", "label", "density_kg_m3", "amplitude_coordinate",
-          "linear_frequencies_Hz", "free_frequencies_Hz", "modes")
+          "linear_frequencies_Hz", "free_frequencies_Hz", "modes", "amplitude_limit",
+          "model", "structural_damping_ratio")
 #: The solver every other is judged against.
 TRUTH = "fe"
 #: Progress of the full FE's amplitudes: (done, total, seconds left).
@@ -55,9 +57,11 @@ Progress = Callable[[int, int, float], None]
 class ModalSettings:
     """The solvers' settings of a modal study: the amplitude grid (``amplitudes`` of them,
     first slip to near gross sliding, or log-uniform over ``amplitude_range``, mm), the
-    harmonic balance of the ROM and the whole joint (``harmonics``, ``samples`` per period)
-    and where the full FE's independent amplitudes run (``workers`` local processes, or a
-    Dask ``scheduler`` address)."""
+    harmonic balance of the ROM and the whole joint (``harmonics``, ``samples`` per period),
+    where the full FE's independent amplitudes run (``workers`` local processes, or a
+    Dask ``scheduler`` address) and a structural (modal) ``damping_ratio`` in [0, 1) added to
+    every model (:func:`~.case.modal_damping`; the full FE's QSMA adds it to its friction's
+    ratio, energy for energy)."""
 
     amplitudes: int = 8
     amplitude_range: tuple[float, float] | None = None
@@ -65,8 +69,12 @@ class ModalSettings:
     samples: int = DEFAULT_HB_SAMPLES
     workers: int = 1
     scheduler: str | None = None
+    damping_ratio: float = 0.0
 
     def __post_init__(self) -> None:
+        from .case import check_damping_ratio
+
+        object.__setattr__(self, "damping_ratio", check_damping_ratio(self.damping_ratio))
         n = self.amplitudes
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or not (
                 1 <= n <= MAX_AMPLITUDES):
@@ -89,12 +97,16 @@ class ModalStudy(OnStructure):
 
     ``forces`` are the QSMA's modal forces q; ``amplitudes`` (mm) are the same levels mapped
     through the stuck mode (a = q r / omega^2, r the response set's motion per unit modal
-    coordinate), or the settings' ``amplitude_range`` itself."""
+    coordinate), or the settings' ``amplitude_range`` itself. ``limit`` is the grid's
+    physical limit (:class:`~.limits.GridLimit`: small rotations, the elastic limit) and
+    ``notes`` what it did to the automatic grid (issue 34 item 2)."""
 
     prepared: PreparedStructure
     settings: ModalSettings
     forces: np.ndarray = field(repr=False)
     amplitudes: np.ndarray = field(repr=False)
+    limit: GridLimit | None = None
+    notes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -152,6 +164,9 @@ def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     curve = qsma(model, study.mode, cast(Any, study.forces), workers=study.settings.workers,
                  scheduler=study.settings.scheduler, progress=progress)
     s = curve.summary()
+    zeta0 = study.settings.damping_ratio  # structural damping: W_s = 4 pi zeta0 U, added
+    s["damping_ratio"] = [z + zeta0 if z is not None and math.isfinite(z) else z
+                          for z in s["damping_ratio"]]
     columns = {"amplitude_mm": BASE_COLUMNS["amplitude_mm"],
                "frequency_Hz": BASE_COLUMNS["frequency_Hz"],
                "secant_frequency_Hz": ("f_sec (Hz)", "{:12.7g}"),
@@ -161,8 +176,11 @@ def _fe(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     # the slip pattern: the contact nodes in the contact plane (mm), slipped or not per amplitude
     xy = model.mesh.nodes[model.contact_nodes] @ model.rotation.T
     pattern = {"x_mm": xy[:, 0].tolist(), "y_mm": xy[:, 1].tolist(),
-               "slipped": [p.node_slipped.tolist() for p in curve.points]}
-    return MeshCurve(label="quasi-static modal analysis of the full FE", columns=columns,
+               "slipped": [p.node_slipped.tolist() for p in curve.points],
+               "open": [(p.node_open if p.node_open.size else
+                         np.zeros(xy.shape[0], dtype=bool)).tolist() for p in curve.points]}
+    return MeshCurve(label="quasi-static modal analysis of the full FE" + _damped(study),
+                     columns=columns,
                      values=values, extra={"modal_force": s["force"], "slip_pattern": pattern},
                      warnings=list(s["warnings"]))
 
@@ -171,10 +189,12 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     """EPMC on the contact-node ROM at the grid's amplitudes."""
     from ..dynamics.modal import epmc
     from ..dynamics.modal_odd import epmc_odd
+    from .case import modal_damping
     from .reduce import rom_structure
 
     mode, s = study.mode, study.settings
-    structure = rom_structure(rom, mode.direction @ _output(rom))
+    structure = modal_damping(rom_structure(rom, mode.direction @ _output(rom)),
+                              s.damping_ratio)
     method = epmc if rom.per_node == 3 else epmc_odd  # odd joint forces: odd harmonics only
     failures: list[str] = []  # an amplitude not reached is NaN, its reason a warning
     curve = method(structure, np.asarray(study.amplitudes), s.harmonics, s.samples,
@@ -183,7 +203,8 @@ def _rom(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     freqs = [float(f) for f in rom.stuck_frequencies(count + 2)]
     stuck, warn = stuck_check(study, freqs, "contact-node ROM")
     return MeshCurve(
-        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)",
+        label=f"EPMC on the contact-node ROM ({rom.dofs} DOF, {curve.harmonics} harmonics)"
+              + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
                                                curve.amplitude)),
@@ -218,6 +239,12 @@ def stuck_check(study: ModalStudy, frequencies: Any, name: str) -> tuple[dict[st
     return {"stuck_frequency_Hz": nearest, "stuck_frequency_error": error}, warn
 
 
+def _damped(study: ModalStudy) -> str:
+    """The label's note of a structural damping ratio (none: nothing)."""
+    zeta = study.settings.damping_ratio
+    return f" + structural damping ratio {zeta:g} on every mode" if zeta else ""
+
+
 def _output(rom: Any) -> Any:
     """The ROM's output rows (3, n): the response set's mean displacement; one line without
     a response set."""
@@ -236,14 +263,14 @@ def _interface(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCu
     model, curve = interface_epmc(
         study.prepared.model, case.density, study.mode, study.amplitudes, s.harmonics,
         s.samples, response_set=case.response_set, rom_modes=case.rom_modes,
-        interface_modes=case.interface_modes, rom=rom)
+        interface_modes=case.interface_modes, rom=rom, damping_ratio=s.damping_ratio)
     count = len(study.prepared.stuck.frequencies_Hz)
     freqs = [float(f) for f in model.stuck_frequencies(count + 2)]
     stuck, warn = stuck_check(study, freqs, "interface model")
     return MeshCurve(
         label=f"EPMC on the interface-reduced ROM ({model.dofs} DOF: "
               f"{model.interface_modes} interface modes for {model.contact_nodes} "
-              f"contact nodes, {curve.harmonics} harmonics)",
+              f"contact nodes, {curve.harmonics} harmonics)" + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": [float(a) for a in curve.amplitude],
                 "frequency_Hz": [float(f) for f in curve.frequency],
@@ -266,8 +293,11 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     from .wholejoint import build_whole_joint, whole_joint_epmc
 
     mode, s = study.mode, study.settings
+    from .case import modal_damping
+
     joint = build_whole_joint(rom, study.prepared.model, mode, mode.direction @ _output(rom),
                               backbone=study.case.backbone)
+    joint = replace(joint, structure=modal_damping(joint.structure, s.damping_ratio))
     curve, failed = whole_joint_epmc(joint, np.asarray(study.amplitudes), s.harmonics,
                                      s.samples, mode.frequency_Hz)
     stuck = float(joint.stuck_frequencies()[joint.mode_index(mode.frequency_Hz)])
@@ -284,7 +314,8 @@ def _joint(study: ModalStudy, rom: Any, progress: Progress | None) -> MeshCurve:
     return MeshCurve(
         label=f"EPMC on the whole-joint (pull-test) model ({joint.structure.dofs} DOF, "
               f"{curve.harmonics} harmonics; stuck {stuck:.6g} Hz, "
-              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)",
+              f"{100 * (stuck / mode.frequency_Hz - 1):+.2f} % against the full FE)"
+              + _damped(study),
         columns=dict(BASE_COLUMNS),
         values={"amplitude_mm": nulls(np.where(np.isnan(curve.frequency), np.nan,
                                                curve.amplitude)),
@@ -379,10 +410,10 @@ def prepare_modal(case: StructureCase, settings: ModalSettings | None = None) ->
     everything the solvers share."""
     settings = ModalSettings() if settings is None else settings
     prepared = prepare_structure(case)
-    forces, amplitudes = amplitude_grid(prepared, settings.amplitudes,
-                                        settings.amplitude_range)
+    forces, amplitudes, limit, notes = limited_grid(prepared, settings.amplitudes,
+                                                    settings.amplitude_range)
     return ModalStudy(prepared=prepared, settings=settings, forces=forces,
-                      amplitudes=amplitudes)
+                      amplitudes=amplitudes, limit=limit, notes=notes)
 
 
 def run_solvers(study: ModalStudy, solvers: Sequence[str] = tuple(MESH_SOLVERS),
@@ -423,16 +454,30 @@ def _failed(study: ModalStudy, why: str) -> MeshCurve:
                      warnings=[why], failures=(why,))
 
 
-def study_output(study: ModalStudy, solver: str, curve: MeshCurve) -> dict[str, Any]:
-    """The JSON of one solver's curve on the study."""
+def study_output(study: ModalStudy, solver: str, curve: MeshCurve,
+                 notes: bool = True) -> dict[str, Any]:
+    """The JSON of one solver's curve on the study: its warnings with the validity ones
+    (:func:`~.limits.result_warnings`) and, with ``notes``, what the grid's limit did."""
+    from .limits import result_warnings
+
     prepared = study.prepared
+    warnings = list(curve.warnings)
+    if study.limit is not None:
+        warnings += result_warnings(study.limit, curve.values["amplitude_mm"],
+                                    curve.values["damping_ratio"],
+                                    len(getattr(study.case.clamp, "shanks", ())))
     return {"mesh": study.case.mesh_name, "solver": solver, "mode": study.number,
             "label": study.mode.label, "density_kg_m3": study.case.density,
             "amplitude_coordinate": RESPONSE_SET_COORDINATE,
             "linear_frequencies_Hz": [float(f) for f in prepared.stuck.frequencies_Hz],
             "free_frequencies_Hz": [float(f) for f in prepared.free.frequencies_Hz],
-            "modes": prepared.stuck.summary(), **curve.values, **curve.extra,
-            "cost_s": curve.cost_s, "warnings": curve.warnings}
+            "modes": prepared.stuck.summary(),
+            "amplitude_limit": None if study.limit is None else study.limit.summary(),
+            "model": prepared.model.describe(),
+            "structural_damping_ratio": study.settings.damping_ratio,
+            **curve.values, **curve.extra,
+            "cost_s": curve.cost_s,
+            "warnings": [*(study.notes if notes else ()), *warnings]}
 
 
 def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str, Any]:
@@ -440,7 +485,8 @@ def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str,
     (name -> that solver's own keys, as one solver's JSON has them), ``verdicts`` (name ->
     :meth:`~microslip.meshdynamics.verdict_modal.ModalVerdict.summary`, every solver but the
     full FE) and ``warnings`` (every solver's, each line led by its name)."""
-    outputs = {name: study_output(study, name, curve) for name, curve in curves.items()}
+    outputs = {name: study_output(study, name, curve, notes=False)
+               for name, curve in curves.items()}
     first = next(iter(outputs.values()))
     out: dict[str, Any] = {k: first[k] for k in SHARED}
     out["solvers"] = {name: {k: v for k, v in o.items() if k not in (*SHARED, "solver")}
@@ -449,8 +495,8 @@ def compare_output(study: ModalStudy, curves: dict[str, MeshCurve]) -> dict[str,
     out["verdicts"] = ({} if truth is None else
                        {name: _verdict(name, truth, o, curves[name].failures)
                         for name, o in out["solvers"].items() if name != TRUTH})
-    out["warnings"] = [f"{name}: {w}" for name, o in out["solvers"].items()
-                       for w in o["warnings"]]
+    out["warnings"] = [*study.notes, *(f"{name}: {w}" for name, o in out["solvers"].items()
+                                       for w in o["warnings"])]
     return out
 
 

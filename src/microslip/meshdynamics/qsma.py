@@ -130,6 +130,9 @@ class QSMAPoint:
         Per contact node (:attr:`~.meshmodel.MeshModel.contact_nodes` order): it slipped at
         some state of the settled cycle (the slip pattern; all False for a failed run). Not
         in :meth:`QSMACurve.summary`.
+    node_open : ndarray of bool, shape (n_c,)
+        Per contact node: it was open (lifted off, N_i = 0) at some state of the settled
+        cycle. Not in :meth:`QSMACurve.summary`.
     """
 
     force: float
@@ -147,6 +150,8 @@ class QSMAPoint:
     open_fraction: float = 0.0
     node_slipped: NDArray[np.bool_] = field(repr=False, compare=False,
                                             default_factory=lambda: np.zeros(0, dtype=bool))
+    node_open: NDArray[np.bool_] = field(repr=False, compare=False,
+                                         default_factory=lambda: np.zeros(0, dtype=bool))
 
 
 @dataclass(frozen=True, eq=False)
@@ -286,7 +291,8 @@ def qsma_point(model: MeshModel, mode: Mode, force: float,
                      slip_fraction=float(area[slipped].sum() / in_touch) if in_touch else 0.0,
                      settled=settled, cycles=r.cycles, wall_s=r.wall_s,
                      message=r.message, open_fraction=float(area[opened].sum() / area.sum()),
-                     node_slipped=np.asarray(slipped, dtype=bool))
+                     node_slipped=np.asarray(slipped, dtype=bool),
+                     node_open=np.asarray(opened, dtype=bool))
 
 
 def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
@@ -295,7 +301,8 @@ def _failed(force: float, why: str, contact_nodes: int) -> QSMAPoint:
                      secant_frequency_Hz=nan, damping_ratio=nan, dissipated_energy_Nmm=nan,
                      slip_fraction=nan, settled=False, cycles=0, wall_s=0.0,
                      message=f"failed: {why}", open_fraction=nan,
-                     node_slipped=np.zeros(contact_nodes, dtype=bool))
+                     node_slipped=np.zeros(contact_nodes, dtype=bool),
+                     node_open=np.zeros(contact_nodes, dtype=bool))
 
 
 def _point(model: MeshModel, mode: Mode, force: float,

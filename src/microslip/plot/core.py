@@ -15,8 +15,8 @@ from ..errors import MicroslipError
 from ..io import atomic_path
 from ..results import Backbone, DampingResult, HysteresisLoop
 
-__all__ = ["COLOURS", "PLOT_FORMATS", "displacement_scale", "new_figure", "plot_damping",
-           "plot_loops", "pyplot", "save_figure"]
+__all__ = ["COLOURS", "PLOT_FORMATS", "displacement_scale", "log_ticks", "new_figure",
+           "plot_damping", "plot_loops", "pyplot", "save_figure"]
 
 #: One colour per series, the same across the figures of a report.
 COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
@@ -55,6 +55,45 @@ def pyplot() -> Any:
         "axes.formatter.useoffset": False,  # 0.4244 is read as 0.4244, not +4.2e-1 offsets
     })
     return plt
+
+
+#: Most labelled ticks on a log axis (a panel 75 mm wide holds five short numbers).
+MAX_LOG_LABELS = 5
+#: The mantissas of the labelled ticks of a log axis, densest last: the first ladder step
+#: whose ticks inside the limits are at most :data:`MAX_LOG_LABELS` is taken.
+LOG_SUBS = ((1.0, 1.5, 2.0, 3.0, 5.0, 7.0), (1.0, 2.0, 5.0), (1.0, 3.0), (1.0,))
+
+
+def log_ticks(ax: Any, axis: str = "x") -> None:
+    """Readable ticks on the log axis ``axis`` ("x" or "y") of ``ax``, its limits set: at
+    most :data:`MAX_LOG_LABELS` labelled ticks, the densest ladder of :data:`LOG_SUBS` that
+    fits (every k-th decade on a long axis), written as plain numbers (0.002, 5e-05), minor ticks
+    unlabelled. Matplotlib labels the minor ticks of an axis spanning less than a decade or
+    so, and they overlap (issue 34 item 9)."""
+    import math
+
+    from matplotlib.ticker import FixedLocator, FuncFormatter, LogLocator, NullFormatter
+
+    target = ax.xaxis if axis == "x" else ax.yaxis
+    lo, hi = sorted(ax.get_xlim() if axis == "x" else ax.get_ylim())
+    if not (lo > 0.0 and hi > lo and math.isfinite(hi)):
+        return
+    ticks: list[float] = []
+    for subs in LOG_SUBS:
+        ticks = [m * 10.0 ** k for k in range(math.floor(math.log10(lo)) - 1,
+                                               math.ceil(math.log10(hi)) + 1) for m in subs]
+        ticks = [t for t in ticks if lo <= t * (1 + 1e-9) and t <= hi * (1 + 1e-9)]
+        if len(ticks) <= MAX_LOG_LABELS:
+            break
+    else:  # a long axis: every k-th decade
+        step = math.ceil(len(ticks) / MAX_LOG_LABELS)
+        ticks = ticks[::step]
+    if not ticks:  # inside one step of the ladder: its two ends
+        ticks = [lo, hi]
+    target.set_major_locator(FixedLocator(ticks))
+    target.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    target.set_minor_locator(LogLocator(base=10.0, subs=tuple(range(2, 10)), numticks=20))
+    target.set_minor_formatter(NullFormatter())
 
 
 def new_figure(ncols: int = 1, nrows: int = 1, width_mm: float = 85.0,

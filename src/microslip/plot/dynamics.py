@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .core import COLOURS, displacement_scale, new_figure, save_figure
+from .core import COLOURS, displacement_scale, log_ticks, new_figure, save_figure
 
 if TYPE_CHECKING:
     from ..dynamics.describing import DescribingFunction
@@ -37,6 +37,7 @@ def plot_describing_function(result: DescribingFunction, path: str | os.PathLike
         ax.semilogx(a, y, color=colour, marker="." if a.size < 40 else None)
         ax.set_xlabel("displacement amplitude A (mm)")
         ax.set_ylabel(label)
+        log_ticks(ax, "x")
     fig.suptitle(f"describing function of the {result.joint} joint")
     save_figure(fig, path)
 
@@ -56,6 +57,7 @@ def plot_modal(curve: ModalCurve, energy: ModalCurve, path: str | os.PathLike[st
         ax.set_xlabel("modal amplitude a (mm)")
         ax.set_ylabel(label)
         ax.legend()
+        log_ticks(ax, "x")
     save_figure(fig, path)
 
 

@@ -11,9 +11,11 @@ from typing import Any
 import numpy as np
 
 from ..meshdynamics.verdict_modal import DAMPING_CEILING as MICROSLIP_CEILING
-from .core import COLOURS, displacement_scale, new_figure, pyplot, save_figure
+from .core import COLOURS, displacement_scale, log_ticks, new_figure, pyplot, save_figure
 
-__all__ = ["compare_figure", "plot_compare", "plot_mesh_loops", "plot_qsma", "slip_snapshots"]
+__all__ = ["compare_figure", "mesh_loops_figure", "node_states", "plot_compare",
+           "plot_mesh_loops", "plot_qsma",
+           "slip_snapshots"]
 
 #: Slip-pattern panels of the side-by-side figure (at the FE's first, middle and last
 #: amplitudes).
@@ -24,6 +26,12 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
                     path: str | os.PathLike[str], title: str = "") -> None:
     """``loops``: (set name, force N, displacement mm) per load; ``works``: each load's work
     over the cycle, N·mm (in the legend)."""
+    save_figure(mesh_loops_figure(loops, works, title), path)
+
+
+def mesh_loops_figure(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float],
+                      title: str = "") -> Any:
+    """The figure of :func:`plot_mesh_loops`, unsaved."""
     fig, axes = new_figure(ncols=len(loops), width_mm=75.0)
     for k, ((name, force, disp), work) in enumerate(zip(loops, works, strict=True)):
         ax = axes[0][k]
@@ -35,7 +43,7 @@ def plot_mesh_loops(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float
         ax.legend(loc="upper left", fontsize="small")
     if title:
         fig.suptitle(title)
-    save_figure(fig, path)
+    return fig
 
 
 def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
@@ -57,6 +65,8 @@ def plot_qsma(curve: Mapping[str, Any], path: str | os.PathLike[str]) -> None:
     ax.semilogx(a, curve["damping_ratio"], color=COLOURS[0], marker=".")
     ax.set_xlabel("amplitude of the response set (mm)")
     ax.set_ylabel("damping ratio zeta (-)")
+    for ax in axes[0]:
+        log_ticks(ax, "x")
     how = {"fe": "full-FE quasi-static modal analysis", "rom": "EPMC on the contact-node ROM"}
     solver = curve.get("solver", "fe")
     fig.suptitle(f"mode {curve['mode']} ({curve['label']}), {how.get(solver, solver)}")
@@ -97,6 +107,21 @@ def _damping_floor(ax: Any, solvers: Mapping[str, Any]) -> None:
                 transform=ax.transAxes, fontsize="small", color="0.3")
 
 
+def node_states(pattern: Mapping[str, Any], i: int) -> tuple[np.ndarray, np.ndarray]:
+    """(slipped, open) per contact node at the pattern's amplitude ``i``: a node that slid
+    while closed is slipped; one open at some state of the cycle that never slid is open
+    (drawn hollow: not stick, issue 34 item 9); a pattern without ``open`` has none.
+
+    >>> node_states({"slipped": [[True, False, False]], "open": [[True, True, False]]}, 0)
+    (array([ True, False, False]), array([False,  True, False]))
+    """
+    slipped = np.asarray(pattern["slipped"][i], dtype=bool)
+    given = pattern.get("open")
+    opened = (np.zeros_like(slipped) if given is None else
+              np.asarray(given[i], dtype=bool) & ~slipped)
+    return slipped, opened
+
+
 def compare_figure(out: Mapping[str, Any]) -> Any:
     """The figure of ``modal --mesh ... --solver all``'s JSON object ``out``: frequency and
     damping ratio against amplitude for every solver (top), and the full FE's slip pattern
@@ -130,23 +155,29 @@ def compare_figure(out: Mapping[str, Any]) -> Any:
     for ax in (freq, damp):
         ax.set_xlabel("amplitude of the response set a (mm)")
         ax.legend(fontsize="small", frameon=False)
+        log_ticks(ax, "x")
+    log_ticks(damp, "y")
     if pattern is not None and picks:
         x, y = np.asarray(pattern["x_mm"]), np.asarray(pattern["y_mm"])
         for j, i in enumerate(picks):
             ax = fig.add_subplot(grid[1, 2 * j:2 * j + 2])
-            slipped = np.asarray(pattern["slipped"][i], dtype=bool)
-            ax.scatter(x[~slipped], y[~slipped], s=10, color=COLOURS[0], label="stick")
+            slipped, opened = node_states(pattern, i)
+            stuck = ~slipped & ~opened
+            ax.scatter(x[stuck], y[stuck], s=10, color=COLOURS[0], label="stick")
             ax.scatter(x[slipped], y[slipped], s=10, color=COLOURS[1], label="slip")
+            ax.scatter(x[opened], y[opened], s=10, facecolors="none", edgecolors="0.45",
+                       linewidths=0.8, label="open (lifted off)")
             ax.set_aspect("equal", adjustable="box")
             share = fe.get("slip_fraction", [None] * len(picks))[i]
             share = slipped.mean() if share is None else share
+            gap = f"\n{int(opened.sum())} of {opened.size} nodes open" if opened.any() else ""
             ax.set_title(f"a = {fe['amplitude_mm'][i]:.3g} mm\n{100 * share:.0f} % of the "
-                         "area slips", fontsize=7)
+                         f"area slips{gap}", fontsize=7)
             ax.set_xlabel("contact plane e1 (mm)")
             if j == 0:
                 ax.set_ylabel("contact plane e2 (mm)")
                 fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center",
-                           ncol=2, fontsize="small", frameon=False)
+                           ncol=3, fontsize="small", frameon=False)
     fig.suptitle(f"mode {out['mode']} ({out['label']}): every solver on one amplitude grid"
                  + ("\nbelow: the full FE's contact slip pattern over the settled cycle"
                     if picks else ""), fontsize=8)

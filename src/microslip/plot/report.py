@@ -22,7 +22,8 @@ from .core import COLOURS, new_figure, plot_loops, pyplot
 if TYPE_CHECKING:
     from ..planar import PlanarResult
 
-__all__ = ["damping_svg", "loops_svg", "planar_svg", "structure_svg", "svg_text"]
+__all__ = ["damping_svg", "loops_svg", "mesh_loops_svg", "planar_svg", "structure_svg",
+           "svg_text"]
 
 
 def svg_text(fig: Any) -> str:
@@ -91,3 +92,11 @@ def structure_svg(out: Mapping[str, Any]) -> str:
     from .ownmesh import compare_figure
 
     return svg_text(compare_figure(out))
+
+
+def mesh_loops_svg(loops: Sequence[tuple[str, Any, Any]], works: Sequence[float]) -> str:
+    """Each load's loop over the settled cycle of a run on the user's mesh
+    (:func:`microslip.plot.ownmesh.mesh_loops_figure`)."""
+    from .ownmesh import mesh_loops_figure
+
+    return svg_text(mesh_loops_figure(loops, works))

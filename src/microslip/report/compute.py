@@ -44,7 +44,7 @@ from ..progress import progress_bar
 from ..results import DampingResult
 from .structure import structure_section
 
-__all__ = ["LOOP_FRACTIONS", "ReportData", "ReportSettings", "comparison", "compute_report",
+__all__ = ["LOOP_FRACTIONS", "ReportData", "ReportSettings", "comparison", "compute_bar_report",
            "report_json"]
 
 #: Amplitudes of the loop figure, as fractions of the case amplitude.
@@ -61,7 +61,9 @@ PLANAR_KEYS = ("load.planar.ratio", "load.planar.tip_amplitude",
 
 @dataclass(frozen=True)
 class ReportSettings:
-    """How the report computes: 1-D increments, FE solver, mesh and substeps, FE points."""
+    """How the report computes: 1-D increments, FE solver, mesh and substeps, FE points;
+    ``bar``: a case of the user's own mesh gets the 1-D bar report of its ``[geometry]``
+    beside its part's (off: the mesh's report is about the mesh alone)."""
 
     increments: int = 1000
     fe_solver: str = "builtin"
@@ -69,6 +71,7 @@ class ReportSettings:
     substeps: int = 50
     fe_points: bool = True
     planar_increments: int = 1000
+    bar: bool = False
 
 
 @result
@@ -139,11 +142,11 @@ def _planar(case: Case, increments: int) -> tuple[PlanarRun | None, str | None]:
         return None, str(exc)
 
 
-def compute_report(case: Case, settings: ReportSettings | None = None, *,
-                   progress: bool = True,
-                   structure: bool = True) -> ReportData:
-    """Compute every number of the report of ``case``; with ``structure`` the section of the
-    structure's mode too, last, when the case's [mesh] gives a file and a density
+def compute_bar_report(case: Case, settings: ReportSettings | None = None, *,
+                       progress: bool = True, structure: bool = True) -> ReportData:
+    """Compute every number of the 1-D bar report of ``case`` (its preset or [geometry]
+    and clamp); with ``structure`` the section of the structure's mode too, last, when the
+    case's [mesh] gives a file and a density
     (:func:`microslip.report.structure.structure_section`)."""
     s = settings or ReportSettings()
     inputs = _loop(case, s)

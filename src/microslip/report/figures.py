@@ -6,6 +6,8 @@ This module picks each figure's data from :class:`~microslip.report.compute.Repo
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..plot.report import damping_svg, loops_svg, planar_svg, structure_svg
 from .compute import LOOP_FRACTIONS, ReportData
 
@@ -30,7 +32,7 @@ def planar_figure(data: ReportData) -> str:
     return planar_svg(data.planar)
 
 
-def structure_figure(data: ReportData) -> str:
+def structure_figure(data: Any) -> str:
     """Every solver's frequency and damping ratio against amplitude on the case's mesh, and
     the full FE's contact slip pattern."""
     assert data.structure is not None

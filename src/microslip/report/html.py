@@ -20,7 +20,7 @@ from ..models import MODELS
 from .compute import ReportData, comparison
 from .figures import damping_figure, loops_figure, planar_figure, structure_figure
 
-__all__ = ["render"]
+__all__ = ["bar_sections", "render"]
 
 STYLE = """
 body{font-family:sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;color:#222}
@@ -136,15 +136,16 @@ def _planar(data: ReportData) -> str:
                       "resultant models; load path in the force plane (N)."))
 
 
-def _structure(data: ReportData) -> str:
+def _structure(data: Any) -> str:
     """The damping of the structure's mode on the case's mesh: every solver side by side, the
-    verdicts, the figure; or what the case lacks for it."""
+    verdicts, the figure; or what the case lacks for it (``data``: a bar's
+    :class:`ReportData` or a mesh case's :class:`~.mesh.MeshReport`, their ``structure``
+    and ``case``)."""
     out = data.structure
     if out is None and "mesh.file" in data.case.values:
         return (f'<p class="note">The case\'s mesh {_e(str(data.case.values["mesh.file"]))} '
-                "has no density ([mesh] density, kg/m^3): its structure is not reported, and "
-                "the sections above describe the bar of the case's clamp (its preset and "
-                "[geometry]), not this mesh.</p>")
+                "has no density ([mesh] density, kg/m^3, or one in every [[mesh.material]]): "
+                "its modes and their damping are not reported.</p>")
     if out is None:
         return ('<p class="note">The case gives no mesh of the structure with its density '
                 "([mesh] file, density; mode and response_set optional): no structure to "
@@ -155,6 +156,15 @@ def _structure(data: ReportData) -> str:
              f"{_num(out['free_frequencies_Hz'][n - 1])} Hz, density "
              f"{_num(float(out['density_kg_m3']))} kg/m^3; every solver on one amplitude grid, "
              "as <code>microslip modal --mesh FILE --solver all</code>.</p>")
+    lim = out.get("amplitude_limit")
+    if lim:
+        intro += (f"<p>Amplitude limit {_num(float(lim['limit_mm']), 4)} mm "
+                  f"({_e(lim['reason'])}): the automatic grid runs from first slip to it or "
+                  "to near gross sliding, whichever comes first.</p>")
+    if out.get("structural_damping_ratio"):
+        intro += (f"<p>Every model carries a structural damping ratio of "
+                  f"{_num(float(out['structural_damping_ratio']))} (dimensionless) on every "
+                  "mode.</p>")
     rows = [(name, v["verdict"]) for name, v in out["verdicts"].items()]
     table = _table(("model", "against the full FE at equal amplitude (microslip range)"),
                    rows) if rows else ""
@@ -163,11 +173,28 @@ def _structure(data: ReportData) -> str:
             + _figure(structure_figure(data), "Natural frequency (Hz) and damping ratio "
                       "(dimensionless) against the response set's amplitude (mm) for every "
                       "solver; below, the full FE's contact nodes in the contact plane (mm), "
-                      "stick or slip over the settled cycle, at three amplitudes."))
+                      "stick, slip or open over the settled cycle, at three amplitudes."))
+
+
+def bar_sections(data: ReportData) -> list[str]:
+    """The 1-D bar's sections of a page: its inputs, the 1-D model against the FE, the
+    validity, the loops, the damping against amplitude and the planar coupling."""
+    return [
+        "<h2>Inputs</h2>", _inputs(data),
+        "<h2>1-D model against finite elements</h2>", _comparison(data),
+        "<h2>Validity of the 1-D model</h2>", _validity(data),
+        "<h2>Hysteresis loops</h2>",
+        _figure(loops_figure(data), "Force against displacement of the loaded section: Masing "
+                "loops (solid) and first loadings (dashed), force in N, displacement in mm."),
+        "<h2>Damping against amplitude</h2>",
+        _figure(damping_figure(data), "Loss factor (dimensionless) and dissipated energy per "
+                "cycle (N·mm) against the force amplitude (N); dotted: the case amplitude."),
+        "<h2>Planar coupling</h2>", _planar(data),
+    ]
 
 
 def render(data: ReportData) -> str:
-    """The whole page of a report."""
+    """The whole page of a bar's report (a mesh case's: :func:`~.meshhtml.render_mesh`)."""
     case = data.case
     title = case.name or (case.source or "microslip case")
     spec = MODELS[data.model]
@@ -180,16 +207,7 @@ def render(data: ReportData) -> str:
         f'<p class="note">Case file {_e(case.source)}; microslip {_e(__version__)}; '
         f"{_e(spec.label)} ({_e(spec.equations)}). Units: N, mm, MPa, N·mm.</p>",
         f"<ul>{warnings}</ul>" if warnings else "",
-        "<h2>Inputs</h2>", _inputs(data),
-        "<h2>1-D model against finite elements</h2>", _comparison(data),
-        "<h2>Validity of the 1-D model</h2>", _validity(data),
-        "<h2>Hysteresis loops</h2>",
-        _figure(loops_figure(data), "Force against displacement of the loaded section: Masing "
-                "loops (solid) and first loadings (dashed), force in N, displacement in mm."),
-        "<h2>Damping against amplitude</h2>",
-        _figure(damping_figure(data), "Loss factor (dimensionless) and dissipated energy per "
-                "cycle (N·mm) against the force amplitude (N); dotted: the case amplitude."),
-        "<h2>Planar coupling</h2>", _planar(data),
+        *bar_sections(data),
         "<h2>Damping of the structure's mode</h2>", _structure(data),
         "</body></html>",
     ]

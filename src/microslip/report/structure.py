@@ -23,25 +23,26 @@ REPORT_AMPLITUDES = 6
 
 def case_structure(case: Case) -> StructureCase | None:
     """The structure the case file describes, or None when it gives no mesh file or no
-    density (the one place a case file's [mesh] becomes a StructureCase)."""
-    from ..fe.clamp import MeshClamp
+    density (the one place a case file's [mesh] becomes a StructureCase): its assembly as
+    the commands build it (the clamp's keys and the ``[[mesh.*]]`` tables,
+    :func:`~.part.case_assembly`), its density (``[mesh] density``, or every material's
+    own), mode, response set and ``[material] yield_strength``."""
     from ..meshdynamics.case import StructureCase
+    from .part import case_assembly, case_density
 
     v = case.values
-    if "mesh.file" not in v or "mesh.density" not in v:
+    if "mesh.file" not in v:
         return None
-    clamp = MeshClamp(str(case.get("mesh.contact_set")), str(case.get("mesh.clamp_set")),
-                      normal_force=float(case.get("clamping.normal_force")),
-                      modulus=float(case.get("material.modulus")),
-                      poisson_ratio=float(case.get("material.poisson_ratio")),
-                      friction=float(case.get("contact.friction")),
-                      stick_slope=float(case.get("contact.stick_slope")),
-                      normal_contact=str(case.get("mesh.normal_contact")),
-                      normal_slope=float(case.get("mesh.normal_slope")))
+    assembly = case_assembly(case)
+    density = case_density(case, assembly)
+    if density is None:
+        return None
     response = case.get("mesh.response_set")
-    return StructureCase(str(v["mesh.file"]), clamp, density=float(case.get("mesh.density")),
+    strength = case.get("material.yield_strength")
+    return StructureCase(str(v["mesh.file"]), assembly, density=density,
                          mode=int(case.get("mesh.mode")),
-                         response_set=None if response is None else str(response))
+                         response_set=None if response is None else str(response),
+                         yield_strength=None if strength is None else float(strength))
 
 
 def structure_section(case: Case, amplitudes: int = REPORT_AMPLITUDES

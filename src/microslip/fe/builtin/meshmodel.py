@@ -549,9 +549,21 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
             if quad is not None and not penalty:  # quadratic faces: N_i from the pressure
                 reactions = RecoveredNormal(k_rf, quad.permuted(sort), clamp_fixed)
                 clamp_fixed = None
-            normal, limit, u, resp, iters = clamping_step(
-                k_ff, reactions, backend, cdofs, kc, springs, clamp, newton, mu, f_n,
-                clamp_fixed, released)
+            try:
+                normal, limit, u, resp, iters = clamping_step(
+                    k_ff, reactions, backend, cdofs, kc, springs, clamp, newton, mu, f_n,
+                    clamp_fixed, released)
+            except ParameterError as exc:
+                if quad is None or penalty:
+                    raise
+                # no active set here: a node-by-node release on the recovered N_i (a face's
+                # pressure shared among its nodes) cycles on lifting parts (lap.msh, bracket)
+                raise ParameterError(
+                    f"{mesh.source}: {str(exc).split('; ')[0]}, and fixed normal contact on "
+                    "20-node faces cannot release them (their normal forces come from the "
+                    "face's recovered pressure, which ties neighbouring nodes together, so "
+                    "hex8's node-by-node release never settles); use --element hex8 with "
+                    "fixed contact, or --normal-contact penalty with hex20") from None
             if released is None:
                 break
             # release the held nodes in tension; press back the released ones below the base

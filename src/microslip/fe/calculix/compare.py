@@ -186,7 +186,8 @@ def compare_on_mesh(case: OwnMeshCase, out: str | Path | None = None, *,
                                                CALCULIX_SETTLE_FACTOR * case.tol)}
     diff = {k: _rel(ccx[k], builtin[k]) for k in TOLERANCE}
     if fixed is not None:
-        normal["fixed_builtin"] = {k: fixed[k] for k in (*TOLERANCE, "cycles", "settled")}
+        normal["fixed_builtin"] = {k: fixed[k] for k in (*TOLERANCE, "cycles", "settled",
+                                                         "model") if k in fixed}
         normal["fixed_against_hard"] = {k: _rel(fixed[k], builtin[k]) for k in TOLERANCE}
     clamp = as_assembly(case.clamp)
     result: dict[str, Any] = {
