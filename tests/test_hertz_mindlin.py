@@ -70,8 +70,9 @@ def test_the_condensed_active_set_is_the_whole_body_one(monkeypatch: pytest.Monk
                                                         band_limit: int) -> None:
     """The curved face's clamping on the condensed candidates (:mod:`.curved`; banded
     Cholesky, and SuperLU with ``band_limit`` 0) and its tangential loading on the pressing
-    nodes give the whole body's answer: N_i to 1e-9 of P, u0 to 1e-9, W to 1e-6 (Newton's
-    tolerance; measured 2e-8 banded, 2e-13 SuperLU)."""
+    nodes give the whole body's answer: N_i to 1e-9 of P, u0 to 1e-8, W and d to 1e-6
+    (Newton's tolerance: the condensed passes settle the friction before releasing a node,
+    ``settle_first``, so their path differs; measured u0 1.5e-9, W 2e-8)."""
     monkeypatch.setattr(meshmodel, "AUTO_BAND_LIMIT", band_limit)
     mesh = _tiny()
     a = _assembly()
@@ -81,7 +82,7 @@ def test_the_condensed_active_set_is_the_whole_body_one(monkeypatch: pytest.Monk
     whole = meshmodel.build_mesh_model(mesh, a, condensed=False, linear_solver="banded")
     assert whole.reduced is None
     assert np.max(np.abs(fast.normal_force - whole.normal_force)) < 1e-9 * P
-    assert np.max(np.abs(fast.u0 - whole.u0)) < 1e-9 * np.max(np.abs(whole.u0))
+    assert np.max(np.abs(fast.u0 - whole.u0)) < 1e-8 * np.max(np.abs(whole.u0))
     assert np.array_equal(fast.closed, whole.closed)
     history = SineCycles(increments=8, max_cycles=2)
     w_fast = solve_mesh(fast, _loads(125.0), history)

@@ -216,7 +216,7 @@ def curved_clamping(k_all: sp.csr_matrix, contact: IntArray, area: FloatArray,
             backend = DenseBackend(k_d, cdofs[:, 0], cdofs[:, 1])
             normal, _, u, resp, iters = clamping_step(
                 k_d, k_rf, backend, cdofs, kc, None, clamp, newton, friction, normal_force,
-                clamp_fixed, released)
+                clamp_fixed, released, settle_first=True)
             below = np.zeros(cand.size, dtype=bool)
             below[released] = u[index[3 * local[released] + 2]] + g_c[released] < 0.0
             new = (released | ((normal <= 0.0) & ~released)) & ~below

@@ -71,7 +71,7 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
                   cdofs: IntArray, kc: FloatArray, springs: PenaltyNormal | None,
                   clamp: FloatArray, newton: NewtonOptions, friction: float,
                   normal_force: float, clamp_fixed: FloatArray | None = None,
-                  released: BoolArray | None = None
+                  released: BoolArray | None = None, settle_first: bool = False
                   ) -> tuple[FloatArray, FloatArray, FloatArray, FrictionResponse, int]:
     """Solve the clamping step of a body on its rigid base (any mesh).
 
@@ -84,7 +84,11 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
     ``released`` (``fixed`` normal contact, :func:`contact_partition`'s): the nodes whose u_z
     is free carry N_i = 0, and a held node in tension (N_i <= 0) returns at once with its
     normal force (the caller releases it:
-    :func:`~.meshmodel.build_mesh_model`'s active set) instead of refusing.
+    :func:`~.meshmodel.build_mesh_model`'s active set) instead of refusing. With
+    ``settle_first`` it returns only once the friction has settled (the held nodes in tension
+    get no friction meanwhile): a node in tension when all stick may press once the others
+    slip (:mod:`.curved`: a ring at a curved face's contact edge, nu = 0.3, mu = 0.1, else
+    released and pressed back pass after pass).
 
     Returns
     -------
@@ -120,7 +124,7 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
         if released is not None:
             held, new_normal = new_normal, np.zeros(n_c)
             new_normal[~released] = held
-            if np.any(held <= 0.0):  # tension: the caller releases these nodes
+            if np.any(held <= 0.0) and not settle_first:  # tension: the caller releases them
                 return new_normal, friction * new_normal, u, resp, iters
         # penalty normal contact: a node may lift off (N_i = 0); fixed: N_i must be > 0
         bad = (new_normal <= 0.0 if springs is None and released is None else
@@ -134,7 +138,7 @@ def clamping_step(k_ff: sp.csr_matrix, k_rf: sp.csr_matrix, backend: Backend,
                 "the clamping step left no contact node pressed onto the base")
         change = float(np.max(np.abs(new_normal - normal)))
         normal = new_normal
-        limit_new = friction * normal
+        limit_new = friction * (np.maximum(normal, 0.0) if settle_first else normal)
         admissible = bool(np.all(np.hypot(*resp.force.T) <= limit_new))
         limit = limit_new
         if (attempt == 0 and admissible) or change <= 1e-12 * normal_force:
