@@ -16,6 +16,7 @@ pair (T = I) is solved bit for bit as before. Units: mm.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -206,15 +207,25 @@ def check_held(mesh: HexMesh, label: IntArray, n_bodies: int, assembly: Assembly
             "hold it with --fixed SET[:DIRECTIONS] or give it a contact")
 
 
-def relative_transform(slaves: IntArray, masters: IntArray, n_nodes: int) -> sp.csr_matrix:
+def relative_transform(slaves: IntArray, masters: IntArray, n_nodes: int,
+                       constraints: Any = None) -> sp.csr_matrix:
     """T (3 n square, CSR) with u = T v: identity, plus u_s = v_s + v_m for every slave model
-    node s and its master m (every component)."""
+    node s and its master m (every component).
+
+    ``constraints`` (:class:`~microslip.fe.hanging.HangingNodes` in the model's numbering):
+    rows u_h = sum_k w_k u_k of hanging nodes, applied after the pairs (T = H (I + P)): a
+    hanging node moves with its parents' nodal displacements, its own column of T is zero
+    (its unknowns are to be held), and a parent that is a slave brings its master along."""
     c = np.arange(3)
     rows = (3 * slaves[:, None] + c).ravel()
     cols = (3 * masters[:, None] + c).ravel()
     n = 3 * n_nodes
     p = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
-    return (sp.identity(n, format="csr") + p).tocsr()
+    t = (sp.identity(n, format="csr") + p).tocsr()
+    if constraints is None:
+        return t
+    h = sp.kron(constraints.matrix(n_nodes), sp.identity(3), format="csr")
+    return (h @ t).tocsr()
 
 
 @dataclass(frozen=True, eq=False)

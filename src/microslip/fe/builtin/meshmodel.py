@@ -39,6 +39,7 @@ from numpy.typing import NDArray
 from ...blas import single_threaded_blas
 from ...errors import ParameterError
 from ..assembly import Assembly, as_assembly
+from ..hanging import hanging_of
 from ..hexmesh import HexMesh, face_load
 from ..meshload import MeshLoad
 from .bodies import contact_layout, element_materials, ground_springs, relative_transform
@@ -463,8 +464,14 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     groups = element_materials(mesh, assembly.materials)
     bolts = tuple(np.concatenate([_face_nodes_of(mesh, b.head), _face_nodes_of(mesh, b.nut)])
                   for b in assembly.shanks)
-    order = numbering(layout.numbering_elements(mesh.elements, bolts),
-                      np.unique(mesh.face_corners(contact_faces)))
+    hanging = hanging_of(mesh)  # a locally refined mesh's constraints (:mod:`..hanging`)
+    joined = layout.numbering_elements(mesh.elements, bolts)
+    if hanging is not None:
+        if mesh.nodes_per_element != 8:
+            raise ParameterError(f"{mesh.source}: hanging nodes on 20-node hexahedra are not "
+                                 "supported; refine the 8-node mesh")
+        joined = np.concatenate([joined, hanging.numbering_rows(joined.shape[1])])
+    order = numbering(joined, np.unique(mesh.face_corners(contact_faces)))
     on_base = layout.base_body_nodes(order)
     if on_base.size and float(np.max(mesh.nodes[on_base] @ outward - offset)) > FLAT_TOL * size:
         raise ParameterError(f"{mesh.source}: the body reaches through the plane of its "
@@ -488,6 +495,8 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
     assert k_all is not None
 
     c_mesh, area, quad = _contact_areas(mesh, contact_faces, contact_weights)
+    if hanging is not None:  # a hanging node's area goes to its parents (T^T a)
+        c_mesh, area = hanging.lump(c_mesh, area)
     c_model = inv[c_mesh]
     sort = np.argsort(c_model)
     contact_nodes, contact = c_mesh[sort], c_model[sort]
@@ -504,17 +513,25 @@ def build_mesh_model(mesh: HexMesh, assembly: Assembly | Any, *, element: str | 
         for c in range(3):
             full[base + c] += force * k_share * push[c]
     transform = None
-    if np.any(master >= 0):  # relative interface coordinates: u = T v (:mod:`.bodies`)
+    if np.any(master >= 0) or hanging is not None:
+        # relative interface coordinates and hanging nodes: u = T v (:mod:`.bodies`)
         paired = master >= 0
-        transform = relative_transform(contact[paired], inv[master[paired]], order.size)
+        transform = relative_transform(
+            contact[paired], inv[master[paired]], order.size,
+            None if hanging is None else hanging.in_numbering(inv))
         k_all = (transform.T @ k_all @ transform).tocsr()
         full = np.asarray(transform.T @ full)
+        if hanging is not None:  # the product drops the entries that cancel
+            k_all = _node_blocks(k_all)
     supports = layout.support_dofs(inv, rotation)
     ground = None
     if layout.free_free:  # determinate soft springs against the rigid motions (:mod:`.bodies`)
         _check_balanced(mesh, full, nodes, size)
         ground = ground_springs(nodes, contact, k_all)
         k_all = (k_all + ground).tocsr()
+    if hanging is not None:  # a hanging node's own unknowns are held (its row is in T)
+        held_h = hanging.dofs(inv)
+        supports = held_h if supports is None else np.union1d(supports, held_h)
     gap = layout.gaps(mesh, contact_nodes)
     # fixed normal contact: nodes the clamp pulls off the base are released (active set);
     # quadratic faces recover N_i from the pressure instead (their corner reactions are
@@ -722,6 +739,22 @@ def _curved_model(mesh: HexMesh, assembly: Assembly, element: str, k_all: sp.csr
         clamp_iterations=c.iterations, backend=SpentBackend(name), setup_s=time.perf_counter()
         - t0, newton=newton, reduced=c.reduced, transform=transform,
         contact_master=np.where(master >= 0, inv[master], -1))
+
+
+def _node_blocks(k: sp.csr_matrix) -> sp.csr_matrix:
+    """``k`` with every node's 3 x 3 diagonal block in its sparsity pattern (explicit zeros
+    where T^T K T cancelled an entry), which the sparse backends' contact entries need."""
+    n = k.shape[0] // 3
+    a, b = np.meshgrid(np.arange(3), np.arange(3), indexing="ij")
+    base = 3 * np.arange(n)[:, None]
+    rows = (base + a.ravel()).ravel()
+    cols = (base + b.ravel()).ravel()
+    coo = k.tocoo()
+    out = sp.csr_matrix((np.concatenate([coo.data, np.zeros(rows.size)]),
+                         (np.concatenate([coo.row, rows]), np.concatenate([coo.col, cols]))),
+                        shape=k.shape)
+    out.sort_indices()
+    return out
 
 
 @dataclass(frozen=True)
